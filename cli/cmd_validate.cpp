@@ -1,0 +1,53 @@
+#include <cstdio>
+
+#include "args.h"
+#include "commands.h"
+#include "pipeline/inputs.h"
+#include "spec/scene.h"
+
+namespace hairfit::cli {
+
+namespace {
+
+const char* yes_no(bool b) { return b ? "yes" : "no"; }
+
+void print_map(const char* name, const std::optional<GreyMap>& map) {
+  if (map) std::printf("  %-8s map %d×%d, %d-bit\n", name, map->width, map->height, map->bits);
+}
+
+}  // namespace
+
+int command_validate(const Arguments& argv) {
+  const Args args(argv, {}, {});
+  if (args.positionals().size() != 1) throw UsageError{"expected exactly one SCENE file"};
+  const Scene scene = parse_scene(args.positionals()[0]);
+  const Inputs inputs = load_inputs(scene);
+  const InputsSummary s = summarise_inputs(inputs);
+
+  std::printf("%s: valid scene (%s)\n", scene.file.string().c_str(), scene.format.c_str());
+  const MeshTopology& st = s.scalp_topology;
+  std::printf("  scalp    %s\n           %d triangles, %d vertices, %.2f cm², %zu boundary loop(s), Euler "
+              "characteristic %d: %s\n",
+              scene.inputs.scalp.string().c_str(), st.faces, st.vertices, s.scalp_area, st.boundary_loops.size(),
+              st.euler_characteristic, st.is_disk() ? "a topological disk" : "NOT a disk");
+  if (inputs.scalp.welded_duplicates || inputs.scalp.dropped_degenerate)
+    std::printf("           welded %d duplicate vertices, dropped %d zero-area triangles\n",
+                inputs.scalp.welded_duplicates, inputs.scalp.dropped_degenerate);
+  const MeshTopology& vt = s.volume_topology;
+  std::printf("  volume   %s\n           %d triangles, %d vertices, %.2f cm², closed: %s, consistently oriented: "
+              "%s, encloses the scalp: %.0f%% of sampled scalp vertices\n",
+              scene.inputs.volume.string().c_str(), vt.faces, vt.vertices, s.volume_area, yes_no(vt.closed()),
+              yes_no(vt.orientation_consistent), 100.0 * s.scalp_inside_fraction);
+  if (inputs.volume.welded_duplicates || inputs.volume.dropped_degenerate)
+    std::printf("           welded %d duplicate vertices, dropped %d zero-area triangles\n",
+                inputs.volume.welded_duplicates, inputs.volume.dropped_degenerate);
+  print_map("density", inputs.density_map);
+  print_map("tilt", inputs.tilt_map);
+  print_map("length", inputs.length_map);
+  std::string effects;
+  for (const std::string& e : scene.effects.names()) effects += (effects.empty() ? "" : ", ") + e;
+  std::printf("  effects  %s\n", effects.empty() ? "none declared" : effects.c_str());
+  return 0;
+}
+
+}  // namespace hairfit::cli

@@ -1,0 +1,64 @@
+// hairfit: strand hair from a scalp mesh and the boundary of the hair volume
+// (Sobottka, Kusak and Weber, "Hairstyle Construction from Raw Surface Data").
+#include <cstdio>
+#include <exception>
+#include <iostream>
+#include <string>
+
+#include "args.h"
+#include "commands.h"
+#include "core/error.h"
+
+namespace {
+
+struct Command {
+  const char* name;
+  const char* usage;
+  int (*run)(const hairfit::cli::Arguments&);
+};
+
+const Command kCommands[] = {
+    {"validate", "validate SCENE            check a scene and its inputs; nothing is computed",
+     hairfit::cli::command_validate},
+    {"run", "run SCENE [--out DIR] [--until STAGE] [--threads N]   run the pipeline, write outputs and report.json",
+     hairfit::cli::command_run},
+};
+
+void print_help() {
+  std::printf("hairfit %s — strand hair from raw surface data\n\nusage: hairfit COMMAND [ARGS]\n\ncommands:\n",
+              HAIRFIT_VERSION);
+  for (const Command& c : kCommands) std::printf("  hairfit %s\n", c.usage);
+  std::printf("\n  hairfit --help | --version\n\nexit codes: 0 success, 2 bad input, 1 internal error\n");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::string first = argc > 1 ? argv[1] : "";
+  if (first.empty() || first == "--help" || first == "-h" || first == "help") {
+    print_help();
+    return first.empty() ? 2 : 0;
+  }
+  if (first == "--version") {
+    std::printf("hairfit %s\n", HAIRFIT_VERSION);
+    return 0;
+  }
+  for (const Command& c : kCommands) {
+    if (first != c.name) continue;
+    const hairfit::cli::Arguments args(argv + 2, argv + argc);
+    try {
+      return c.run(args);
+    } catch (const hairfit::InputError& e) {
+      std::fprintf(stderr, "%s\n", e.what());
+      return 2;
+    } catch (const hairfit::cli::UsageError& e) {
+      std::fprintf(stderr, "hairfit %s: %s\nusage: hairfit %s\n", c.name, e.message.c_str(), c.usage);
+      return 2;
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "hairfit %s: internal error: %s\n", c.name, e.what());
+      return 1;
+    }
+  }
+  std::fprintf(stderr, "hairfit: unknown command \"%s\"; see hairfit --help\n", first.c_str());
+  return 2;
+}

@@ -1,0 +1,132 @@
+#include "core/mesh.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numeric>
+
+namespace hairfit {
+
+namespace {
+
+int find_root(std::vector<int>& parent, int i) {
+  while (parent[i] != i) i = parent[i] = parent[parent[i]];
+  return i;
+}
+
+}  // namespace
+
+MeshTopology analyse_topology(const Mesh& mesh) {
+  MeshTopology topo;
+  const int n = static_cast<int>(mesh.positions.size());
+  topo.faces = static_cast<int>(mesh.triangles.size());
+
+  // Directed half-edges (a→b) per undirected edge; an edge is boundary when used once.
+  struct EdgeUse {
+    int count = 0;
+    int forward = 0;  // uses as min→max
+  };
+  std::map<std::pair<int, int>, EdgeUse> edges;
+  std::vector<char> used(n, 0);
+  std::vector<int> parent(n);
+  std::iota(parent.begin(), parent.end(), 0);
+  for (const Vec3i& t : mesh.triangles) {
+    for (int k = 0; k < 3; ++k) {
+      const int a = t[k], b = t[(k + 1) % 3];
+      used[a] = 1;
+      EdgeUse& e = edges[{std::min(a, b), std::max(a, b)}];
+      ++e.count;
+      if (a < b) ++e.forward;
+      parent[find_root(parent, a)] = find_root(parent, b);
+    }
+  }
+  topo.vertices = static_cast<int>(std::count(used.begin(), used.end(), 1));
+  topo.edges = static_cast<int>(edges.size());
+  topo.euler_characteristic = topo.vertices - topo.edges + topo.faces;
+  for (int i = 0; i < n; ++i)
+    if (used[i] && find_root(parent, i) == i) ++topo.components;
+
+  // Boundary half-edges keep the triangle's direction, so loops come out consistently oriented.
+  std::multimap<int, int> next;  // boundary half-edge a→b
+  std::vector<int> nonmanifold;
+  for (const auto& [key, use] : edges) {
+    if (use.count > 2) {
+      nonmanifold.push_back(key.first);
+      nonmanifold.push_back(key.second);
+    }
+    if (use.count == 2 && use.forward != 1) topo.orientation_consistent = false;
+    if (use.count == 1) {
+      if (use.forward == 1)
+        next.emplace(key.first, key.second);
+      else
+        next.emplace(key.second, key.first);
+    }
+  }
+  std::sort(nonmanifold.begin(), nonmanifold.end());
+  nonmanifold.erase(std::unique(nonmanifold.begin(), nonmanifold.end()), nonmanifold.end());
+  topo.nonmanifold_vertices = nonmanifold;
+
+  while (!next.empty()) {
+    std::vector<int> loop;
+    auto it = next.begin();
+    const int start = it->first;
+    int current = start;
+    while (it != next.end()) {
+      loop.push_back(current);
+      const int to = it->second;
+      next.erase(it);
+      if (to == start) break;
+      current = to;
+      it = next.find(current);
+    }
+    topo.boundary_loops.push_back(std::move(loop));
+  }
+  return topo;
+}
+
+double triangle_area(const Mesh& mesh, int triangle) {
+  const Vec3i& t = mesh.triangles[triangle];
+  const Vec3& a = mesh.positions[t[0]];
+  return 0.5 * (mesh.positions[t[1]] - a).cross(mesh.positions[t[2]] - a).norm();
+}
+
+double surface_area(const Mesh& mesh) {
+  double area = 0.0;
+  for (int i = 0; i < static_cast<int>(mesh.triangles.size()); ++i) area += triangle_area(mesh, i);
+  return area;
+}
+
+Vec3 triangle_normal(const Mesh& mesh, int triangle) {
+  const Vec3i& t = mesh.triangles[triangle];
+  const Vec3& a = mesh.positions[t[0]];
+  const Vec3 n = (mesh.positions[t[1]] - a).cross(mesh.positions[t[2]] - a);
+  const double len = n.norm();
+  return len > 0.0 ? Vec3(n / len) : Vec3::Zero();
+}
+
+std::pair<Vec3, Vec3> bounding_box(const Mesh& mesh) {
+  Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
+  for (const Vec3i& t : mesh.triangles)
+    for (int k = 0; k < 3; ++k) {
+      lo = lo.cwiseMin(mesh.positions[t[k]]);
+      hi = hi.cwiseMax(mesh.positions[t[k]]);
+    }
+  return {lo, hi};
+}
+
+double winding_number(const Mesh& mesh, const Vec3& point) {
+  // Solid angle of each triangle by Van Oosterom and Strackee's formula.
+  double total = 0.0;
+  for (const Vec3i& t : mesh.triangles) {
+    const Vec3 a = mesh.positions[t[0]] - point;
+    const Vec3 b = mesh.positions[t[1]] - point;
+    const Vec3 c = mesh.positions[t[2]] - point;
+    const double la = a.norm(), lb = b.norm(), lc = c.norm();
+    const double numerator = a.dot(b.cross(c));
+    const double denominator = la * lb * lc + a.dot(b) * lc + b.dot(c) * la + c.dot(a) * lb;
+    total += 2.0 * std::atan2(numerator, denominator);
+  }
+  return total / (4.0 * M_PI);
+}
+
+}  // namespace hairfit

@@ -1,0 +1,48 @@
+// A triangle mesh as an immutable value: positions in the scene's length unit (cm after loading)
+// and counter-clockwise triangles (the outward side is the one the vertices turn around
+// counter-clockwise when seen from it).
+#pragma once
+#include <string>
+#include <vector>
+
+#include "core/types.h"
+
+namespace hairfit {
+
+struct Mesh {
+  std::vector<Vec3> positions;
+  std::vector<Vec3i> triangles;
+};
+
+// Edge-based topology of a mesh: what `hairfit validate` reports and the scalp chart requires.
+struct MeshTopology {
+  int vertices = 0;  // vertices used by at least one triangle
+  int edges = 0;
+  int faces = 0;
+  int euler_characteristic = 0;                 // V − E + F over used vertices
+  int components = 0;                           // connected components (via shared edges)
+  std::vector<std::vector<int>> boundary_loops;  // vertex indices, in the triangles' orientation
+  std::vector<int> nonmanifold_vertices;        // endpoints of edges shared by 3+ triangles
+  bool orientation_consistent = true;           // no interior edge traversed twice the same way
+  bool closed() const { return boundary_loops.empty() && nonmanifold_vertices.empty(); }
+  // A topological disk: one component, one boundary loop, manifold, χ = 1.
+  bool is_disk() const {
+    return components == 1 && boundary_loops.size() == 1 && nonmanifold_vertices.empty() &&
+           euler_characteristic == 1;
+  }
+};
+
+MeshTopology analyse_topology(const Mesh& mesh);
+
+double triangle_area(const Mesh& mesh, int triangle);
+double surface_area(const Mesh& mesh);
+// Unit normal of a triangle (zero vector for a degenerate one).
+Vec3 triangle_normal(const Mesh& mesh, int triangle);
+// Axis-aligned bounds of the used positions: {min, max}.
+std::pair<Vec3, Vec3> bounding_box(const Mesh& mesh);
+
+// Generalised winding number of a point with respect to the mesh (Jacobson et al. 2013): 1 inside
+// a closed outward-oriented mesh, 0 outside, fractional near holes. O(triangles) per query.
+double winding_number(const Mesh& mesh, const Vec3& point);
+
+}  // namespace hairfit

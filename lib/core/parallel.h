@@ -1,0 +1,15 @@
+// Deterministic parallel loops: items are split into fixed contiguous blocks and every item writes
+// only its own, index-addressed output, so results never depend on the number of threads.
+#pragma once
+#include <functional>
+
+namespace hairfit {
+
+// Calls body(i) for every i in [0, count) on up to `threads` threads (1 = the calling thread only).
+// If items throw, the exception of the lowest failing index is rethrown after all have run.
+void parallel_for(int count, int threads, const std::function<void(int)>& body);
+
+// The number of threads to use when the user asked for `requested` (0 = all hardware threads).
+int resolve_thread_count(int requested);
+
+}  // namespace hairfit

@@ -1,0 +1,36 @@
+#include "io/atomic_file.h"
+
+#include <fstream>
+#include <stdexcept>
+#include <system_error>
+#include <unistd.h>
+
+namespace hairfit {
+
+void write_file_atomically(const std::filesystem::path& path,
+                           const std::function<void(std::ostream&)>& write) {
+  namespace fs = std::filesystem;
+  if (path.has_parent_path()) fs::create_directories(path.parent_path());
+  fs::path temporary = path;
+  temporary += ".tmp-" + std::to_string(::getpid());
+  try {
+    {
+      std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+      if (!out) throw std::runtime_error("cannot open " + temporary.string() + " for writing");
+      write(out);
+      out.flush();
+      if (!out) throw std::runtime_error("writing " + path.string() + " failed (disk full?)");
+    }
+    fs::rename(temporary, path);
+  } catch (...) {
+    std::error_code ignored;
+    fs::remove(temporary, ignored);
+    throw;
+  }
+}
+
+void write_text_file_atomically(const std::filesystem::path& path, std::string_view text) {
+  write_file_atomically(path, [&](std::ostream& out) { out.write(text.data(), text.size()); });
+}
+
+}  // namespace hairfit

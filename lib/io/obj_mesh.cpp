@@ -1,0 +1,170 @@
+#include "io/obj_mesh.h"
+
+#include <tiny_obj_loader.h>
+
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "core/error.h"
+#include "io/atomic_file.h"
+
+namespace hairfit {
+
+namespace {
+
+// Line-level checks tinyobjloader does not make: it reads "nan" as a number silently and has no
+// line numbers in its messages. Returns the vertex count.
+int check_obj_text(const std::filesystem::path& path, const std::string& text, int& faces) {
+  const std::string file = path.string();
+  const std::size_t probe = std::min<std::size_t>(text.size(), 4096);
+  if (std::memchr(text.data(), '\0', probe) != nullptr)
+    throw InputError(file, "is a binary file, not an OBJ text file; export the mesh as Wavefront OBJ");
+
+  std::istringstream lines(text);
+  std::string line;
+  int line_number = 0, vertices = 0;
+  faces = 0;
+  std::vector<std::pair<int, std::string>> face_lines;
+  while (std::getline(lines, line)) {
+    ++line_number;
+    if (line.size() >= 2 && line[0] == 'v' && (line[1] == ' ' || line[1] == '\t')) {
+      ++vertices;
+      std::istringstream fields(line.substr(2));
+      for (int axis = 0; axis < 3; ++axis) {
+        std::string token;
+        fields >> token;
+        char* end = nullptr;
+        const double value = std::strtod(token.c_str(), &end);
+        if (token.empty() || *end != '\0' || !std::isfinite(value)) {
+          const int column = static_cast<int>(line.find(token.empty() ? std::string("v") : token)) + 1;
+          throw InputError({Diagnostic{{file, line_number, column},
+                                       "vertex " + std::to_string(vertices) + " has " +
+                                           (token.empty() ? std::string("fewer than 3 coordinates")
+                                                          : "a non-finite or unreadable coordinate \"" + token + "\"") +
+                                           "; every vertex needs three finite numbers",
+                                       line}});
+        }
+      }
+    } else if (line.size() >= 2 && line[0] == 'f' && (line[1] == ' ' || line[1] == '\t')) {
+      ++faces;
+      face_lines.emplace_back(line_number, line);
+    }
+  }
+  for (const auto& [number, face] : face_lines) {
+    std::istringstream fields(face.substr(2));
+    std::string token;
+    while (fields >> token) {
+      const long index = std::strtol(token.c_str(), nullptr, 10);
+      const long resolved = index < 0 ? vertices + index + 1 : index;
+      if (index == 0 || resolved < 1 || resolved > vertices)
+        throw InputError({Diagnostic{{file, number, static_cast<int>(face.find(token)) + 1},
+                                     "face refers to vertex " + std::to_string(index) + " but the file has " +
+                                         std::to_string(vertices) + " vertices (valid: 1.." +
+                                         std::to_string(vertices) + " or negative relative indices)",
+                                     face}});
+    }
+  }
+  return vertices;
+}
+
+}  // namespace
+
+LoadedMesh load_obj_mesh(const std::filesystem::path& path, double scale_to_cm) {
+  namespace fs = std::filesystem;
+  const std::string file = path.string();
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw InputError(file, "no such file; check the path (relative paths start at the scene file's folder)");
+  if (fs::is_directory(path, ec)) throw InputError(file, "is a folder, not an OBJ mesh file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(file, "cannot be read (permissions?)");
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+
+  LoadedMesh result;
+  result.file_vertices = check_obj_text(path, text, result.file_faces);
+
+  tinyobj::ObjReaderConfig config;
+  config.triangulate = true;
+  config.vertex_color = false;
+  config.mtl_search_path = "";
+  tinyobj::ObjReader reader;
+  if (!reader.ParseFromString(text, "", config))
+    throw InputError(file, "is not a readable OBJ mesh: " + reader.Error());
+
+  const std::vector<tinyobj::real_t>& v = reader.GetAttrib().vertices;
+  const int n = static_cast<int>(v.size() / 3);
+  // Weld exact duplicates: scans often repeat vertices along patch seams.
+  std::map<std::array<double, 3>, int> first_at;
+  std::vector<int> weld(n);
+  std::vector<Vec3> welded;
+  for (int i = 0; i < n; ++i) {
+    const std::array<double, 3> p{v[3 * i] * scale_to_cm, v[3 * i + 1] * scale_to_cm, v[3 * i + 2] * scale_to_cm};
+    auto [it, inserted] = first_at.emplace(p, static_cast<int>(welded.size()));
+    if (inserted) welded.emplace_back(p[0], p[1], p[2]);
+    else ++result.welded_duplicates;
+    weld[i] = it->second;
+  }
+
+  std::vector<Vec3i> triangles;
+  for (const tinyobj::shape_t& shape : reader.GetShapes()) {
+    const std::vector<tinyobj::index_t>& idx = shape.mesh.indices;
+    for (std::size_t f = 0; f + 2 < idx.size(); f += 3) {
+      Vec3i t(weld[idx[f].vertex_index], weld[idx[f + 1].vertex_index], weld[idx[f + 2].vertex_index]);
+      const Vec3 e1 = welded[t[1]] - welded[t[0]], e2 = welded[t[2]] - welded[t[0]];
+      if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2] || e1.cross(e2).squaredNorm() == 0.0) {
+        ++result.dropped_degenerate;
+        continue;
+      }
+      triangles.push_back(t);
+    }
+  }
+  if (triangles.empty())
+    throw InputError(file, result.file_vertices == 0
+                               ? "has no vertices; it must be a triangle mesh in Wavefront OBJ format"
+                               : "has no triangle of non-zero area; it must be a triangle mesh (faces as `f a b c` lines)");
+
+  // Keep only the vertices triangles use, in their original order.
+  std::vector<int> compact(welded.size(), -1);
+  for (const Vec3i& t : triangles)
+    for (int k = 0; k < 3; ++k) compact[t[k]] = 0;
+  for (std::size_t i = 0; i < welded.size(); ++i) {
+    if (compact[i] < 0) {
+      ++result.unused_vertices;
+      continue;
+    }
+    compact[i] = static_cast<int>(result.mesh.positions.size());
+    result.mesh.positions.push_back(welded[i]);
+  }
+  for (Vec3i& t : triangles) t = Vec3i(compact[t[0]], compact[t[1]], compact[t[2]]);
+  result.mesh.triangles = std::move(triangles);
+  return result;
+}
+
+void write_obj_mesh(const std::filesystem::path& path, const Mesh& mesh,
+                    const std::vector<Vec2>& texture_coordinates) {
+  write_file_atomically(path, [&](std::ostream& out) {
+    char buffer[128];
+    for (const Vec3& p : mesh.positions) {
+      std::snprintf(buffer, sizeof buffer, "v %.9g %.9g %.9g\n", p.x(), p.y(), p.z());
+      out << buffer;
+    }
+    for (const Vec2& uv : texture_coordinates) {
+      std::snprintf(buffer, sizeof buffer, "vt %.9g %.9g\n", uv.x(), uv.y());
+      out << buffer;
+    }
+    const bool with_uv = texture_coordinates.size() == mesh.positions.size();
+    for (const Vec3i& t : mesh.triangles) {
+      if (with_uv)
+        std::snprintf(buffer, sizeof buffer, "f %d/%d %d/%d %d/%d\n", t[0] + 1, t[0] + 1, t[1] + 1,
+                      t[1] + 1, t[2] + 1, t[2] + 1);
+      else
+        std::snprintf(buffer, sizeof buffer, "f %d %d %d\n", t[0] + 1, t[1] + 1, t[2] + 1);
+      out << buffer;
+    }
+  });
+}
+
+}  // namespace hairfit

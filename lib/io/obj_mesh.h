@@ -1,0 +1,29 @@
+// Loading OBJ triangle meshes (scalp, hair volume, scans) into immutable Mesh values.
+#pragma once
+#include <filesystem>
+#include <string>
+
+#include "core/mesh.h"
+
+namespace hairfit {
+
+struct LoadedMesh {
+  Mesh mesh;                     // in cm: file coordinates × scale_to_cm
+  int file_vertices = 0;         // `v` lines in the file
+  int file_faces = 0;            // `f` lines in the file
+  int welded_duplicates = 0;     // vertices merged with an earlier one at the same position
+  int dropped_degenerate = 0;    // triangles removed for zero area (after welding)
+  int unused_vertices = 0;       // vertices no triangle refers to (removed)
+};
+
+// Reads an OBJ file through tinyobjloader, triangulating polygons. Throws InputError naming the
+// file (and the line, where one is at fault) for a missing, unreadable or binary file, a
+// non-finite coordinate, a face index out of range, or a mesh without any usable triangle.
+// Exact duplicate vertices are welded and zero-area triangles dropped; both are counted.
+LoadedMesh load_obj_mesh(const std::filesystem::path& path, double scale_to_cm = 1.0);
+
+// Writes positions, optional per-vertex texture coordinates (`vt`) and triangles.
+void write_obj_mesh(const std::filesystem::path& path, const Mesh& mesh,
+                    const std::vector<Vec2>& texture_coordinates = {});
+
+}  // namespace hairfit

@@ -1,0 +1,35 @@
+// The scene's input files loaded into values, with the checks `hairfit validate` reports.
+#pragma once
+#include <optional>
+
+#include "core/grey_map.h"
+#include "io/obj_mesh.h"
+#include "spec/scene.h"
+
+namespace hairfit {
+
+struct Inputs {
+  LoadedMesh scalp;   // in cm
+  LoadedMesh volume;  // in cm
+  std::optional<GreyMap> density_map, tilt_map, length_map;  // only the maps effects.maps uses
+};
+
+struct InputsSummary {
+  MeshTopology scalp_topology;
+  double scalp_area = 0.0;  // cm²
+  MeshTopology volume_topology;
+  double volume_area = 0.0;           // cm²
+  double scalp_inside_fraction = 0.0;  // share of scalp vertices the volume encloses (winding > ½)
+};
+
+// Loads every input the scene names. Throws InputError (naming the file, and the scene line for
+// missing files) for unreadable data, a scalp that is not a topological disk, or a volume that does
+// not enclose the scalp.
+Inputs load_inputs(const Scene& scene);
+
+InputsSummary summarise_inputs(const Inputs& inputs);
+
+// Throws InputError naming `file` unless the mesh is a topological disk, saying what it is instead.
+void require_disk(const Mesh& mesh, const MeshTopology& topology, const std::string& file);
+
+}  // namespace hairfit

@@ -1,0 +1,59 @@
+#include "pipeline/report.h"
+
+#include <chrono>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+namespace hairfit {
+
+std::string report_json(const RunReport& report) {
+  using Json = nlohmann::ordered_json;
+  Json root;
+  root["format"] = "hairfit-report/1";
+  root["scene"] = report.scene;
+  root["seed"] = report.seed;
+  root["threads"] = report.threads;
+  root["effects"] = report.effects;
+  Json stages = Json::object();
+  for (const StageReport& s : report.stages) {
+    Json stage;
+    stage["status"] = s.status;
+    stage["seconds"] = s.seconds;
+    stage["peak_memory_bytes"] = s.peak_memory_bytes;
+    stage["digest"] = s.digest;
+    for (const auto& [key, value] : s.figures) std::visit([&, k = key](const auto& v) { stage[k] = v; }, value);
+    stages[s.name] = stage;
+  }
+  root["stages"] = stages;
+  Json outputs = Json::array();
+  for (const OutputFile& o : report.outputs) outputs.push_back({{"path", o.path}, {"bytes", o.bytes}});
+  root["outputs"] = outputs;
+  return root.dump(2) + "\n";
+}
+
+namespace {
+
+double now() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+std::uint64_t peak_resident_bytes() {
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line))
+    if (line.rfind("VmHWM:", 0) == 0) return std::stoull(line.substr(6)) * 1024;
+  return 0;
+}
+
+}  // namespace
+
+StageMeter::StageMeter() : start_(now()) {
+  std::ofstream clear("/proc/self/clear_refs");
+  if (clear) clear << "5";
+}
+
+double StageMeter::seconds() const { return now() - start_; }
+
+std::uint64_t StageMeter::peak_memory_bytes() const { return peak_resident_bytes(); }
+
+}  // namespace hairfit

@@ -1,0 +1,158 @@
+// The scene: everything a run needs, declared in one TOML file (spec/reference.md documents every
+// key). parse_scene() turns the text into this immutable value; each table of the file is one
+// section struct below, with the defaults written here once (the reference page is generated
+// from them). Paths are absolute, resolved against the scene file's folder.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "core/types.h"
+
+namespace hairfit {
+
+inline constexpr const char* kSceneFormat = "hairfit-scene/1";
+
+enum class DensityModel { none, binary, continuous };
+
+struct SceneUnits {
+  std::string length = "cm";  // unit of the mesh coordinates: mm, cm, dm, m, in
+  Vec3 down{0, -1, 0};        // world direction of gravity and of "down" on the head (unit)
+  Vec3 front{0, 0, 1};        // world direction the face looks to; orients the chart and maps
+  double to_cm() const;       // factor from the mesh unit to cm
+};
+
+struct SceneInputs {
+  std::filesystem::path scalp;
+  std::filesystem::path volume;
+};
+
+// Effects are off unless declared; what is off is never computed.
+struct SceneEffects {
+  bool gravity = false;
+  DensityModel density = DensityModel::none;
+  std::vector<std::string> maps;  // which of "density", "tilt", "length" are used
+  bool cutting = false;
+  bool winding = false;
+  bool uses_map(const std::string& name) const;
+  std::vector<std::string> names() const;  // declared effects, for reports ("gravity", "density:continuous", ...)
+};
+
+struct SceneMaps {
+  std::optional<std::filesystem::path> density, tilt, length;
+};
+
+struct SceneHair {
+  double density = 200.0;                   // hairs per cm² of scalp (× density map)
+  double length = 25.0;                     // cm, every hair, when the length map is not used
+  std::array<double, 2> length_range{15.0, 35.0};  // cm, length map black → white
+  double tilt = 0.0;                        // degrees from the normal toward down, without tilt map
+  std::array<double, 2> tilt_range{0.0, 90.0};     // degrees, tilt map black → white
+  double youngs_modulus = 3.89e10;          // E, dyn/cm² (paper §3.1)
+  double shear_modulus = 0.89e10;           // G, dyn/cm²
+  double cross_section = 1.5e-5;            // A, cm² (circular: I = A²/4π, J = 2I)
+  double mass_density = 1.32;               // g/cm³, for gravity
+};
+
+struct SceneFields {
+  double voxel = 0.25;      // cm
+  double band = 4.0;        // voxels: half-width of the band of exact distances
+  double margin = 2.0;      // cm of grid beyond the mesh's bounding box
+  double max_memory = 4.0;  // GiB for the grids of both fields together
+};
+
+struct SceneRoots {
+  int guides = 3000;               // principal guides = clusters (paper: 3000)
+  double preguide_spacing = 1.0;   // cm between pre-guide roots (paper: about 1 per cm)
+  double cluster_overlap = 1.3;    // cluster circle radius / covering radius (≥ 1)
+};
+
+struct SceneRod {
+  std::string integrator = "rk4";  // rk2 | rk4: Lie-group Runge–Kutta schemes
+  int segments = 64;               // integration steps per rod
+  double gravity = 981.0;          // cm/s², when effects.gravity
+};
+
+struct ScenePreguides {
+  std::array<double, 2> depth_range{0.15, 0.6};  // immersion depth / local thickness, top → bottom
+  double max_load = 1000.0;                       // dimensionless terminal-force cap (F L² / EI)
+};
+
+struct SceneWeights {
+  double direction = 0.4;   // w1, F1
+  double similarity = 0.2;  // w2, F2
+  double boundary = 0.4;    // w3, F3
+  double density = 0.0;     // w4, F4 (needs effects.density)
+};
+
+struct SceneGuides {
+  std::string start = "warm";      // warm (from neighbouring pre-guides) | straight (paper)
+  int samples = 16;                // residual sample points per guide
+  int neighbours = 3;              // pre-guides each guide follows (paper: 3)
+  int max_iterations = 50;         // Levenberg–Marquardt iterations
+  double tolerance = 1e-8;         // relative cost decrease at which a guide is converged
+  std::string boundary = "smooth";  // smooth (C¹) | paper (eq. 9 exactly)
+  double outside_penalty = 10.0;   // c_d, cm: extra cost outside the acceptable region (eq. 9)
+  double boundary_width = 0.1;     // cm over which the smooth form ramps the step up
+  SceneWeights weights;
+};
+
+struct SceneDensity {
+  double voxel = 0.25;      // cm
+  int batch = 64;           // guides optimised together against earlier batches
+  double threshold = 0.5;   // BOM: occupancy above which the surcharge applies
+  double surcharge = 10.0;  // c_BOM
+  double strength = 1.0;    // c_ρ (CDM)
+};
+
+struct SceneStrands {
+  int points = 16;               // points per fibre
+  double root_radius = 0.3;      // cm, radius of the wisp at the root
+  double tip_radius = 0.6;       // cm, radius of the wisp at the tip
+  double turns = 1.0;            // windings about the guide, when effects.winding
+  double cut_threshold = 1.0;    // cm outside the volume before a fibre is cut, when effects.cutting
+};
+
+struct SceneOutput {
+  std::filesystem::path dir;                           // default: "out" beside the scene
+  std::vector<std::string> strands{"hair", "obj"};     // hair | obj | usda | ply
+  std::vector<std::string> renders{"front", "side"};   // views rendered after a full run
+  std::array<double, 2> render_size{800, 800};         // pixels
+};
+
+struct Scene {
+  std::filesystem::path file;  // the scene file itself (absolute)
+  std::string format = kSceneFormat;
+  std::int64_t seed = 1;
+  SceneUnits units;
+  SceneInputs inputs;
+  SceneEffects effects;
+  SceneMaps maps;
+  SceneHair hair;
+  SceneFields fields;
+  SceneRoots roots;
+  SceneRod rod;
+  ScenePreguides preguides;
+  SceneGuides guides;
+  SceneDensity density;
+  SceneStrands strands;
+  SceneOutput output;
+  // Where each key given in the file was written, by dotted name ("guides.weights.boundary"),
+  // so later stages can point at the line behind a problem.
+  std::map<std::string, SourceLocation> locations;
+
+  // A diagnostic at a key's location (or at the file when the key took its default).
+  Diagnostic at(const std::string& key, const std::string& message) const;
+};
+
+// Parses and validates a scene file. Throws InputError carrying every problem found (unknown keys
+// with suggestions, wrong types, out-of-range values, missing files, weights not summing to 1).
+Scene parse_scene(const std::filesystem::path& file);
+Scene parse_scene_text(const std::string& text, const std::filesystem::path& file);
+
+}  // namespace hairfit
