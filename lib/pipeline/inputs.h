@@ -4,6 +4,7 @@
 
 #include "core/grey_map.h"
 #include "io/obj_mesh.h"
+#include "scalp/require_disk.h"
 #include "spec/scene.h"
 
 namespace hairfit {
@@ -29,7 +30,6 @@ Inputs load_inputs(const Scene& scene);
 
 InputsSummary summarise_inputs(const Inputs& inputs);
 
-// Throws InputError naming `file` unless the mesh is a topological disk, saying what it is instead.
-void require_disk(const Mesh& mesh, const MeshTopology& topology, const std::string& file);
+// require_disk (the scalp must be a topological disk) lives in scalp/require_disk.h.
 
 }  // namespace hairfit
