@@ -1,0 +1,58 @@
+// Forward integration of the static Kirchhoff rod in dimensionless form (DESIGN §1, paper §3.1):
+//   r' = d3,  R' = R [κ]×,  κ = κ̂ + C⁻¹ Rᵀ m,  n(s) = f_L + f·(1 − s),  m' = −d3 × n,
+// on s ∈ [0, 1] with r(0) = 0, R(0) = R0 and m(0) given (the initial-value form). The terminal
+// moment m(1) is an output. Lengths are in units of L, forces of EI/L², moments of EI/L (rod.h
+// converts from cgs).
+//
+// The integrator is a Runge–Kutta–Munthe-Kaas scheme in Cayley coordinates: within a step
+// R = R_n·cay(θ) with θ' = dcay⁻¹(κ), which is exact (no truncated series) and needs no
+// trigonometry; every frame is a product of exact rotations, so it stays orthonormal to round-off.
+//
+// The function is a template on the scalar (double, and ceres::Jet for derivatives) defined in
+// rod_integrate.cpp and instantiated there for double, Jet<double, 3> and Jet<double, 6>. This
+// header names no Ceres type; code that needs the jets includes rod/rod_jet.h.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "core/types.h"
+
+namespace hairfit {
+
+// The schemes selectable by the scene key rod.integrator: "rk2" (explicit midpoint, order 2) and
+// "rk4" (classical Runge–Kutta, order 4), both in their Lie-group (Munthe-Kaas) form.
+enum class RodIntegrator { rk2, rk4 };
+
+// Throws InputError for a name other than "rk2" or "rk4".
+RodIntegrator parse_rod_integrator(const std::string& name);
+const char* rod_integrator_name(RodIntegrator integrator);
+int rod_integrator_order(RodIntegrator integrator);
+
+// A rod made dimensionless (make_rod_model in rod.h builds one from cgs values).
+struct RodModel {
+  Vec3 compliance{1.0, 1.0, 1.0};  // EI_ref·diag(C⁻¹) = (EI_ref/EI1, EI_ref/EI2, EI_ref/GJ)
+  // κ̂·L in the material frame: empty = straight; one value = constant; n ≥ 2 values = samples at
+  // s = i/(n−1), linearly interpolated in between.
+  std::vector<Vec3> kappa_hat;
+  Vec3 force_per_length = Vec3::Zero();  // f·L³/EI_ref, world axes (gravity ρ·A·g)
+  Mat3 root_frame = Mat3::Identity();    // R(0) = [d1 d2 d3], world axes
+};
+
+// Where integrate_rod writes its per-node results (node i at s = i/N, N = segments). Every
+// pointer may be null; each must otherwise hold (N+1)·3 (or ·9 for frames) scalars.
+template <typename T>
+struct RodTrace {
+  T* nodes = nullptr;      // r(s_i), root at the origin: [x y z] per node
+  T* frames = nullptr;     // R(s_i) column-major: d1, d2, d3 (9 scalars per node)
+  T* curvature = nullptr;  // κ(s_i) = κ̂ + C⁻¹Rᵀm, material frame (κ1, κ2, τ)
+  T* moments = nullptr;    // m(s_i), world axes
+};
+
+// One forward integration with `segments` equal steps (segments ≥ 1; not checked here).
+// terminal_force f_L[3] and root_moment m(0)[3] in world axes; writes m(1)[3] to
+// terminal_moment and whatever `trace` asks for. Allocates nothing.
+template <typename T>
+void integrate_rod(const RodModel& model, RodIntegrator integrator, int segments, const T* terminal_force,
+                   const T* root_moment, T* terminal_moment, const RodTrace<T>& trace);
+
+}  // namespace hairfit
