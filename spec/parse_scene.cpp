@@ -156,14 +156,15 @@ class SceneParser {
     for (const std::string& known : tables_)
       if (parent_part(known) == parent && edit_distance(leaf, last_part(known)) < best_distance)
         best_distance = edit_distance(leaf, last_part(known)), best = known;
-    if (best.empty())
+    std::vector<std::string> candidates;
+    if (!best.empty()) candidates.push_back(best);
+    else
       for (const std::string& known : names_)
-        if (last_part(known) == leaf) {
-          best = known;
-          break;
-        }
+        if (last_part(known) == leaf) candidates.push_back(known);
     std::string message = "unknown key \"" + leaf + "\" " + where_text;
-    if (!best.empty()) message += " (did you mean \"" + best + "\"?)";
+    for (std::size_t i = 0; i < candidates.size(); ++i)
+      message += (i == 0 ? " (did you mean \"" : i + 1 == candidates.size() ? "\" or \"" : "\", \"") + candidates[i];
+    if (!candidates.empty()) message += "\"?)";
     else message += "; spec/reference.md lists every key";
     return message;
   }

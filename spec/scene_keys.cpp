@@ -21,7 +21,7 @@ Range any() { return {}; }
 
 std::string number_text(double x) {
   char buffer[64];
-  if (x == std::floor(x) && std::fabs(x) < 1e15) std::snprintf(buffer, sizeof buffer, "%.0f", x);
+  if (x == std::floor(x) && std::fabs(x) < 1e16) std::snprintf(buffer, sizeof buffer, "%.0f", x);
   else std::snprintf(buffer, sizeof buffer, "%.10g", x);
   return buffer;
 }

@@ -1,0 +1,16 @@
+#include <cstdio>
+
+#include "args.h"
+#include "commands.h"
+#include "spec/scene_keys.h"
+
+namespace hairfit::cli {
+
+int command_scene_keys(const Arguments& argv) {
+  const Args args(argv, {}, {});
+  if (!args.positionals().empty()) throw UsageError{"takes no arguments"};
+  std::fputs(scene_keys_markdown().c_str(), stdout);
+  return 0;
+}
+
+}  // namespace hairfit::cli

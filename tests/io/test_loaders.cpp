@@ -1,0 +1,127 @@
+#include <doctest/doctest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <unistd.h>
+
+#include "core/error.h"
+#include "io/atomic_file.h"
+#include "io/obj_mesh.h"
+#include "io/png_map.h"
+
+using namespace hairfit;
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path temp_dir() {
+  const fs::path dir = fs::temp_directory_path() / ("hairfit-io-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  return dir;
+}
+
+fs::path write(const std::string& name, const std::string& text) {
+  const fs::path p = temp_dir() / name;
+  std::ofstream(p, std::ios::binary) << text;
+  return p;
+}
+
+std::string error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+}  // namespace
+
+TEST_CASE("OBJ: quads are triangulated, units scaled, duplicates welded, degenerate faces dropped") {
+  const fs::path p = write("quad.obj",
+                           "# a unit square as one quad, a duplicate of vertex 1 and a zero-area triangle\n"
+                           "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 0\nv 2 0 0\n"
+                           "f 1 2 3 4\nf 5 2 6\n");
+  const LoadedMesh m = load_obj_mesh(p, 10.0);
+  CHECK(m.file_vertices == 6);
+  CHECK(m.file_faces == 2);
+  CHECK(m.mesh.triangles.size() == 2);
+  CHECK(m.welded_duplicates == 1);
+  CHECK(m.dropped_degenerate == 1);
+  CHECK(m.unused_vertices == 1);  // vertex 6 only served the degenerate triangle
+  CHECK(m.mesh.positions.size() == 4);
+  CHECK(surface_area(m.mesh) == doctest::Approx(100.0));  // 10 × 10 cm
+}
+
+TEST_CASE("OBJ: negative (relative) indices") {
+  const LoadedMesh m = load_obj_mesh(write("rel.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\n"));
+  CHECK(m.mesh.triangles.size() == 1);
+}
+
+TEST_CASE("OBJ errors name the file, the line and the fix") {
+  CHECK(error_of([] { load_obj_mesh("/nonexistent/x.obj"); }).find("/nonexistent/x.obj: error: no such file") == 0);
+  CHECK(error_of([] { load_obj_mesh(temp_dir()); }).find("is a folder") != std::string::npos);
+  const fs::path nan = write("nan.obj", "v 0 0 0\nv 1 0 inf\nv 0 1 0\nf 1 2 3\n");
+  CHECK(error_of([&] { load_obj_mesh(nan); }).find(nan.string() + ":2:7: error: vertex 2 has a non-finite") == 0);
+  const fs::path range = write("range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n");
+  CHECK(error_of([&] { load_obj_mesh(range); }).find(":4:7: error: face refers to vertex 4 but the file has 3 vertices") !=
+        std::string::npos);
+  CHECK(error_of([&] { load_obj_mesh(write("empty.obj", "# nothing\n")); }).find("has no vertices") != std::string::npos);
+  CHECK(error_of([&] { load_obj_mesh(write("flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n")); })
+            .find("no triangle of non-zero area") != std::string::npos);
+  CHECK(error_of([&] { load_obj_mesh(write("bin.obj", std::string("v 0\0\x01\x02 binary", 14))); })
+            .find("is a binary file") != std::string::npos);
+  CHECK(error_of([&] { load_obj_mesh(write("short.obj", "v 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")); })
+            .find("fewer than 3 coordinates") != std::string::npos);
+}
+
+TEST_CASE("OBJ write → read round trip keeps positions and triangles") {
+  Mesh m;
+  m.positions = {Vec3(0, 0, 0), Vec3(1.25, 0, 0), Vec3(0, 2.5, -1)};
+  m.triangles = {Vec3i(0, 1, 2)};
+  const fs::path p = temp_dir() / "round.obj";
+  write_obj_mesh(p, m, {Vec2(0, 0), Vec2(1, 0), Vec2(0, 1)});
+  const LoadedMesh back = load_obj_mesh(p);
+  CHECK(back.mesh.positions == m.positions);
+  CHECK(back.mesh.triangles == m.triangles);
+}
+
+TEST_CASE("PNG maps: 8-bit grey round trip and bilinear sampling") {
+  GreyMap map;
+  map.width = 2;
+  map.height = 1;
+  map.values = {0.0f, 1.0f};
+  const fs::path p = temp_dir() / "ramp.png";
+  write_grey_png(p, map);
+  const GreyMap back = load_grey_map(p);
+  CHECK(back.width == 2);
+  CHECK(back.height == 1);
+  CHECK(back.bits == 8);
+  CHECK(back.values == map.values);
+  CHECK(back.sample(Vec2(0.25, 0.5)) == doctest::Approx(0.0));  // pixel centre
+  CHECK(back.sample(Vec2(0.5, 0.5)) == doctest::Approx(0.5));   // halfway between centres
+  CHECK(back.sample(Vec2(-3, 9)) == doctest::Approx(0.0));      // clamped to the edge
+}
+
+TEST_CASE("PNG errors: missing, not a PNG, corrupt") {
+  CHECK(error_of([] { load_grey_map("/nonexistent/m.png"); }).find("no such file") != std::string::npos);
+  CHECK(error_of([&] { load_grey_map(write("text.png", "hello")); }).find("is not a PNG file") != std::string::npos);
+  CHECK(error_of([&] { load_grey_map(write("bad.png", std::string("\x89PNG\r\n\x1a\n", 8) + "garbage")); })
+            .find("is a corrupt PNG") != std::string::npos);
+}
+
+TEST_CASE("atomic writes leave the old file intact when writing fails") {
+  const fs::path p = temp_dir() / "keep.txt";
+  write_text_file_atomically(p, "old");
+  CHECK_THROWS(write_file_atomically(p, [](std::ostream& out) {
+    out << "half";
+    throw std::runtime_error("interrupted");
+  }));
+  std::ifstream in(p);
+  std::string text;
+  in >> text;
+  CHECK(text == "old");
+  for (const auto& entry : fs::directory_iterator(temp_dir()))
+    CHECK(entry.path().filename().string().find(".tmp-") == std::string::npos);
+}
