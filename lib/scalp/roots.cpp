@@ -1,0 +1,223 @@
+#include "scalp/roots.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "core/parallel.h"
+#include "core/random.h"
+#include "scalp/sample_elimination.h"
+
+namespace hairfit {
+
+namespace {
+
+// A map's value at a chart point; 1 when the map is not used.
+double map_value(const GreyMap* map, const Vec2& chart) { return map ? map->sample(chart_to_image(chart)) : 1.0; }
+
+double lerp(const std::array<double, 2>& range, double t) { return range[0] + (range[1] - range[0]) * t; }
+
+// The density map over one triangle, by the centroid rule on s² equal sub-triangles, s chosen so
+// a sub-triangle is no wider than about half a pixel (the map is bilinear between pixel centres).
+struct TriangleDensity {
+  double mean = 1.0;              // mean map value (area-weighted)
+  double max = 1.0;               // largest sampled value
+  double nonzero_fraction = 1.0;  // share of the samples with a non-zero value
+};
+
+TriangleDensity triangle_density(const ScalpChart& ch, int t, const GreyMap* map) {
+  TriangleDensity d;
+  if (!map) return d;
+  const Vec3i& f = ch.mesh.triangles[t];
+  const Vec2 a = ch.chart[f[0]], b = ch.chart[f[1]], c = ch.chart[f[2]];
+  const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+  const int s = std::clamp(static_cast<int>(std::ceil(longest * std::max(map->width, map->height))), 1, 16);
+  double sum = 0.0, top = 0.0;
+  int nonzero = 0;
+  auto sample = [&](double u, double w) {  // barycentric weights of b and c
+    const double v = map->sample(chart_to_image((1 - u - w) * a + u * b + w * c));
+    sum += v;
+    top = std::max(top, v);
+    nonzero += v > 0;
+  };
+  for (int i = 0; i < s; ++i)
+    for (int j = 0; i + j < s; ++j) {
+      sample((3 * i + 1) / (3.0 * s), (3 * j + 1) / (3.0 * s));
+      if (i + j < s - 1) sample((3 * i + 2) / (3.0 * s), (3 * j + 2) / (3.0 * s));
+    }
+  for (int k = 0; k < 3; ++k) top = std::max(top, map->sample(chart_to_image(ch.chart[f[k]])));
+  d.mean = sum / (s * s);
+  d.max = top;
+  d.nonzero_fraction = static_cast<double>(nonzero) / (s * s);
+  return d;
+}
+
+struct Candidates {
+  std::vector<SurfacePoint> where;
+  std::vector<Vec3> positions;
+  std::vector<double> values;  // map value at each candidate
+};
+
+// Candidates uniform over the 3D area with `per_area` candidates per cm² where the map is at
+// `reference`, thinned by value/reference (binary: kept where value > 0). Each triangle draws
+// from its own stream Random(seed, stage, triangle), so the set is the same for any thread count.
+Candidates make_candidates(const ScalpChart& ch, const GreyMap* map, const std::vector<TriangleDensity>& density,
+                           double per_area, bool binary, RandomStage stage, std::uint64_t seed, int threads) {
+  const int nf = static_cast<int>(ch.mesh.triangles.size());
+  std::vector<Candidates> per_triangle(nf);
+  parallel_for(nf, threads, [&](int t) {
+    const TriangleDensity& d = density[t];
+    const double top = binary ? (d.max > 0 ? 1.0 : 0.0) : d.max;
+    if (!(top > 0)) return;
+    Random rng(seed, stage, static_cast<std::uint64_t>(t));
+    const double expected = per_area * triangle_area(ch.mesh, t) * top;
+    const double whole = std::floor(expected);
+    const int count = static_cast<int>(whole) + (rng.uniform() < expected - whole ? 1 : 0);
+    Candidates& out = per_triangle[t];
+    for (int k = 0; k < count; ++k) {
+      const double r = std::sqrt(rng.uniform()), w = rng.uniform();
+      SurfacePoint sp;
+      sp.triangle = t;
+      sp.barycentric = Vec3(1 - r, r * (1 - w), r * w);
+      const double accept = rng.uniform();
+      const double value = map_value(map, chart_position(ch, sp));
+      if (!(value > 0)) continue;  // black: never a root
+      if (!binary && accept * top >= value) continue;
+      out.where.push_back(sp);
+      out.positions.push_back(surface_position(ch, sp));
+      out.values.push_back(value);
+    }
+  });
+  Candidates all;
+  for (Candidates& c : per_triangle) {
+    all.where.insert(all.where.end(), c.where.begin(), c.where.end());
+    all.positions.insert(all.positions.end(), c.positions.begin(), c.positions.end());
+    all.values.insert(all.values.end(), c.values.begin(), c.values.end());
+  }
+  return all;
+}
+
+std::vector<TriangleDensity> density_of_triangles(const ScalpChart& ch, const GreyMap* map, int threads) {
+  std::vector<TriangleDensity> density(ch.mesh.triangles.size());
+  parallel_for(static_cast<int>(density.size()), threads, [&](int t) { density[t] = triangle_density(ch, t, map); });
+  return density;
+}
+
+RootSet make_root_set(const ScalpChart& ch, const ScalpMaps& maps, const RootOptions& o,
+                      std::vector<SurfacePoint> where, int threads) {
+  RootSet s;
+  const int n = static_cast<int>(where.size());
+  s.where = std::move(where);
+  s.positions.resize(n);
+  s.normals.resize(n);
+  s.directions.resize(n);
+  s.lengths.resize(n);
+  s.chart.resize(n);
+  s.heights.resize(n);
+  parallel_for(n, threads, [&](int i) {
+    const SurfacePoint& sp = s.where[i];
+    s.positions[i] = surface_position(ch, sp);
+    s.normals[i] = surface_normal(ch, sp);
+    s.chart[i] = chart_position(ch, sp);
+    const double tilt = maps.tilt ? lerp(o.tilt_range, map_value(maps.tilt, s.chart[i])) : o.tilt;
+    s.directions[i] = growth_direction(s.normals[i], ch.down, ch.front, tilt);
+    s.lengths[i] = maps.length ? lerp(o.length_range, map_value(maps.length, s.chart[i])) : o.length;
+    s.heights[i] = height_of(ch, s.positions[i]);
+  });
+  return s;
+}
+
+void check_options(const RootOptions& o) {
+  if (!(o.density >= 0) || !std::isfinite(o.density)) throw std::invalid_argument("roots: density must be ≥ 0");
+  if (!(o.oversampling >= 1)) throw std::invalid_argument("roots: oversampling must be ≥ 1");
+  if (o.threads < 1) throw std::invalid_argument("roots: threads must be ≥ 1");
+}
+
+std::vector<SurfacePoint> pick(const std::vector<SurfacePoint>& all, const std::vector<int>& kept) {
+  std::vector<SurfacePoint> out;
+  out.reserve(kept.size());
+  for (int i : kept) out.push_back(all[i]);
+  return out;
+}
+
+}  // namespace
+
+Vec3 growth_direction(const Vec3& normal, const Vec3& down, const Vec3& front, double tilt_degrees) {
+  Vec3 tangent = down - down.dot(normal) * normal;
+  if (tangent.norm() < 1e-9) tangent = -front + front.dot(normal) * normal;
+  if (tangent.norm() < 1e-9) tangent = normal.unitOrthogonal();
+  tangent.normalize();
+  const double angle = tilt_degrees * M_PI / 180.0;
+  return (std::cos(angle) * normal + std::sin(angle) * tangent).normalized();
+}
+
+Roots make_roots(const ScalpChart& ch, const ScalpMaps& maps, const RootOptions& o) {
+  check_options(o);
+  Roots roots;
+  const std::vector<TriangleDensity> density = density_of_triangles(ch, maps.density, o.threads);
+  double top = 0.0;
+  for (int t = 0; t < static_cast<int>(density.size()); ++t) {
+    const double area = triangle_area(ch.mesh, t);
+    roots.expected_count += o.density * area * density[t].mean;
+    roots.hair_area += area * density[t].nonzero_fraction;
+    top = std::max(top, density[t].max);
+  }
+  const long long target = std::llround(roots.expected_count);
+  if (target == 0 || !(top > 0)) return roots;
+  if (target > 50'000'000) throw std::invalid_argument("roots: more than 50 million roots requested");
+
+  // Candidates at oversampling × the local target density; rounded up so a small set still has
+  // enough to choose from.
+  const double per_area = o.oversampling * o.density * (1.0 + 1.0 / std::sqrt(static_cast<double>(target)));
+  const Candidates c = make_candidates(ch, maps.density, density, per_area, false, RandomStage::roots, o.seed, o.threads);
+  roots.candidates = static_cast<int>(c.positions.size());
+  std::vector<double> radius(c.positions.size());
+  for (std::size_t i = 0; i < radius.size(); ++i) {
+    const double rho = o.density * std::max(c.values[i], top / 16.0);  // hairs/cm² here
+    radius[i] = 1.0 / std::sqrt(2.0 * std::sqrt(3.0) * rho);
+  }
+  const std::vector<int> kept = eliminate_samples(c.positions, radius, static_cast<int>(target), o.threads);
+  roots.pores = make_root_set(ch, maps, o, pick(c.where, kept), o.threads);
+  return roots;
+}
+
+PreguideRoots make_preguide_roots(const ScalpChart& ch, const ScalpMaps& maps, const RootOptions& o) {
+  check_options(o);
+  if (!(o.preguide_spacing > 0)) throw std::invalid_argument("roots: preguide_spacing must be > 0");
+  PreguideRoots pre;
+  pre.spacing = o.preguide_spacing;
+  const std::vector<TriangleDensity> density = density_of_triangles(ch, maps.density, o.threads);
+  double hair_area = 0.0;
+  for (int t = 0; t < static_cast<int>(density.size()); ++t) hair_area += triangle_area(ch.mesh, t) * density[t].nonzero_fraction;
+  // Hexagonal packing at spacing s holds one point per (√3/2)s².
+  const double rho = 2.0 / (std::sqrt(3.0) * o.preguide_spacing * o.preguide_spacing);
+  const long long target = std::llround(hair_area * rho);
+  if (target == 0) return pre;
+  const double per_area = o.oversampling * rho * (1.0 + 1.0 / std::sqrt(static_cast<double>(target)));
+  const Candidates c = make_candidates(ch, maps.density, density, per_area, true, RandomStage::preguides, o.seed, o.threads);
+  const std::vector<double> radius(c.positions.size(), 1.0 / std::sqrt(2.0 * std::sqrt(3.0) * rho));
+  const std::vector<int> kept = eliminate_samples(c.positions, radius, static_cast<int>(target), o.threads);
+  pre.roots = make_root_set(ch, maps, o, pick(c.where, kept), o.threads);
+  return pre;
+}
+
+Digest digest(const RootSet& s) {
+  Digest d;
+  d.add(std::string_view("RootSet/1")).add(static_cast<std::int64_t>(s.size()));
+  for (const SurfacePoint& sp : s.where) {
+    d.add(static_cast<std::int64_t>(sp.triangle));
+    d.add(sp.barycentric);
+  }
+  d.add(s.positions).add(s.normals).add(s.directions).add(s.lengths).add(s.heights);
+  for (const Vec2& c : s.chart) d.add_bytes(c.data(), 2 * sizeof(double));
+  return d;
+}
+
+Digest digest(const Roots& r) {
+  Digest d = digest(r.pores);
+  return d.add(r.expected_count).add(r.hair_area).add(static_cast<std::int64_t>(r.candidates));
+}
+
+Digest digest(const PreguideRoots& p) { return digest(p.roots).add(p.spacing); }
+
+}  // namespace hairfit

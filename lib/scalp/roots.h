@@ -1,0 +1,110 @@
+// Hair roots (pores), guide clusters and pre-guide roots on the scalp (paper §3.3, DESIGN §3).
+#pragma once
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "core/digest.h"
+#include "core/grey_map.h"
+#include "scalp/chart.h"
+
+namespace hairfit {
+
+// The maps the scene uses, addressed through the chart (chart_to_image); null = not used.
+struct ScalpMaps {
+  const GreyMap* density = nullptr;  // × RootOptions::density; 0 (black) = no hair at all
+  const GreyMap* tilt = nullptr;     // black → tilt_range[0], white → tilt_range[1]
+  const GreyMap* length = nullptr;   // black → length_range[0], white → length_range[1]
+};
+
+struct RootOptions {
+  double density = 200.0;                     // hairs per cm² of 3D scalp area (white density map)
+  double tilt = 0.0;                          // degrees from the normal toward down, without tilt map
+  std::array<double, 2> tilt_range{0.0, 90.0};  // degrees, tilt map black → white
+  double length = 25.0;                       // cm, without length map
+  std::array<double, 2> length_range{15.0, 35.0};  // cm, length map black → white
+  int guides = 3000;                          // clusters = principal guides (paper: 3000)
+  double preguide_spacing = 1.0;              // cm between pre-guide roots (paper: about 1 per cm)
+  double cluster_overlap = 1.3;               // cluster circle radius / covering radius (≥ 1)
+  std::uint64_t seed = 0;
+  int threads = 1;                            // ≥ 1; results never depend on it
+  double oversampling = 5.0;                  // candidates per kept point for sample elimination
+};
+
+// Per-root columns (same length). Roots are ordered by the scalp triangle they lie in.
+struct RootSet {
+  std::vector<SurfacePoint> where;   // triangle and barycentric coordinates on the scalp
+  std::vector<Vec3> positions;       // cm
+  std::vector<Vec3> normals;         // unit outward surface normal (interpolated vertex normals)
+  std::vector<Vec3> directions;      // unit growth direction: normal tilted toward down
+  std::vector<double> lengths;       // cm
+  std::vector<Vec2> chart;           // chart coordinates (unit disk)
+  std::vector<double> heights;       // [0, 1] along up: 0 lowest scalp vertex, 1 top of the head
+  int size() const { return static_cast<int>(positions.size()); }
+};
+
+struct Roots {
+  RootSet pores;
+  double expected_count = 0.0;  // ∫ density dA over the scalp (hairs)
+  double hair_area = 0.0;       // cm² of scalp where the density map is non-zero
+  int candidates = 0;           // candidates generated for sample elimination
+};
+
+struct Clusters {
+  RootSet bases;                         // guide base per cluster (a pore at the circle's centre)
+  std::vector<int> centre_pore;          // pore index of each cluster's centre
+  std::vector<double> radius;            // chart radius of each cluster's circle
+  std::vector<int> pore_cluster;         // cluster of each pore
+  std::vector<std::vector<int>> members; // pores of each cluster, ascending
+  std::vector<int> candidate_clusters;   // per pore: how many circles contain it (≥ 1)
+  int size() const { return static_cast<int>(centre_pore.size()); }
+};
+
+struct PreguideRoots {
+  RootSet roots;
+  double spacing = 0.0;  // cm, as requested
+};
+
+// Pores: blue noise on the 3D surface with density options.density × density map (hairs/cm²).
+// Exactly round(∫ρ dA) roots (the integral by subdivided-triangle quadrature of the map), by
+// weighted sample elimination from ~oversampling× candidates (Poisson-disk radius 1/sqrt(2√3ρ)
+// adapted to the local density, down to 1/16 of the maximum). No root where the map is 0.
+Roots make_roots(const ScalpChart& chart, const ScalpMaps& maps, const RootOptions& options);
+
+// Clusters (paper §3.3): min(guides, pores) centres chosen among the pores as a blue-noise set on
+// the surface; in the chart, circle c has radius cluster_overlap × (largest chart distance from c
+// to a pore whose nearest centre is c), so the circles cover every pore; a pore inside several
+// circles goes to one of them uniformly at random (Random(seed, clusters, pore)).
+Clusters make_clusters(const ScalpChart& chart, const Roots& roots, const RootOptions& options);
+
+// Pre-guide roots: blue noise on the surface at about preguide_spacing (hexagonal packing density
+// 2/(√3 s²)) wherever the density map is non-zero, with growth directions and lengths.
+PreguideRoots make_preguide_roots(const ScalpChart& chart, const ScalpMaps& maps, const RootOptions& options);
+
+// Unit growth direction (DESIGN §3): the normal rotated by `tilt_degrees` toward down projected
+// onto the tangent plane; where down is (nearly) parallel to the normal, toward −front projected,
+// else any tangent. Never NaN for a unit normal.
+Vec3 growth_direction(const Vec3& normal, const Vec3& down, const Vec3& front, double tilt_degrees);
+
+// Figures for report.json.
+struct ScalpFigures {
+  double scalp_area = 0.0;       // cm²
+  double expected_roots = 0.0;   // ∫ density dA
+  int roots = 0;
+  int guides = 0;
+  int preguide_roots = 0;
+  double min_spacing = 0.0;      // cm, smallest nearest-neighbour distance between pores (3D)
+  double mean_spacing = 0.0;     // cm, mean nearest-neighbour distance
+};
+ScalpFigures scalp_figures(const ScalpChart& chart, const Roots& roots, const Clusters& clusters,
+                           const PreguideRoots& preguides, int threads);
+
+// Nearest-neighbour distance (3D, cm) of every point of a set (0 for a single point).
+std::vector<double> nearest_neighbour_distances(const std::vector<Vec3>& points, int threads);
+
+Digest digest(const RootSet& roots);
+Digest digest(const Roots& roots);
+Digest digest(const Clusters& clusters);
+Digest digest(const PreguideRoots& preguides);
+
+}  // namespace hairfit
