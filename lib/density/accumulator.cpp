@@ -1,0 +1,125 @@
+#include "density/accumulator.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "density/slabs.h"
+#include "density/traversal.h"
+
+namespace hairfit {
+
+namespace {
+
+void check_fibre(const std::vector<Vec3>& fibre, size_t item) {
+  for (size_t p = 0; p < fibre.size(); ++p) {
+    if (!fibre[p].allFinite()) {
+      std::ostringstream m;
+      m << "density: fibre " << item << " point " << p << " is not finite";
+      throw std::invalid_argument(m.str());
+    }
+  }
+}
+
+// Adds the CDM contributions of the fibres to the cells with k in [k_begin, k_end), in order.
+void deposit_fibres(const GridGeometry& grid, std::vector<double>& values,
+                    const std::vector<std::vector<Vec3>>& fibres, int k_begin, int k_end) {
+  const double diagonal = grid.cell_diagonal();
+  std::vector<CellCrossing> crossings;
+  for (const std::vector<Vec3>& fibre : fibres) {
+    for (size_t s = 0; s + 1 < fibre.size(); ++s) {
+      const Vec3& a = fibre[s];
+      const Vec3& b = fibre[s + 1];
+      int k_first, k_last;
+      z_layers(grid, std::min(a.z(), b.z()), std::max(a.z(), b.z()), k_first, k_last);
+      if (k_last + 1 < k_begin || k_first - 1 >= k_end) continue;  // one layer of slack: faces
+      traverse_segment(grid, a, b, crossings);
+      for (const CellCrossing& c : crossings) {
+        if (c.cell.z() < k_begin || c.cell.z() >= k_end) continue;
+        values[grid.index(c.cell.x(), c.cell.y(), c.cell.z())] += c.length / diagonal;
+      }
+    }
+  }
+}
+
+void occupy_tubes(const GridGeometry& grid, std::vector<double>& values, const std::vector<Tube>& tubes,
+                  OccupancyShape shape, int k_begin, int k_end) {
+  for (const Tube& tube : tubes) {
+    for (size_t s = 0; s + 1 < tube.points.size(); ++s) {
+      const Frustum f{tube.points[s], tube.points[s + 1], tube.radii[s], tube.radii[s + 1]};
+      const double r = std::max(f.radius_a, f.radius_b);
+      int k_first, k_last;
+      z_layers(grid, std::min(f.a.z(), f.b.z()) - r, std::max(f.a.z(), f.b.z()) + r, k_first, k_last);
+      if (k_last + 1 < k_begin || k_first - 1 >= k_end) continue;
+      for (const Vec3i& c : frustum_cells(grid, f, shape, k_begin, k_end))
+        values[grid.index(c.x(), c.y(), c.z())] = 1.0;
+    }
+  }
+}
+
+void check_tube(const Tube& tube, size_t item) {
+  if (tube.points.size() != tube.radii.size()) {
+    std::ostringstream m;
+    m << "density: tube " << item << " has " << tube.points.size() << " points but " << tube.radii.size()
+      << " radii; give one radius per point";
+    throw std::invalid_argument(m.str());
+  }
+  for (size_t p = 0; p < tube.points.size(); ++p) {
+    if (!tube.points[p].allFinite() || !std::isfinite(tube.radii[p]) || tube.radii[p] < 0.0) {
+      std::ostringstream m;
+      m << "density: tube " << item << " point " << p << " is not finite or has a negative radius";
+      throw std::invalid_argument(m.str());
+    }
+  }
+}
+
+}  // namespace
+
+DensityAccumulator::DensityAccumulator(const GridGeometry& grid)
+    : geometry_(grid), values_(std::make_shared<std::vector<double>>(size_t(grid.cell_count()), 0.0)) {}
+
+DensityAccumulator::DensityAccumulator(const DensityGrid& start)
+    : geometry_(start.geometry()), values_(std::make_shared<std::vector<double>>(start.values())) {}
+
+double DensityAccumulator::cell(int i, int j, int k) const {
+  return geometry_.contains(i, j, k) ? (*values_)[geometry_.index(i, j, k)] : 0.0;
+}
+
+void DensityAccumulator::add_fibre(const std::vector<Vec3>& fibre) {
+  check_fibre(fibre, 0);
+  // A one-element batch, so the single and the batch path are the same code.
+  deposit_fibres(geometry_, *values_, {fibre}, 0, geometry_.dims.z());
+}
+
+void DensityAccumulator::add_fibres(const std::vector<std::vector<Vec3>>& fibres, int threads) {
+  for (size_t f = 0; f < fibres.size(); ++f) check_fibre(fibres[f], f);
+  std::vector<double>& values = *values_;
+  for_each_z_slab(geometry_, threads,
+                  [&](int k_begin, int k_end) { deposit_fibres(geometry_, values, fibres, k_begin, k_end); });
+}
+
+void DensityAccumulator::occupy(const Tube& tube, OccupancyShape shape) {
+  check_tube(tube, 0);
+  occupy_tubes(geometry_, *values_, {tube}, shape, 0, geometry_.dims.z());
+}
+
+void DensityAccumulator::occupy_all(const std::vector<Tube>& tubes, int threads, OccupancyShape shape) {
+  for (size_t t = 0; t < tubes.size(); ++t) check_tube(tubes[t], t);
+  std::vector<double>& values = *values_;
+  for_each_z_slab(geometry_, threads,
+                  [&](int k_begin, int k_end) { occupy_tubes(geometry_, values, tubes, shape, k_begin, k_end); });
+}
+
+DensityGrid DensityAccumulator::freeze() const& {
+  return DensityGrid(geometry_, std::make_shared<const std::vector<double>>(*values_));
+}
+
+DensityGrid DensityAccumulator::freeze() && {
+  DensityGrid grid(geometry_, std::shared_ptr<const std::vector<double>>(std::move(values_)));
+  values_ = std::make_shared<std::vector<double>>();  // left empty but valid
+  geometry_.dims = Vec3i::Zero();
+  return grid;
+}
+
+}  // namespace hairfit

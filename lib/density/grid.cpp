@@ -1,0 +1,125 @@
+#include "density/grid.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "core/error.h"
+
+namespace hairfit {
+
+double GridGeometry::cell_diagonal() const { return voxel * std::sqrt(3.0); }
+
+GridGeometry make_grid_geometry(const Vec3& lower, const Vec3& upper, double voxel, double max_memory_gib) {
+  if (!lower.allFinite() || !upper.allFinite() || !(upper.array() > lower.array()).all()) {
+    std::ostringstream m;
+    m << "density grid: the box [" << lower.transpose() << "] .. [" << upper.transpose()
+      << "] cm is not finite and non-empty; give a box whose upper corner exceeds the lower one";
+    throw InputError("density", m.str());
+  }
+  if (!std::isfinite(voxel) || voxel <= 0.0) {
+    std::ostringstream m;
+    m << "density grid: voxel " << voxel << " cm must be finite and > 0 (the paper uses about 0.25)";
+    throw InputError("density", m.str());
+  }
+  const Vec3 size = upper - lower;
+  const Vec3 cells = (size / voxel).array().ceil().max(1.0);
+  const double bytes = cells.prod() * sizeof(double);
+  const double limit = max_memory_gib * 1024.0 * 1024.0 * 1024.0;
+  if (!(bytes <= limit) || !(cells.maxCoeff() < 2.0e9)) {
+    const double fit = std::cbrt(size.prod() * sizeof(double) / limit);
+    std::ostringstream m;
+    m << "density grid: voxel " << voxel << " cm over a box of " << size.transpose() << " cm needs "
+      << bytes / (1024.0 * 1024.0 * 1024.0) << " GiB (limit " << max_memory_gib
+      << " GiB); use a voxel of at least " << fit << " cm";
+    throw InputError("density", m.str());
+  }
+  GridGeometry g;
+  g.voxel = voxel;
+  g.dims = cells.cast<int>();
+  // Centre the whole-cell grid on the box, so the margin is the same on both sides.
+  g.origin = 0.5 * (lower + upper) - 0.5 * voxel * cells;
+  return g;
+}
+
+double DensityGrid::cell(int i, int j, int k) const {
+  return geometry_.contains(i, j, k) ? (*values_)[geometry_.index(i, j, k)] : 0.0;
+}
+
+namespace {
+
+// Position of p in cell-centre coordinates: base cell b (lower of the 2×2×2 interpolation block)
+// and the fraction f ∈ [0, 1) along each axis.
+void locate(const GridGeometry& g, const Vec3& p, Vec3i& b, Vec3& f) {
+  const Vec3 q = (p - g.origin) / g.voxel - Vec3::Constant(0.5);
+  for (int a = 0; a < 3; ++a) {
+    // Clamp far outside points before the cast (cells there are 0 anyway).
+    const double c = std::min(std::max(q[a], -4.0), double(g.dims[a]) + 4.0);
+    const double fl = std::floor(c);
+    b[a] = int(fl);
+    f[a] = c - fl;
+  }
+}
+
+// Trilinear weights of the 8 corners and their derivatives in the fractions.
+struct Weights {
+  double w[8];
+  Vec3 dw[8];
+};
+
+Weights trilinear_weights(const Vec3& f) {
+  Weights out;
+  for (int c = 0; c < 8; ++c) {
+    const int dx = c & 1, dy = (c >> 1) & 1, dz = (c >> 2) & 1;
+    const double wx = dx ? f.x() : 1.0 - f.x();
+    const double wy = dy ? f.y() : 1.0 - f.y();
+    const double wz = dz ? f.z() : 1.0 - f.z();
+    const double sx = dx ? 1.0 : -1.0, sy = dy ? 1.0 : -1.0, sz = dz ? 1.0 : -1.0;
+    out.w[c] = wx * wy * wz;
+    out.dw[c] = Vec3(sx * wy * wz, wx * sy * wz, wx * wy * sz);
+  }
+  return out;
+}
+
+}  // namespace
+
+double DensityGrid::value(const Vec3& p) const { return value_and_gradient(p).value; }
+
+DensityValueGradient DensityGrid::value_and_gradient(const Vec3& p) const {
+  DensityValueGradient out;
+  if (geometry_.cell_count() == 0 || !p.allFinite()) return out;
+  Vec3i b;
+  Vec3 f;
+  locate(geometry_, p, b, f);
+  const Weights w = trilinear_weights(f);
+  for (int c = 0; c < 8; ++c) {
+    const double v = cell(b.x() + (c & 1), b.y() + ((c >> 1) & 1), b.z() + ((c >> 2) & 1));
+    out.value += w.w[c] * v;
+    out.gradient += w.dw[c] * v;
+  }
+  out.gradient /= geometry_.voxel;
+  return out;
+}
+
+Vec3 DensityGrid::central_gradient(const Vec3& p) const { return central_gradient_and_jacobian(p).gradient; }
+
+DensityGradientJacobian DensityGrid::central_gradient_and_jacobian(const Vec3& p) const {
+  DensityGradientJacobian out;
+  if (geometry_.cell_count() == 0 || !p.allFinite()) return out;
+  Vec3i b;
+  Vec3 f;
+  locate(geometry_, p, b, f);
+  const Weights w = trilinear_weights(f);
+  const double h = geometry_.voxel;
+  for (int c = 0; c < 8; ++c) {
+    const int i = b.x() + (c & 1), j = b.y() + ((c >> 1) & 1), k = b.z() + ((c >> 2) & 1);
+    const Vec3 g((cell(i + 1, j, k) - cell(i - 1, j, k)) / (2.0 * h),
+                 (cell(i, j + 1, k) - cell(i, j - 1, k)) / (2.0 * h),
+                 (cell(i, j, k + 1) - cell(i, j, k - 1)) / (2.0 * h));
+    out.gradient += w.w[c] * g;
+    out.jacobian += g * w.dw[c].transpose();
+  }
+  out.jacobian /= h;
+  return out;
+}
+
+}  // namespace hairfit
