@@ -1,0 +1,220 @@
+#include "field/distance_field.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <string>
+
+#include "core/error.h"
+#include "core/parallel.h"
+#include "field/band_scan.h"
+#include "field/far_field.h"
+#include "field/mesh_features.h"
+
+namespace hairfit {
+
+namespace {
+
+std::string format(const char* fmt, double a, double b = 0, double c = 0, double d = 0) {
+  char buffer[256];
+  std::snprintf(buffer, sizeof buffer, fmt, a, b, c, d);
+  return buffer;
+}
+
+void check_spec(const FieldSpec& spec) {
+  auto bad = [&](const std::string& what) { throw InputError(spec.name, "distance field: " + what); };
+  if (!(std::isfinite(spec.voxel) && spec.voxel > 0)) bad(format("voxel must be a positive length in cm, got %g", spec.voxel));
+  if (!(std::isfinite(spec.band) && spec.band >= 1 && spec.band <= 1000))
+    bad(format("band must be between 1 and 1000 voxels, got %g", spec.band));
+  if (!(std::isfinite(spec.margin) && spec.margin >= 0)) bad(format("margin must be ≥ 0 cm, got %g", spec.margin));
+  if (!(std::isfinite(spec.max_memory_gib) && spec.max_memory_gib > 0))
+    bad(format("max_memory must be a positive number of GiB, got %g", spec.max_memory_gib));
+}
+
+// Bytes at the build's peak: fine samples + feature keys, the coarse grid with its closest points
+// and normals, and about 200 bytes per mesh feature for the scan regions.
+double plan_bytes(const Vec3i& dims, int coarse_factor, size_t triangles) {
+  const double fine = double(dims.x()) * dims.y() * dims.z();
+  double coarse = 1;
+  for (int d = 0; d < 3; ++d) coarse *= (dims[d] - 1) / coarse_factor + 1;
+  return fine * (sizeof(double) + sizeof(int32_t)) + coarse * 64 + double(triangles) * 3 * 200;
+}
+
+FieldGridPlan plan_with_voxel(const std::pair<Vec3, Vec3>& box, const FieldSpec& spec, double voxel,
+                              size_t triangles) {
+  FieldGridPlan plan;
+  // The far-field grid's spacing, floor(2·band) voxels, is at most the band's full width, so
+  // every coarse grid line that crosses the surface has a node inside the exact band.
+  plan.coarse_factor = std::max(1, static_cast<int>(std::floor(2 * spec.band)));
+  const double cell = plan.coarse_factor * voxel;
+  for (int d = 0; d < 3; ++d) {
+    const double extent = box.second[d] - box.first[d] + 2 * spec.margin;
+    const double cells = std::max(1.0, std::ceil(extent / cell));
+    plan.dims[d] = cells * plan.coarse_factor + 1 > 2e9 ? 2000000000 : int(cells) * plan.coarse_factor + 1;
+    plan.origin[d] = box.first[d] - spec.margin - 0.5 * (cells * cell - extent);
+  }
+  plan.bytes = plan_bytes(plan.dims, plan.coarse_factor, triangles);
+  return plan;
+}
+
+std::pair<Vec3, Vec3> checked_box(const Mesh& mesh, const std::string& name) {
+  if (mesh.triangles.empty()) throw InputError(name, "the mesh has no triangles; a distance field needs a surface");
+  for (const Vec3i& t : mesh.triangles)
+    for (int k = 0; k < 3; ++k)
+      if (t[k] < 0 || t[k] >= int(mesh.positions.size()) || !mesh.positions[t[k]].allFinite())
+        throw InputError(name, "triangle vertex " + std::to_string(t[k]) +
+                                   " is out of range or has a non-finite coordinate");
+  return bounding_box(mesh);
+}
+
+}  // namespace
+
+FieldGridPlan plan_field_grid(const Mesh& mesh, const FieldSpec& spec) {
+  check_spec(spec);
+  return plan_with_voxel(checked_box(mesh, spec.name), spec, spec.voxel, mesh.triangles.size());
+}
+
+DistanceField make_distance_field(const Mesh& mesh, const FieldSpec& spec, int threads) {
+  const FieldGridPlan plan = plan_field_grid(mesh, spec);
+  const double limit = spec.max_memory_gib * 1024.0 * 1024.0 * 1024.0;
+  if (plan.bytes > limit) {
+    // Suggest the smallest voxel (in 1% steps) whose grid fits.
+    const auto box = bounding_box(mesh);
+    double voxel = spec.voxel * std::cbrt(plan.bytes / limit);
+    while (plan_with_voxel(box, spec, voxel, mesh.triangles.size()).bytes > limit) voxel *= 1.01;
+    throw InputError(spec.name,
+                     "distance field: a grid of " + std::to_string(plan.dims.x()) + "×" + std::to_string(plan.dims.y()) +
+                         "×" + std::to_string(plan.dims.z()) + " voxels at " + format("%g", spec.voxel) +
+                         " cm needs " + format("%.2f", plan.bytes / 1073741824.0) + " GiB, more than the limit of " +
+                         format("%g", spec.max_memory_gib) + " GiB; use a voxel of at least " +
+                         format("%.3g", voxel) + " cm, or raise max_memory");
+  }
+  threads = resolve_thread_count(threads);
+  const field::MeshFeatures features = field::extract_features(mesh, spec.name);
+  field::GridGeometry grid{plan.origin, spec.voxel, plan.dims};
+  const double r = spec.band * spec.voxel;
+  field::BandScan band = field::scan_band(features, grid, r, threads);
+  field::FarField far = field::make_far_field(features, grid, band, plan.coarse_factor);
+
+  DistanceField out;
+  out.origin_ = plan.origin;
+  out.h_ = spec.voxel;
+  out.dims_ = plan.dims;
+  out.band_cm_ = r;
+  out.band_voxels_ = band.band_voxels;
+  out.coarse_factor_ = plan.coarse_factor;
+  out.coarse_dims_ = far.dims;
+  out.coarse_ = std::make_shared<const std::vector<double>>(std::move(far.values));
+  out.fine_ = std::make_shared<const std::vector<double>>(std::move(band.value));
+  return out;
+}
+
+bool DistanceField::in_band(int i, int j, int k) const { return fine(i, j, k) != std::numeric_limits<double>::infinity(); }
+
+double DistanceField::sample(int i, int j, int k) const {
+  const double v = fine(i, j, k);
+  return v != std::numeric_limits<double>::infinity() ? v : far_sample(i, j, k);
+}
+
+int64_t DistanceField::memory_bytes() const {
+  return int64_t(sizeof(double)) * int64_t(fine_->size() + coarse_->size());
+}
+
+namespace {
+
+// Trilinear interpolation of the 8 corner values c[x + 2y + 4z] at fractions f ∈ [0,1]³, and its
+// derivative with respect to f.
+FieldValueGradient trilinear(const double c[8], const Vec3& f) {
+  const double x0 = 1 - f.x(), y0 = 1 - f.y(), z0 = 1 - f.z();
+  const double c00 = c[0] * x0 + c[1] * f.x(), c10 = c[2] * x0 + c[3] * f.x();
+  const double c01 = c[4] * x0 + c[5] * f.x(), c11 = c[6] * x0 + c[7] * f.x();
+  const double c0 = c00 * y0 + c10 * f.y(), c1 = c01 * y0 + c11 * f.y();
+  FieldValueGradient out;
+  out.value = c0 * z0 + c1 * f.z();
+  out.gradient.z() = c1 - c0;
+  out.gradient.y() = (c10 - c00) * z0 + (c11 - c01) * f.z();
+  const double dx00 = c[1] - c[0], dx10 = c[3] - c[2], dx01 = c[5] - c[4], dx11 = c[7] - c[6];
+  out.gradient.x() = (dx00 * y0 + dx10 * f.y()) * z0 + (dx01 * y0 + dx11 * f.y()) * f.z();
+  return out;
+}
+
+// Cell index and fraction along one axis for a coordinate u in grid units, clamped to [0, n−1].
+void locate(double u, int n, int& cell, double& frac) {
+  u = std::clamp(u, 0.0, double(n - 1));
+  cell = std::min(static_cast<int>(u), n - 2);
+  frac = u - cell;
+}
+
+}  // namespace
+
+double DistanceField::far_sample(int i, int j, int k) const {
+  const int c = coarse_factor_;
+  int cell[3];
+  double frac[3];
+  const int idx[3] = {i, j, k};
+  for (int d = 0; d < 3; ++d) locate(double(idx[d]) / c, coarse_dims_[d], cell[d], frac[d]);
+  double corners[8];
+  for (int q = 0; q < 8; ++q) {
+    const int64_t at = (cell[0] + (q & 1)) +
+                       int64_t(coarse_dims_.x()) * ((cell[1] + ((q >> 1) & 1)) + int64_t(coarse_dims_.y()) * (cell[2] + (q >> 2)));
+    corners[q] = (*coarse_)[at];
+  }
+  return trilinear(corners, Vec3(frac[0], frac[1], frac[2])).value;
+}
+
+FieldValueGradient DistanceField::inside_grid(const Vec3& p) const {
+  const Vec3 u = (p - origin_) / h_;
+  int cell[3];
+  double frac[3];
+  for (int d = 0; d < 3; ++d) locate(u[d], dims_[d], cell[d], frac[d]);
+  const Vec3 f(frac[0], frac[1], frac[2]);
+  double corners[8];
+  int finite = 0;
+  for (int q = 0; q < 8; ++q) {
+    corners[q] = fine(cell[0] + (q & 1), cell[1] + ((q >> 1) & 1), cell[2] + (q >> 2));
+    finite += corners[q] != std::numeric_limits<double>::infinity();
+  }
+  if (finite == 0) {
+    // Every corner is beyond the band: the samples there are the coarse interpolant, which is
+    // trilinear over the whole coarse cell, so interpolating it directly gives the same value.
+    int cc[3];
+    double cf[3];
+    for (int d = 0; d < 3; ++d) locate(u[d] / coarse_factor_, coarse_dims_[d], cc[d], cf[d]);
+    for (int q = 0; q < 8; ++q)
+      corners[q] = (*coarse_)[(cc[0] + (q & 1)) + int64_t(coarse_dims_.x()) *
+                                                      ((cc[1] + ((q >> 1) & 1)) + int64_t(coarse_dims_.y()) * (cc[2] + (q >> 2)))];
+    FieldValueGradient out = trilinear(corners, Vec3(cf[0], cf[1], cf[2]));
+    out.gradient /= coarse_factor_ * h_;
+    return out;
+  }
+  if (finite < 8)
+    for (int q = 0; q < 8; ++q)
+      if (corners[q] == std::numeric_limits<double>::infinity())
+        corners[q] = far_sample(cell[0] + (q & 1), cell[1] + ((q >> 1) & 1), cell[2] + (q >> 2));
+  FieldValueGradient out = trilinear(corners, f);
+  out.gradient /= h_;
+  return out;
+}
+
+FieldValueGradient DistanceField::value_and_gradient(const Vec3& p) const {
+  const Vec3 hi = origin_ + h_ * (dims_ - Vec3i::Ones()).cast<double>();
+  const Vec3 q = p.cwiseMax(origin_).cwiseMin(hi);
+  FieldValueGradient out = inside_grid(q);
+  const Vec3 outside = p - q;
+  const double distance = outside.norm();
+  if (distance > 0) {
+    // Beyond the grid the magnitude grows with the distance to the grid box, so the gradient
+    // still leads back toward the surface.
+    const double sign = out.value < 0 ? -1.0 : 1.0;
+    out.value += sign * distance;
+    for (int d = 0; d < 3; ++d)
+      if (outside[d] != 0) out.gradient[d] = sign * outside[d] / distance;
+  }
+  return out;
+}
+
+double DistanceField::value(const Vec3& p) const { return value_and_gradient(p).value; }
+Vec3 DistanceField::gradient(const Vec3& p) const { return value_and_gradient(p).gradient; }
+
+}  // namespace hairfit

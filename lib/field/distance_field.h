@@ -1,0 +1,105 @@
+// Narrow-band signed distance fields of raw triangle meshes (paper §3.2, DESIGN §2).
+//
+// What the values mean (full statement: spec/fields.md):
+// - Within the band (|d| ≤ band·voxel) a grid sample is the exact Euclidean distance from the
+//   sample point to the closest point of the mesh, to round-off (≤ 1e-9 voxel), found by the
+//   closest-point transform: every face, edge and vertex scan-converts a polyhedron bounding its
+//   Voronoi region within the band (Mauch 2003).
+// - Sign: from the angle-weighted pseudo-normal of the closest feature (Bærentzen & Aanæs 2005):
+//   negative behind the oriented surface (inside a closed outward-oriented mesh), positive in
+//   front. On an open mesh it says which side of the nearest sheet a point is on; it flips across
+//   the sheet's extension beyond an open rim, and where orientation is inconsistent (flipped
+//   patches) or the pseudo-normal vanishes (zero sum at a fold), the sign is unreliable (+ is used
+//   when the pseudo-normal is zero).
+// - Beyond the band: samples take the trilinear interpolation of a coarse signed distance grid
+//   (spacing floor(2·band) voxels) whose nodes hold the distance to a mesh point found by
+//   propagating closest points from the band: defined everywhere, continuous with the band,
+//   approximately 1-Lipschitz, its gradient pointing away from the surface (so −∇|d| leads back).
+//   Outside the grid, value = value at the clamped point + sign · distance to the grid box.
+// - Queries interpolate the samples trilinearly (a continuous, piecewise-trilinear field); the
+//   gradient is that of the interpolant. The guide optimiser builds Ceres jets from value and
+//   gradient by the chain rule (no Ceres here).
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/mesh.h"
+#include "core/types.h"
+
+namespace hairfit {
+
+struct FieldSpec {
+  double voxel = 0.25;         // cm: grid spacing h
+  double band = 4.0;           // voxels: half-width of the band of exact distances (≥ 1)
+  double margin = 2.0;         // cm of grid beyond the mesh's bounding box on every side
+  double max_memory_gib = 4.0; // refuse (InputError) grids whose build needs more than this
+  std::string name = "mesh";   // names the mesh (its file) in error messages
+};
+
+struct FieldValueGradient {
+  double value = 0.0;        // cm, signed
+  Vec3 gradient = Vec3::Zero();  // dimensionless (cm per cm)
+};
+
+class DistanceField {
+ public:
+  // Grid geometry: sample (i,j,k) sits at origin + h·(i,j,k), 0 ≤ i < dims.x() etc.
+  const Vec3& origin() const { return origin_; }
+  double voxel() const { return h_; }
+  const Vec3i& dims() const { return dims_; }
+  double band_width() const { return band_cm_; }  // cm: |d| ≤ this is exact
+  int64_t band_voxels() const { return band_voxels_; }
+
+  // The sample at a grid node (cm, signed); exact when in_band(i,j,k).
+  double sample(int i, int j, int k) const;
+  bool in_band(int i, int j, int k) const;
+
+  // Trilinear interpolation of the samples at a point p (cm), and its gradient. Defined for any
+  // finite p, also outside the grid (see the header comment).
+  double value(const Vec3& p) const;
+  Vec3 gradient(const Vec3& p) const;
+  FieldValueGradient value_and_gradient(const Vec3& p) const;
+
+  // Bytes held by the field (fine band samples + coarse far-field grid).
+  int64_t memory_bytes() const;
+
+ private:
+  friend DistanceField make_distance_field(const Mesh&, const FieldSpec&, int);
+  DistanceField() = default;  // built only by make_distance_field
+  FieldValueGradient inside_grid(const Vec3& p) const;  // p within the grid box
+  double far_sample(int i, int j, int k) const;
+  double fine(int i, int j, int k) const { return (*fine_)[index(i, j, k)]; }
+  int64_t index(int i, int j, int k) const { return i + int64_t(dims_.x()) * (j + int64_t(dims_.y()) * k); }
+
+  Vec3 origin_ = Vec3::Zero();
+  double h_ = 1.0;
+  Vec3i dims_ = Vec3i::Zero();
+  double band_cm_ = 0.0;
+  int64_t band_voxels_ = 0;
+  // Fine samples: the signed distance in the band, +infinity (internal marker only) elsewhere.
+  std::shared_ptr<const std::vector<double>> fine_;
+  // Coarse far-field grid: node (I,J,K) at fine node c·(I,J,K).
+  int coarse_factor_ = 1;
+  Vec3i coarse_dims_ = Vec3i::Zero();
+  std::shared_ptr<const std::vector<double>> coarse_;
+};
+
+// Builds the field of `mesh` (positions in cm) on a grid covering its bounding box plus
+// spec.margin. Exact in the band; see the header comment for the rest. Throws InputError for an
+// empty mesh, a non-finite coordinate, an index out of range, a bad spec, or a grid needing more
+// than spec.max_memory_gib (the message names the grid and a voxel size that would fit).
+// `threads` (0 = all) changes only the speed: the result is bit-identical for any count.
+DistanceField make_distance_field(const Mesh& mesh, const FieldSpec& spec, int threads = 0);
+
+// The grid make_distance_field would allocate, and the bytes its build needs at peak.
+struct FieldGridPlan {
+  Vec3 origin = Vec3::Zero();
+  Vec3i dims = Vec3i::Zero();
+  int coarse_factor = 1;
+  double bytes = 0.0;
+};
+FieldGridPlan plan_field_grid(const Mesh& mesh, const FieldSpec& spec);
+
+}  // namespace hairfit
