@@ -1,0 +1,144 @@
+#include "strands/strands.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/parallel.h"
+#include "strands/guide_track.h"
+
+namespace hairfit {
+
+namespace {
+
+double smoothstep(double e0, double e1, double x) {
+  const double t = std::clamp((x - e0) / (e1 - e0), 0.0, 1.0);
+  return t * t * (3.0 - 2.0 * t);
+}
+
+// Share of the fibre over which it moves from its pore's own offset to its place in the wisp.
+constexpr double kSettle = 0.2;
+
+struct FibreLayout {
+  double a, b, c;  // pore offset from the guide root in the root frame (d1, d2, t)
+  double u1, u2;   // its place in the wisp's unit disk
+};
+
+// Points of a fibre that runs along the guide up to arc length `reach` (t_i = i/(n−1)).
+void sweep(const GuideTrack& track, const FibreLayout& f, const Vec3& root_tangent, double reach,
+           const StrandOptions& o, std::vector<Vec3>& out) {
+  const int n = static_cast<int>(out.size());
+  for (int i = 0; i < n; ++i) {
+    const double t = static_cast<double>(i) / (n - 1);
+    Vec3 g, tangent, d1, d2;
+    track.at(reach * t, g, tangent, d1, d2);
+    const double w = smoothstep(0.0, kSettle, t);
+    const double radius = o.root_radius + (o.tip_radius - o.root_radius) * t;
+    const double x = (1.0 - w) * f.a + w * f.u1 * radius;
+    const double y = (1.0 - w) * f.b + w * f.u2 * radius;
+    const double angle = 2.0 * M_PI * o.turns * t;
+    const double ca = std::cos(angle), sa = std::sin(angle);
+    out[i] = g + (ca * x - sa * y) * d1 + (sa * x + ca * y) * d2 + (1.0 - w) * f.c * root_tangent;
+  }
+}
+
+double polyline_length(const std::vector<Vec3>& p) {
+  double length = 0.0;
+  for (std::size_t i = 1; i < p.size(); ++i) length += (p[i] - p[i - 1]).norm();
+  return length;
+}
+
+std::vector<Vec3> fibre_along(const GuideTrack& track, const Vec3& pore, double length, double wisp_extent,
+                              const StrandOptions& o) {
+  Vec3 g0, t0, d1, d2;
+  track.at(0.0, g0, t0, d1, d2);
+  const Vec3 delta = pore - g0;
+  FibreLayout f{delta.dot(d1), delta.dot(d2), delta.dot(t0), 0.0, 0.0};
+  if (wisp_extent > 0.0) {
+    f.u1 = f.a / wisp_extent;
+    f.u2 = f.b / wisp_extent;
+  }
+  std::vector<Vec3> points(std::max(2, o.points));
+  // The polyline's length grows with how far along the guide it reaches; find the reach that
+  // gives exactly `length` by the Illinois variant of regula falsi on a bracket.
+  auto excess = [&](double reach) {
+    sweep(track, f, t0, reach, o, points);
+    return polyline_length(points) - length;
+  };
+  double lo = 0.0, f_lo = excess(lo);
+  if (f_lo >= 0.0) {  // too short for its own wisp offsets: a straight fibre along the root tangent
+    for (std::size_t i = 0; i < points.size(); ++i)
+      points[i] = pore + length * static_cast<double>(i) / (points.size() - 1) * t0;
+    return points;
+  }
+  double hi = length, f_hi = excess(hi);
+  while (f_hi < 0.0) {
+    lo = hi, f_lo = f_hi;
+    hi *= 2.0;
+    f_hi = excess(hi);
+  }
+  int side = 0;
+  for (int iteration = 0; iteration < 100; ++iteration) {
+    const double mid = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
+    const double f_mid = excess(mid);
+    if (std::fabs(f_mid) <= 1e-12 * length || hi - lo <= 1e-15 * length) break;
+    if ((f_mid < 0.0) == (f_lo < 0.0)) {
+      lo = mid, f_lo = f_mid;
+      if (side == -1) f_hi *= 0.5;
+      side = -1;
+    } else {
+      hi = mid, f_hi = f_mid;
+      if (side == 1) f_lo *= 0.5;
+      side = 1;
+    }
+  }
+  points[0] = pore;  // exactly, not up to round-off
+  return points;
+}
+
+}  // namespace
+
+std::vector<Vec3> make_fibre(const std::vector<Vec3>& guide, const Vec3& pore, double length, double wisp_extent,
+                             const StrandOptions& options) {
+  return fibre_along(GuideTrack(guide), pore, length, wisp_extent, options);
+}
+
+Strands make_strands(const Curves& guides, const Pores& pores, const StrandOptions& options, const DistanceFunction& volume) {
+  const int guide_count = static_cast<int>(guides.count());
+  std::vector<GuideTrack> tracks;
+  tracks.reserve(guide_count);
+  for (int g = 0; g < guide_count; ++g)
+    tracks.emplace_back(std::vector<Vec3>(guides.points.begin() + guides.offsets[g], guides.points.begin() + guides.offsets[g + 1]));
+
+  // A wisp's extent is the largest in-plane distance of its pores from the guide root.
+  std::vector<double> extent(guide_count, 0.0);
+  for (std::size_t i = 0; i < pores.positions.size(); ++i) {
+    Vec3 g0, t0, d1, d2;
+    tracks[pores.guide[i]].at(0.0, g0, t0, d1, d2);
+    const Vec3 delta = pores.positions[i] - g0;
+    extent[pores.guide[i]] = std::max(extent[pores.guide[i]], std::hypot(delta.dot(d1), delta.dot(d2)));
+  }
+
+  const int count = static_cast<int>(pores.positions.size());
+  std::vector<std::vector<Vec3>> fibres(count);
+  std::vector<char> cut(count, 0);
+  parallel_for(count, options.threads, [&](int i) {
+    std::vector<Vec3> fibre = fibre_along(tracks[pores.guide[i]], pores.positions[i], pores.lengths[i],
+                                          extent[pores.guide[i]], options);
+    if (options.cutting && volume) {
+      CutResult r = cut_at_exit(fibre, volume, options.cut_threshold);
+      cut[i] = r.cut;
+      fibre = std::move(r.points);
+    }
+    fibres[i] = std::move(fibre);
+  });
+
+  Strands strands;
+  for (int i = 0; i < count; ++i) {
+    strands.fibres.add(fibres[i], pores.guide[i]);
+    strands.cut_count += cut[i];
+  }
+  strands.cut = std::move(cut);
+  return strands;
+}
+
+}  // namespace hairfit

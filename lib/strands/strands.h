@@ -1,0 +1,46 @@
+// Strand generation (paper §3.6): around each principal guide, one fibre per pore of its
+// cluster, inside a generalised cylinder whose radius varies along the guide, optionally winding
+// about it, then optionally cut where it leaves the volume.
+#pragma once
+#include <vector>
+
+#include "core/curves.h"
+#include "strands/cutting.h"
+
+namespace hairfit {
+
+struct StrandOptions {
+  int points = 16;             // points per fibre (before cutting)
+  double root_radius = 0.3;    // cm: wisp radius at the root
+  double tip_radius = 0.6;     // cm: wisp radius at the tip
+  double turns = 0.0;          // windings about the guide, root to tip (0 = no winding)
+  bool cutting = false;
+  double cut_threshold = 1.0;  // cm outside the volume before a cut
+  int threads = 1;
+};
+
+// The pores to grow fibres from: position on the scalp (cm), own length (cm), guide index.
+struct Pores {
+  std::vector<Vec3> positions;
+  std::vector<double> lengths;
+  std::vector<int> guide;
+};
+
+struct Strands {
+  Curves fibres;            // one per pore, in pore order; fibres.guide = the pore's guide
+  std::vector<char> cut;    // per fibre: was it cut
+  int cut_count = 0;
+};
+
+// `guides` holds one polyline per guide (index = guide id), root first; `volume` is the signed
+// distance to the hair-volume boundary (needed only when options.cutting). Each fibre starts
+// exactly at its pore and, unless cut, has exactly its length; a fibre longer than its guide
+// continues along the guide's last tangent. Deterministic for any thread count.
+Strands make_strands(const Curves& guides, const Pores& pores, const StrandOptions& options,
+                     const DistanceFunction& volume = nullptr);
+
+// One fibre (exposed for tests): the wisp frame is rotation-minimising along the guide.
+std::vector<Vec3> make_fibre(const std::vector<Vec3>& guide, const Vec3& pore, double length, double wisp_extent,
+                             const StrandOptions& options);
+
+}  // namespace hairfit

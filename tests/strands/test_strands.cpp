@@ -1,0 +1,176 @@
+#include <doctest/doctest.h>
+
+#include <cmath>
+
+#include "core/random.h"
+#include "strands/cutting.h"
+#include "strands/guide_track.h"
+#include "strands/strands.h"
+
+using namespace hairfit;
+
+namespace {
+
+double polyline_length(const std::vector<Vec3>& p) {
+  double l = 0;
+  for (std::size_t i = 1; i < p.size(); ++i) l += (p[i] - p[i - 1]).norm();
+  return l;
+}
+
+// Outside where z > 0: the volume is the half-space below the plane z = 0.
+double below_plane(const Vec3& p) { return p.z(); }
+
+// A guide that rises along +y and then bends toward +x over a quarter circle of radius 5.
+std::vector<Vec3> bent_guide(int n = 41) {
+  std::vector<Vec3> g;
+  for (int i = 0; i < n; ++i) {
+    const double a = 0.5 * M_PI * i / (n - 1);
+    g.emplace_back(5.0 - 5.0 * std::cos(a), 5.0 * std::sin(a), 0.0);
+  }
+  return g;
+}
+
+}  // namespace
+
+TEST_CASE("cutting: an excursion under the threshold is kept, one over it is cut where it left") {
+  // In at z = −1, out to z = +1 over x ∈ [1, 3], back in: the crossings are at x = 1.5 and 2.5,
+  // so exactly 1 cm runs outside (a polyline of chords between the listed points, each of which
+  // crosses at its midpoint, and a horizontal stretch z = 1 in between).
+  const std::vector<Vec3> dip{{0, 0, -1}, {1, 0, -1}, {2, 0, 1}, {2, 0, 1}, {3, 0, -1}, {4, 0, -1}};
+  const double outside = std::hypot(0.5, 1.0) * 2;  // two half-chords outside
+  const CutResult kept = cut_at_exit(dip, below_plane, outside + 1e-9);
+  CHECK_FALSE(kept.cut);
+  CHECK(kept.points == dip);
+  const CutResult cut = cut_at_exit(dip, below_plane, outside - 1e-9);
+  CHECK(cut.cut);
+  CHECK(cut.outside_length > outside - 1e-9);
+  REQUIRE(cut.points.size() == 3);
+  CHECK((cut.points.back() - Vec3(1.5, 0, 0)).norm() < 1e-15);  // the exit crossing
+}
+
+TEST_CASE("cutting: an excursion running to the tip counts to the tip; one from the root is never cut") {
+  const std::vector<Vec3> up{{0, 0, -1}, {0, 0, 0.5}, {0, 0, 3}};
+  const CutResult c = cut_at_exit(up, below_plane, 2.0);
+  CHECK(c.cut);
+  CHECK(c.points.back().isApprox(Vec3(0, 0, 0), 1e-15));
+  CHECK_FALSE(cut_at_exit(up, below_plane, 3.5).cut);
+  const std::vector<Vec3> from_root{{0, 0, 1}, {0, 0, 5}, {0, 0, 9}};
+  CHECK_FALSE(cut_at_exit(from_root, below_plane, 0.1).cut);
+  // Several short excursions each under the threshold are not added up.
+  const std::vector<Vec3> wavy{{0, 0, -1}, {1, 0, 1}, {2, 0, -1}, {3, 0, 1}, {4, 0, -1}};
+  // Each excursion runs half of two chords of length √5 outside: √5 ≈ 2.236 cm, twice.
+  CHECK_FALSE(cut_at_exit(wavy, below_plane, 2.3).cut);
+  CHECK(cut_at_exit(wavy, below_plane, 2.2).cut);
+}
+
+TEST_CASE("the guide track's frame is orthonormal and does not twist along a planar guide") {
+  const GuideTrack track(bent_guide());
+  CHECK(track.length() == doctest::Approx(2.5 * M_PI).epsilon(1e-3));
+  for (double s = 0; s <= track.length() + 2; s += 0.37) {
+    Vec3 p, t, d1, d2;
+    track.at(s, p, t, d1, d2);
+    CHECK(std::fabs(t.norm() - 1) < 1e-12);
+    CHECK(std::fabs(d1.dot(t)) < 1e-12);
+    CHECK(std::fabs(d2.dot(t)) < 1e-12);
+    CHECK(std::fabs(d1.norm() - 1) < 1e-12);
+    // A rotation-minimising frame on a plane curve keeps one normal perpendicular to the plane.
+    CHECK(std::min(std::fabs(std::fabs(d1.z()) - 1), std::fabs(std::fabs(d2.z()) - 1)) < 1e-9);
+  }
+}
+
+TEST_CASE("a fibre starts exactly at its pore and has exactly its own length") {
+  StrandOptions o;
+  o.points = 16;
+  Random r(3, RandomStage::test, 0);
+  for (int k = 0; k < 200; ++k) {
+    const Vec3 pore(r.uniform(-0.4, 0.4), r.uniform(-0.1, 0.1), r.uniform(-0.4, 0.4));
+    const double length = r.uniform(0.5, 20.0);  // shorter and longer than the guide (7.85 cm)
+    o.turns = r.uniform(-2, 2);
+    const std::vector<Vec3> f = make_fibre(bent_guide(), pore, length, 0.6, o);
+    REQUIRE(f.size() == 16);
+    CHECK((f[0] - pore).norm() <= 1e-9);
+    CHECK(std::fabs(polyline_length(f) - length) <= 1e-6 * length);
+    for (const Vec3& p : f) CHECK(p.allFinite());
+  }
+}
+
+TEST_CASE("fibres stay inside the generalised cylinder and wind by the declared turns") {
+  // A straight guide along +z: the wisp radius profile and the winding angle are easy to read off.
+  std::vector<Vec3> guide;
+  for (int i = 0; i <= 10; ++i) guide.emplace_back(0, 0, i);
+  StrandOptions o;
+  o.points = 41;
+  o.root_radius = 0.3;
+  o.tip_radius = 0.9;
+  o.turns = 1.5;
+  const Vec3 pore(0.3, 0.0, 0.0);  // on the rim of a wisp of extent 0.3
+  const std::vector<Vec3> f = make_fibre(guide, pore, 10.0, 0.3, o);
+  double previous_angle = 0.0, turned = 0.0;
+  for (int i = 0; i < 41; ++i) {
+    const double t = i / 40.0;
+    const double radius = std::hypot(f[i].x(), f[i].y());
+    CHECK(radius <= o.root_radius + (o.tip_radius - o.root_radius) * t + 1e-9);
+    const double angle = std::atan2(f[i].y(), f[i].x());
+    if (i > 0) turned += std::remainder(angle - previous_angle, 2 * M_PI);
+    previous_angle = angle;
+  }
+  CHECK(turned / (2 * M_PI) == doctest::Approx(1.5).epsilon(1e-9));
+  // A fibre on the rim of the wisp reaches the tip radius exactly (it has no other offset).
+  CHECK(std::hypot(f.back().x(), f.back().y()) == doctest::Approx(0.9).epsilon(1e-9));
+}
+
+TEST_CASE("a fibre longer than its guide continues along the guide's last tangent") {
+  StrandOptions o;
+  o.points = 31;
+  o.root_radius = o.tip_radius = 0.0;
+  const std::vector<Vec3> f = make_fibre(bent_guide(), Vec3::Zero(), 12.0, 0.0, o);
+  // With zero radius the fibre is the guide itself, then a straight run along its last chord.
+  const std::vector<Vec3> g = bent_guide();
+  const Vec3 last = (g[40] - g[39]).normalized();
+  const Vec3 run = f.back() - g[40];
+  CHECK(run.cross(last).norm() < 1e-9);
+  CHECK(run.dot(last) > 0.0);
+  CHECK(std::fabs(f.back().z()) < 1e-12);
+}
+
+TEST_CASE("make_strands: one fibre per pore, cutting counted, identical for any thread count") {
+  Curves guides;
+  guides.add(bent_guide(), 0);
+  std::vector<Vec3> second = bent_guide();
+  for (Vec3& p : second) p = Vec3(-p.x(), p.y(), p.z() + 1.0);
+  guides.add(second, 1);
+  Pores pores;
+  Random r(11, RandomStage::test, 1);
+  for (int i = 0; i < 300; ++i) {
+    const int g = i % 2;
+    pores.positions.push_back(Vec3(r.uniform(-0.3, 0.3), 0.0, g + r.uniform(-0.3, 0.3)));
+    pores.lengths.push_back(r.uniform(4, 12));
+    pores.guide.push_back(g);
+  }
+  StrandOptions o;
+  o.cutting = true;
+  o.cut_threshold = 0.5;
+  o.turns = 0.5;
+  // The volume: the slab y < 4.5 (fibres rise along +y and leave it for good).
+  const DistanceFunction slab = [](const Vec3& p) { return p.y() - 4.5; };
+  Strands reference;
+  for (int threads : {1, 2, 4}) {
+    o.threads = threads;
+    const Strands s = make_strands(guides, pores, o, slab);
+    CHECK(s.fibres.count() == 300);
+    CHECK(s.cut_count > 0);
+    for (std::size_t c = 0; c < s.fibres.count(); ++c) {
+      CHECK(s.fibres.guide[c] == pores.guide[c]);
+      CHECK((s.fibres.point(c, 0) - pores.positions[c]).norm() <= 1e-9);
+      if (s.cut[c]) CHECK(std::fabs(s.fibres.point(c, s.fibres.size(c) - 1).y() - 4.5) < 1e-9);
+      else CHECK(std::fabs(polyline_length(std::vector<Vec3>(s.fibres.points.begin() + s.fibres.offsets[c],
+                                                             s.fibres.points.begin() + s.fibres.offsets[c + 1])) -
+                           pores.lengths[c]) <= 1e-6 * pores.lengths[c]);
+    }
+    if (threads == 1) reference = s;
+    else {
+      CHECK(s.fibres.points == reference.fibres.points);
+      CHECK(s.fibres.offsets == reference.fibres.offsets);
+    }
+  }
+}
