@@ -83,6 +83,8 @@ DistanceField make_distance_field(const Mesh& mesh, const FieldSpec& spec, int t
     const auto box = bounding_box(mesh);
     double voxel = spec.voxel * std::cbrt(plan.bytes / limit);
     while (plan_with_voxel(box, spec, voxel, mesh.triangles.size()).bytes > limit) voxel *= 1.01;
+    const double unit = std::pow(10.0, std::floor(std::log10(voxel)) - 2);  // 3 digits, rounded up
+    voxel = std::ceil(voxel / unit) * unit;
     throw InputError(spec.name,
                      "distance field: a grid of " + std::to_string(plan.dims.x()) + "×" + std::to_string(plan.dims.y()) +
                          "×" + std::to_string(plan.dims.z()) + " voxels at " + format("%g", spec.voxel) +
@@ -95,7 +97,7 @@ DistanceField make_distance_field(const Mesh& mesh, const FieldSpec& spec, int t
   field::GridGeometry grid{plan.origin, spec.voxel, plan.dims};
   const double r = spec.band * spec.voxel;
   field::BandScan band = field::scan_band(features, grid, r, threads);
-  field::FarField far = field::make_far_field(features, grid, band, plan.coarse_factor);
+  field::FarField far = field::make_far_field(features, grid, band, r, plan.coarse_factor, threads);
 
   DistanceField out;
   out.origin_ = plan.origin;

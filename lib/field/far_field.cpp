@@ -6,50 +6,52 @@
 
 namespace hairfit::field {
 
-FarField make_far_field(const MeshFeatures& features, const GridGeometry& grid, const BandScan& band,
-                        int coarse_factor) {
+FarField make_far_field(const MeshFeatures& features, const GridGeometry& grid, const BandScan& band, double r,
+                        int coarse_factor, int threads) {
   const int c = coarse_factor;
   FarField out;
   for (int d = 0; d < 3; ++d) out.dims[d] = (grid.dims[d] - 1) / c + 1;
   const int nx = out.dims.x(), ny = out.dims.y(), nz = out.dims.z();
   const int64_t count = int64_t(nx) * ny * nz;
   auto at = [&](int i, int j, int k) { return i + int64_t(nx) * (j + int64_t(ny) * k); };
-  auto node = [&](int i, int j, int k) { return grid.node(c * i, c * j, c * k); };
+  const GridGeometry coarse{grid.origin, c * grid.h, out.dims};
+  auto node = [&](int i, int j, int k) { return coarse.node(i, j, k); };
 
+  // Exact values for every coarse node a fine voxel just outside the band interpolates from.
+  const BandScan near = scan_band(features, coarse, r + std::sqrt(3.0) * coarse.h, threads);
   const double inf = std::numeric_limits<double>::infinity();
-  std::vector<Vec3> closest(count), normal(count);
+  std::vector<Vec3> closest(count);
   std::vector<double> distance(count, inf);
+  std::vector<signed char> sign(count, 1);
   std::vector<char> fixed(count, 0);
   bool any_seed = false;
-  for (int k = 0; k < nz; ++k)
-    for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i) {
-        const int64_t fine = grid.index(c * i, c * j, c * k);
-        if (band.key[fine] < 0) continue;
-        const FeaturePoint fp = closest_on_feature(features, band.key[fine], node(i, j, k));
-        closest[at(i, j, k)] = fp.point;
-        normal[at(i, j, k)] = fp.normal;
-        distance[at(i, j, k)] = std::abs(band.value[fine]);
-        fixed[at(i, j, k)] = 1;
-        any_seed = true;
-      }
+  for (int64_t q = 0; q < count; ++q) {
+    if (near.key[q] < 0) continue;
+    const int i = int(q % nx), j = int((q / nx) % ny), k = int(q / (int64_t(nx) * ny));
+    closest[q] = closest_on_feature(features, near.key[q], node(i, j, k)).point;
+    distance[q] = std::abs(near.value[q]);
+    sign[q] = near.value[q] < 0 ? -1 : 1;
+    fixed[q] = 1;
+    any_seed = true;
+  }
   if (!any_seed) {
-    // A mesh smaller than the coarse spacing can miss every coarse node's band: seed the node
+    // A mesh much smaller than the coarse spacing can miss every coarse node: seed the node
     // nearest to a mesh vertex with its exact closest point (brute force over all features).
-    const Vec3 u = (features.vertices[0] - grid.origin) / (c * grid.h);
+    const Vec3 u = (features.vertices[0] - grid.origin) / coarse.h;
     const int i = std::clamp(int(std::lround(u.x())), 0, nx - 1);
     const int j = std::clamp(int(std::lround(u.y())), 0, ny - 1);
     const int k = std::clamp(int(std::lround(u.z())), 0, nz - 1);
     const Vec3 p = node(i, j, k);
     const int keys = int(features.faces.size() + features.edges.size() + features.vertices.size());
+    Vec3 best_normal = Vec3::Zero();
     for (int key = 0; key < keys; ++key) {
       const FeaturePoint fp = closest_on_feature(features, key, p);
       if (key < int(features.faces.size())) {  // a face counts only where p projects inside it
         const Vec3i& t = features.faces[key];
         bool inside = true;
-        for (int q = 0; q < 3; ++q) {
-          const Vec3& a = features.vertices[t[q]];
-          const Vec3& b = features.vertices[t[(q + 1) % 3]];
+        for (int e = 0; e < 3; ++e) {
+          const Vec3& a = features.vertices[t[e]];
+          const Vec3& b = features.vertices[t[(e + 1) % 3]];
           if ((b - a).cross(fp.point - a).dot(fp.normal) < 0) inside = false;
         }
         if (!inside) continue;
@@ -58,9 +60,10 @@ FarField make_far_field(const MeshFeatures& features, const GridGeometry& grid, 
       if (d < distance[at(i, j, k)]) {
         distance[at(i, j, k)] = d;
         closest[at(i, j, k)] = fp.point;
-        normal[at(i, j, k)] = fp.normal;
+        best_normal = fp.normal;
       }
     }
+    sign[at(i, j, k)] = (p - closest[at(i, j, k)]).dot(best_normal) < 0 ? -1 : 1;
     fixed[at(i, j, k)] = 1;
   }
 
@@ -90,7 +93,7 @@ FarField make_far_field(const MeshFeatures& features, const GridGeometry& grid, 
               if (d < distance[here]) {
                 distance[here] = d;
                 closest[here] = closest[there];
-                normal[here] = normal[there];
+                sign[here] = sign[there];
                 changed = true;
               }
             }
@@ -110,8 +113,7 @@ FarField make_far_field(const MeshFeatures& features, const GridGeometry& grid, 
         if (band.key[fine] >= 0) {
           out.values[here] = band.value[fine];  // exact, and equal to the fine sample
         } else {
-          const double side = (node(i, j, k) - closest[here]).dot(normal[here]);
-          out.values[here] = side < 0 ? -distance[here] : distance[here];
+          out.values[here] = sign[here] * distance[here];
         }
       }
   return out;

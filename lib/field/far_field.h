@@ -13,11 +13,12 @@ struct FarField {
   std::vector<double> values;  // signed distance (cm), x fastest
 };
 
-// Coarse nodes inside the band keep their exact value; every other node gets the distance to the
-// closest point carried by its best neighbour over repeated 8-direction sweeps, signed by that
-// point's pseudo-normal. Values are distances to actual mesh points, so never below the true
-// distance; they are close to it where closest points vary smoothly.
-FarField make_far_field(const MeshFeatures& features, const GridGeometry& grid, const BandScan& band,
-                        int coarse_factor);
+// Coarse nodes within r + √3·(coarse spacing) of the mesh get their exact signed distance (a CPT
+// scan of the coarse grid), so every coarse cell touching the fine band interpolates exact values;
+// nodes in the fine band take the fine sample itself. Every other node gets the distance to the
+// closest point carried by its best neighbour over repeated 8-direction sweeps (dead reckoning),
+// with that neighbour's sign: a distance to an actual mesh point, never below the true distance.
+FarField make_far_field(const MeshFeatures& features, const GridGeometry& grid, const BandScan& band, double r,
+                        int coarse_factor, int threads);
 
 }  // namespace hairfit::field

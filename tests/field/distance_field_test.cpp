@@ -1,0 +1,297 @@
+// Distance fields against brute-force exact distances, winding numbers and finite differences.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "core/error.h"
+#include "field/distance_field.h"
+#include "test_meshes.h"
+
+using namespace hairfit;
+
+namespace {
+
+FieldSpec spec_for(double voxel, double band, double margin) {
+  FieldSpec s;
+  s.voxel = voxel;
+  s.band = band;
+  s.margin = margin;
+  return s;
+}
+
+struct BandCheck {
+  double max_error = 0;     // cm, |sample| vs brute force over band voxels
+  int band_voxels = 0;
+  int missing = 0;          // voxels within r by brute force but not in the band
+  int spurious = 0;         // voxels in the band but farther than r
+};
+
+// Every `stride`-th voxel (and all band voxels among them) against the brute-force distance.
+BandCheck check_band(const Mesh& mesh, const DistanceField& f, int stride) {
+  BandCheck c;
+  const double r = f.band_width();
+  for (int k = 0; k < f.dims().z(); k += stride)
+    for (int j = 0; j < f.dims().y(); j += stride)
+      for (int i = 0; i < f.dims().x(); i += stride) {
+        const Vec3 p = f.origin() + f.voxel() * Vec3(i, j, k);
+        const double exact = test::brute_distance(mesh, p);
+        if (f.in_band(i, j, k)) {
+          ++c.band_voxels;
+          c.max_error = std::max(c.max_error, std::abs(std::abs(f.sample(i, j, k)) - exact));
+          if (exact > r * (1 + 1e-9)) ++c.spurious;
+        } else if (exact < r * (1 - 1e-9)) {
+          ++c.missing;
+        }
+      }
+  return c;
+}
+
+// Signs of samples more than half a voxel from a closed mesh against its winding number.
+int wrong_signs(const Mesh& mesh, const DistanceField& f, int stride, bool band_only) {
+  int wrong = 0;
+  for (int k = 0; k < f.dims().z(); k += stride)
+    for (int j = 0; j < f.dims().y(); j += stride)
+      for (int i = 0; i < f.dims().x(); i += stride) {
+        if (band_only && !f.in_band(i, j, k)) continue;
+        const Vec3 p = f.origin() + f.voxel() * Vec3(i, j, k);
+        if (test::brute_distance(mesh, p) <= 0.5 * f.voxel()) continue;
+        const bool inside = winding_number(mesh, p) > 0.5;
+        if (inside != (f.sample(i, j, k) < 0)) ++wrong;
+      }
+  return wrong;
+}
+
+}  // namespace
+
+TEST_CASE("test meshes are oriented outward") {
+  CHECK(winding_number(test::icosphere(2, 1.0), Vec3::Zero()) == doctest::Approx(1.0));
+  CHECK(winding_number(test::cube(1.0), Vec3(0.1, 0.2, 0.3)) == doctest::Approx(1.0));
+}
+
+TEST_CASE("sphere: exact in the band, every band voxel found, signs right") {
+  const Mesh mesh = test::icosphere(2, 1.0);
+  const DistanceField f = make_distance_field(mesh, spec_for(0.07, 3, 0.4), 2);
+  const BandCheck c = check_band(mesh, f, 1);
+  CHECK(c.band_voxels > 1000);
+  CHECK(c.band_voxels == f.band_voxels());
+  CHECK(c.max_error <= 1e-6 * f.voxel());
+  CHECK(c.missing == 0);
+  CHECK(c.spurious == 0);
+  CHECK(wrong_signs(mesh, f, 1, true) == 0);
+  CHECK(wrong_signs(mesh, f, 3, false) == 0);  // beyond the band too
+}
+
+TEST_CASE("cube: exact at edges and corners, signs right at convex corners") {
+  const Mesh mesh = test::cube(0.5);
+  const DistanceField f = make_distance_field(mesh, spec_for(0.05, 4, 0.3), 2);
+  const BandCheck c = check_band(mesh, f, 1);
+  CHECK(c.max_error <= 1e-6 * f.voxel());
+  CHECK(c.missing == 0);
+  CHECK(c.spurious == 0);
+  CHECK(wrong_signs(mesh, f, 1, false) == 0);
+  // Outside a corner the distance is to the vertex.
+  const Vec3 corner(0.5, 0.5, 0.5);
+  const Vec3 p = corner + Vec3(0.1, 0.1, 0.1);
+  CHECK(f.value(p) == doctest::Approx((p - corner).norm()).epsilon(0.02));
+}
+
+TEST_CASE("concave corners: a box with a notch keeps the signs right") {
+  // The cube turned inside out: every edge and corner is concave as seen from the front side.
+  Mesh mesh = test::cube(0.5);
+  for (Vec3i& t : mesh.triangles) std::swap(t[1], t[2]);  // inward: every corner is concave
+  const DistanceField f = make_distance_field(mesh, spec_for(0.05, 4, 0.3), 1);
+  int wrong = 0;
+  for (int k = 0; k < f.dims().z(); ++k)
+    for (int j = 0; j < f.dims().y(); ++j)
+      for (int i = 0; i < f.dims().x(); ++i) {
+        if (!f.in_band(i, j, k)) continue;
+        const Vec3 p = f.origin() + f.voxel() * Vec3(i, j, k);
+        if (test::brute_distance(mesh, p) <= 0.5 * f.voxel()) continue;
+        const bool inside_cube = p.cwiseAbs().maxCoeff() < 0.5;
+        if (inside_cube != (f.sample(i, j, k) > 0)) ++wrong;  // inside the cube is now "in front"
+      }
+  CHECK(wrong == 0);
+}
+
+TEST_CASE("open cap: exact distances, sign by the side of the sheet") {
+  const Mesh mesh = test::open_cap(2, 1.0, 0.4);
+  const DistanceField f = make_distance_field(mesh, spec_for(0.06, 3, 0.3), 2);
+  const BandCheck c = check_band(mesh, f, 1);
+  CHECK(c.band_voxels > 500);
+  CHECK(c.max_error <= 1e-6 * f.voxel());
+  CHECK(c.missing == 0);
+  CHECK(c.spurious == 0);
+  // Straight above and below the middle of the cap the side is unambiguous.
+  CHECK(f.value(Vec3(0, 0, 1.1)) > 0);
+  CHECK(f.value(Vec3(0, 0, 0.9)) < 0);
+}
+
+TEST_CASE("raw mesh with a hole, duplicates, zero-area triangles and a flipped patch: exact distances") {
+  const Mesh mesh = test::messy_sphere(2, 1.0);
+  const DistanceField f = make_distance_field(mesh, spec_for(0.07, 3, 0.4), 2);
+  const BandCheck c = check_band(mesh, f, 1);
+  CHECK(c.band_voxels > 1000);
+  CHECK(c.max_error <= 1e-6 * f.voxel());
+  CHECK(c.missing == 0);
+  CHECK(c.spurious == 0);
+  // Away from the hole (x > 0.8) and the flipped patch (y > 0.75) the sign is still right,
+  // including on the patch whose vertices were duplicated (welded before the pseudo-normals).
+  int wrong = 0, checked = 0;
+  for (int k = 0; k < f.dims().z(); ++k)
+    for (int j = 0; j < f.dims().y(); ++j)
+      for (int i = 0; i < f.dims().x(); ++i) {
+        if (!f.in_band(i, j, k)) continue;
+        const Vec3 p = f.origin() + f.voxel() * Vec3(i, j, k);
+        const Vec3 dir = p.normalized();
+        if (dir.x() > 0.5 || dir.y() > 0.4 || std::abs(p.norm() - 1) < 0.1) continue;
+        ++checked;
+        if ((p.norm() < 1) != (f.sample(i, j, k) < 0)) ++wrong;
+      }
+  CHECK(checked > 500);
+  CHECK(wrong == 0);
+}
+
+TEST_CASE("gradient equals central differences of the interpolant") {
+  const Mesh mesh = test::icosphere(2, 1.0);
+  const DistanceField f = make_distance_field(mesh, spec_for(0.1, 2, 0.5), 1);
+  const double h = f.voxel();
+  uint64_t state = 12345;
+  auto next = [&] {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return double(state >> 11) / double(1ULL << 53);
+  };
+  int checked = 0;
+  for (int n = 0; n < 400; ++n) {
+    // A point well inside a cell, so ±1e-5·h stays in it (the interpolant is smooth there).
+    Vec3 cell(std::floor(next() * (f.dims().x() - 1)), std::floor(next() * (f.dims().y() - 1)),
+              std::floor(next() * (f.dims().z() - 1)));
+    const Vec3 frac(0.1 + 0.8 * next(), 0.1 + 0.8 * next(), 0.1 + 0.8 * next());
+    const Vec3 p = f.origin() + h * (cell + frac);
+    const FieldValueGradient vg = f.value_and_gradient(p);
+    CHECK(vg.value == f.value(p));
+    const double step = 1e-5 * h;
+    for (int d = 0; d < 3; ++d) {
+      const Vec3 e = step * Vec3::Unit(d);
+      const double fd = (f.value(p + e) - f.value(p - e)) / (2 * step);
+      CHECK(vg.gradient[d] == doctest::Approx(fd).epsilon(1e-6).scale(1.0));
+    }
+    ++checked;
+  }
+  CHECK(checked == 400);
+}
+
+TEST_CASE("beyond the band: close to the true distance, continuous at the band's edge, pulls back") {
+  const double R = 1.0;
+  const Mesh mesh = test::icosphere(3, R);
+  const DistanceField f = make_distance_field(mesh, spec_for(0.05, 2, 1.5), 2);
+  const double h = f.voxel();
+  // Neighbouring samples differ by little more than h (the distance is 1-Lipschitz; beyond the
+  // band the coarse interpolation adds O(H²·curvature)), also where one is in the band and the
+  // other not.
+  double worst_step = 0;
+  int edge_pairs = 0;
+  for (int k = 0; k + 1 < f.dims().z(); ++k)
+    for (int j = 0; j < f.dims().y(); ++j)
+      for (int i = 0; i < f.dims().x(); ++i) {
+        const double a = f.sample(i, j, k), b = f.sample(i, j, k + 1);
+        worst_step = std::max(worst_step, std::abs(a - b));
+        if (f.in_band(i, j, k) != f.in_band(i, j, k + 1)) ++edge_pairs;
+      }
+  CHECK(edge_pairs > 100);
+  CHECK(worst_step <= 1.5 * h);
+  // Beyond the band: close to the exact distance near the surface (the coarse nodes there are
+  // exact), within a coarse cell's diagonal everywhere (near the medial axis the distance has a
+  // kink the coarse grid smooths), and at coarse nodes never below the exact distance.
+  const double H = 4 * h;  // coarse spacing floor(2·band) voxels
+  double worst_near = 0, worst_far = 0, below = 0;
+  for (int k = 0; k < f.dims().z(); k += 2)
+    for (int j = 0; j < f.dims().y(); j += 2)
+      for (int i = 0; i < f.dims().x(); i += 2) {
+        if (f.in_band(i, j, k)) continue;
+        const Vec3 p = f.origin() + h * Vec3(i, j, k);
+        const double unsigned_exact = test::brute_distance(mesh, p);
+        const double exact = unsigned_exact * (winding_number(mesh, p) > 0.5 ? -1 : 1);
+        const double error = std::abs(f.sample(i, j, k) - exact);
+        (unsigned_exact < 3 * f.band_width() ? worst_near : worst_far) =
+            std::max(unsigned_exact < 3 * f.band_width() ? worst_near : worst_far, error);
+        if (i % 4 == 0 && j % 4 == 0 && k % 4 == 0)
+          below = std::max(below, unsigned_exact - std::abs(f.sample(i, j, k)));
+      }
+  CHECK(worst_near <= 0.5 * h);  // about 3H²/(8R): trilinear error on a curved field
+  CHECK(worst_far <= std::sqrt(3.0) * H);
+  CHECK(below <= 1e-9);
+  // Along a ray from the centre the value increases through the band's edge and beyond.
+  const Vec3 dir = Vec3(0.3, -0.5, 0.8).normalized();
+  double previous = f.value(R * dir);
+  for (double t = R + 0.01; t < R + 1.4; t += 0.01) {
+    const double v = f.value(t * dir);
+    CHECK(v > previous);
+    CHECK(f.gradient(t * dir).dot(dir) > 0.5);
+    previous = v;
+  }
+  // 30 cm away (far outside the grid) the field is positive and its gradient points away from
+  // the surface, so descending |d| leads back.
+  const Vec3 far = 30 * Vec3(1, 2, 2).normalized();
+  const FieldValueGradient vg = f.value_and_gradient(far);
+  CHECK(vg.value == doctest::Approx(30 - R).epsilon(0.02));
+  CHECK(vg.gradient.normalized().dot(far.normalized()) > 0.9);
+  // Inside, beyond the band, values are negative and deepen toward the centre.
+  CHECK(f.value(Vec3(0, 0, 0)) < -(R - std::sqrt(3.0) * H));
+}
+
+TEST_CASE("the result does not depend on the number of threads") {
+  const Mesh mesh = test::messy_sphere(2, 1.0);
+  const DistanceField a = make_distance_field(mesh, spec_for(0.05, 3, 0.3), 1);
+  const DistanceField b = make_distance_field(mesh, spec_for(0.05, 3, 0.3), 3);
+  REQUIRE(a.dims() == b.dims());
+  int differ = 0;
+  for (int k = 0; k < a.dims().z(); ++k)
+    for (int j = 0; j < a.dims().y(); ++j)
+      for (int i = 0; i < a.dims().x(); ++i) differ += a.sample(i, j, k) != b.sample(i, j, k);
+  CHECK(differ == 0);
+}
+
+TEST_CASE("bad meshes and specs are refused with InputError") {
+  const FieldSpec spec = spec_for(0.1, 3, 0.2);
+  CHECK_THROWS_AS(make_distance_field(Mesh{}, spec), InputError);
+  Mesh nan = test::icosphere(1, 1.0);
+  nan.positions[3].y() = std::numeric_limits<double>::quiet_NaN();
+  CHECK_THROWS_AS(make_distance_field(nan, spec), InputError);
+  Mesh inf = test::icosphere(1, 1.0);
+  inf.positions[0].x() = std::numeric_limits<double>::infinity();
+  CHECK_THROWS_AS(make_distance_field(inf, spec), InputError);
+  Mesh bad_index = test::icosphere(1, 1.0);
+  bad_index.triangles[2][1] = 9999;
+  CHECK_THROWS_AS(make_distance_field(bad_index, spec), InputError);
+  Mesh flat;
+  flat.positions = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}};
+  flat.triangles = {{0, 1, 2}};
+  CHECK_THROWS_AS(make_distance_field(flat, spec), InputError);
+  CHECK_THROWS_AS(make_distance_field(test::cube(1), spec_for(0, 3, 0.2)), InputError);
+  CHECK_THROWS_AS(make_distance_field(test::cube(1), spec_for(0.1, 0.5, 0.2)), InputError);
+  CHECK_THROWS_AS(make_distance_field(test::cube(1), spec_for(0.1, 3, -1)), InputError);
+}
+
+TEST_CASE("the memory limit names the grid and a voxel size that fits") {
+  FieldSpec spec = spec_for(0.001, 3, 0.1);
+  spec.max_memory_gib = 0.5;
+  spec.name = "volume.obj";
+  std::string message;
+  try {
+    make_distance_field(test::cube(1.0), spec);
+  } catch (const InputError& e) {
+    message = e.what();
+  }
+  CHECK(message.find("volume.obj") != std::string::npos);
+  CHECK(message.find("voxels") != std::string::npos);
+  CHECK(message.find("use a voxel of at least") != std::string::npos);
+  // The suggested voxel fits and a 1% smaller one does not.
+  const size_t at = message.find("at least ") + 9;
+  const double suggested = std::stod(message.substr(at));
+  spec.voxel = suggested;
+  CHECK(plan_field_grid(test::cube(1.0), spec).bytes <= 0.5 * 1073741824.0);
+  spec.voxel = suggested * 0.97;
+  CHECK(plan_field_grid(test::cube(1.0), spec).bytes > 0.5 * 1073741824.0);
+}
