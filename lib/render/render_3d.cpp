@@ -61,7 +61,7 @@ Color shade_hair(const Color& base, const Vec3& t, const Lighting& l) {
   const double sin_th = std::sqrt(std::max(0.0, 1.0 - th * th));
   const float diffuse = static_cast<float>(0.25 + 0.75 * sin_tl);
   const float primary = static_cast<float>(0.30 * std::pow(sin_th, 80.0));
-  const float secondary = static_cast<float>(0.45 * std::pow(sin_th, 12.0));
+  const float secondary = static_cast<float>(0.25 * std::pow(sin_th, 10.0));
   return {base.r * (diffuse + secondary) + primary, base.g * (diffuse + secondary) + primary,
           base.b * (diffuse + secondary) + primary};
 }
@@ -93,6 +93,16 @@ struct ScreenTriangle {
   Vec3 n[3];  // vertex normals (world)
   int layer;
 };
+
+// A fixed integer hash (lowbias32) mapped to [0, 1): stable per-curve variation, no RNG state.
+float hash_unit(std::uint32_t x) {
+  x ^= x >> 16;
+  x *= 0x7feb352dU;
+  x ^= x >> 15;
+  x *= 0x846ca68bU;
+  x ^= x >> 16;
+  return static_cast<float>(x >> 8) / 16777216.0f;
+}
 
 bool finite(const Vec3& v) { return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z()); }
 
@@ -411,7 +421,9 @@ Image render_3d(const Drawing3D& drawing, const Camera& camera, const RenderOpti
     const CurveLayer& layer = drawing.curves[curve_ref[item].first];
     const int c = curve_ref[item].second;
     const std::vector<Vec3>& curve = (*layer.curves)[c];
-    const Color base = layer.color_ids.empty() ? layer.color : palette_color(layer.color_ids[c]);
+    Color base = layer.color_ids.empty() ? layer.color : palette_color(layer.color_ids[c]);
+    // Neighbouring fibres differ a little in tone, which is what makes a mass of lines read as hair.
+    base = scale(base, 1.0f + layer.variation * (hash_unit(static_cast<std::uint32_t>(c)) - 0.5f));
     const int n = static_cast<int>(curve.size());
     for (int k = 0; k < n; ++k) {
       const std::size_t v = first_vertex[item] + k;

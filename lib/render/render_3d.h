@@ -40,6 +40,7 @@ struct CurveLayer {
   bool hair_shading = true;    // Kajiya–Kay diffuse sin(T, L) + two specular lobes; false: flat colour
   float root_darkening = 0.4f;  // brightness lost at the root, fading quadratically to 0 at the tip
   float depth_cue = 0.35f;      // brightness lost by the farthest curve point relative to the nearest
+  float variation = 0.3f;       // per-curve brightness spread (a hash of the curve index, not random)
 };
 
 struct PointLayer {
