@@ -39,7 +39,9 @@ enum class OccupancyShape {
 };
 
 // The 15-axis separating-axis test between the axis-aligned box [lower, upper] and the frustum's
-// OBB (axis along b − a, half-length |b − a|/2, half-width max(radius_a, radius_b)).
+// OBB: centred at (a + b)/2, axes u = (b − a)/|b − a|, v = normalised u × e_m (e_m the world axis
+// of u's smallest component), w = u × v; half-extents |b − a|/2, r, r with r = max(radius_a,
+// radius_b).
 bool box_intersects_obb(const Vec3& lower, const Vec3& upper, const Frustum& f);
 // Whether the box [lower, upper] intersects the solid frustum, to within `tolerance` cm.
 bool box_intersects_frustum(const Vec3& lower, const Vec3& upper, const Frustum& f, double tolerance);
