@@ -35,7 +35,7 @@ struct Camera {
   int height = 0;  // pixels
   Vec3 right{1, 0, 0};    // world direction of the image's +x
   Vec3 up{0, 1, 0};       // world direction of the image's −y (image up)
-  Vec3 forward{0, 0, -1}; // viewing direction, from the camera into the scene (right × up)
+  Vec3 forward{0, 0, -1}; // viewing direction, from the camera into the scene; right = forward × up
   Vec3 centre{0, 0, 0};   // world point drawn at the image centre
   double pixels_per_unit = 1.0;  // image pixels per world length unit (cm)
 

@@ -1,5 +1,7 @@
 #include "render/canvas.h"
 
+#include "render/line_raster.h"
+
 // stb_easy_font is header-only with static functions; we use only print and width.
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wunused-function"
@@ -18,13 +20,6 @@ namespace {
 // Coverage of a pixel (centre at distance d from a stroke's centre line) by a stroke of half width
 // h: a box filter of the pixel against the stroke's profile, exact for axis-aligned strokes.
 float stroke_coverage(double d, double h) { return static_cast<float>(std::clamp(h + 0.5 - d, 0.0, 1.0)); }
-
-double segment_distance(const Vec2& p, const Vec2& a, const Vec2& b) {
-  const Vec2 ab = b - a;
-  const double length2 = ab.squaredNorm();
-  const double t = length2 > 0 ? std::clamp((p - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
-  return (p - (a + t * ab)).norm();
-}
 
 // A coverage mask over a pixel rectangle: primitives of one logical shape take the maximum (so
 // joints of a polyline are not blended twice), then the shape is blended once.
@@ -90,38 +85,30 @@ void Canvas::stroke_rect(double x0, double y0, double x1, double y1, const Color
 }
 
 void Canvas::line(const Vec2& a, const Vec2& b, const Color& color, double width, float alpha) {
-  const double h = 0.5 * std::max(width, 1.0);
-  if (width < 1.0) alpha *= static_cast<float>(std::max(width, 0.0));
-  Mask mask(width_, height_, std::min(a.x(), b.x()) - h - 1, std::min(a.y(), b.y()) - h - 1,
-            std::max(a.x(), b.x()) + h + 1, std::max(a.y(), b.y()) + h + 1);
-  for (int y = mask.y0; y < mask.y1; ++y)
-    for (int x = mask.x0; x < mask.x1; ++x)
-      blend(x, y, color, alpha * stroke_coverage(segment_distance(Vec2(x + 0.5, y + 0.5), a, b), h));
+  polyline({a, b}, color, width, false, alpha);
 }
 
-void Canvas::polyline(const std::vector<Vec2>& points, const Color& color, double width, bool closed) {
+void Canvas::polyline(const std::vector<Vec2>& points, const Color& color, double width, bool closed, float alpha) {
   if (points.size() < 2) return;
-  const double h = 0.5 * std::max(width, 1.0);
-  const float alpha = width < 1.0 ? static_cast<float>(std::max(width, 0.0)) : 1.0f;
+  const double h = 0.5 * width * 1.5 + 1;
   Vec2 lo = points[0], hi = points[0];
   for (const Vec2& p : points) {
     lo = lo.cwiseMin(p);
     hi = hi.cwiseMax(p);
   }
-  Mask mask(width_, height_, lo.x() - h - 1, lo.y() - h - 1, hi.x() + h + 1, hi.y() + h + 1);
+  // Coverage accumulates (clamped) so segments that share a column add up to exactly one stroke.
+  Mask mask(width_, height_, lo.x() - h, lo.y() - h, hi.x() + h, hi.y() + h);
   const std::size_t segments = closed ? points.size() : points.size() - 1;
   for (std::size_t s = 0; s < segments; ++s) {
     const Vec2& a = points[s];
     const Vec2& b = points[(s + 1) % points.size()];
-    const int x0 = std::max(mask.x0, static_cast<int>(std::floor(std::min(a.x(), b.x()) - h - 1)));
-    const int x1 = std::min(mask.x1, static_cast<int>(std::ceil(std::max(a.x(), b.x()) + h + 1)));
-    const int y0 = std::max(mask.y0, static_cast<int>(std::floor(std::min(a.y(), b.y()) - h - 1)));
-    const int y1 = std::min(mask.y1, static_cast<int>(std::ceil(std::max(a.y(), b.y()) + h + 1)));
-    for (int y = y0; y < y1; ++y)
-      for (int x = x0; x < x1; ++x) {
-        float& m = mask.at(x, y);
-        m = std::max(m, stroke_coverage(segment_distance(Vec2(x + 0.5, y + 0.5), a, b), h));
-      }
+    raster::line_coverage(static_cast<float>(a.x()), static_cast<float>(a.y()), static_cast<float>(b.x()),
+                          static_cast<float>(b.y()), static_cast<float>(width), width_, 0, height_,
+                          [&](int x, int y, float c, float) {
+                            if (x < mask.x0 || x >= mask.x1 || y < mask.y0 || y >= mask.y1) return;
+                            float& m = mask.at(x, y);
+                            m = std::min(1.0f, m + c);
+                          });
   }
   for (int y = mask.y0; y < mask.y1; ++y)
     for (int x = mask.x0; x < mask.x1; ++x) blend(x, y, color, alpha * mask.at(x, y));

@@ -31,11 +31,11 @@ class Canvas {
   // Axis-aligned rectangle [x0, x1] × [y0, y1] (pixels), weighted by each pixel's exact covered area.
   void fill_rect(double x0, double y0, double x1, double y1, const Color& color, float alpha = 1.0f);
   void stroke_rect(double x0, double y0, double x1, double y1, const Color& color, double width = 1.0);
-  // Segment of the given width (pixels) with round caps; coverage of a pixel is the box-filtered
-  // distance max(0, min(1, width/2 + ½ − d)), so a line of width 1 deposits about its length in
-  // coverage. Widths below 1 keep the 1-pixel profile and scale the alpha instead (thin lines fade).
+  // Segment of the given width (pixels) with butt ends, anti-aliased by exact area coverage along
+  // the major axis (see line_raster.h): the coverage deposited is width × length at every angle.
   void line(const Vec2& a, const Vec2& b, const Color& color, double width = 1.0, float alpha = 1.0f);
-  void polyline(const std::vector<Vec2>& points, const Color& color, double width = 1.0, bool closed = false);
+  void polyline(const std::vector<Vec2>& points, const Color& color, double width = 1.0, bool closed = false,
+                float alpha = 1.0f);
   void disc(const Vec2& centre, double radius, const Color& color, float alpha = 1.0f);
   void circle(const Vec2& centre, double radius, const Color& color, double width = 1.0, float alpha = 1.0f);
   // Filled triangle, anti-aliased by 4×4 sub-samples per edge pixel.

@@ -7,6 +7,7 @@
 
 #include "core/parallel.h"
 #include "render/canvas.h"
+#include "render/line_raster.h"
 
 namespace hairfit {
 
@@ -174,59 +175,6 @@ std::pair<Vec3, Vec3> drawing_bounds(const Drawing3D& drawing) {
   if (!(lo.x() <= hi.x())) throw std::invalid_argument("drawing_bounds: the drawing has no finite position");
   return {lo, hi};
 }
-
-namespace {
-
-// Visits the pixels within `reach` of segment a–b (screen space) inside rows [row0, row1), walking
-// along the segment's major axis so a diagonal segment costs about its length × 2·reach, not its
-// bounding box. visit(x, y, t, squared distance) with t the parameter of the nearest point. Single
-// precision: this is the innermost loop of strand rendering and pixel positions need no more.
-template <class Visit>
-void visit_segment(const Vec3& a3, const Vec3& b3, float reach, int width, int row0, int row1, const Visit& visit) {
-  const float ax = static_cast<float>(a3.x()), ay = static_cast<float>(a3.y());
-  const float bx = static_cast<float>(b3.x()), by = static_cast<float>(b3.y());
-  const float dx = bx - ax, dy = by - ay, length2 = dx * dx + dy * dy;
-  const float reach2 = reach * reach, inverse_length2 = length2 > 0 ? 1.0f / length2 : 0.0f;
-  auto pixel = [&](int x, int y) {
-    const float px = x + 0.5f - ax, py = y + 0.5f - ay;
-    const float t = std::clamp((px * dx + py * dy) * inverse_length2, 0.0f, 1.0f);
-    const float ex = px - t * dx, ey = py - t * dy, d2 = ex * ex + ey * ey;
-    if (d2 < reach2) visit(x, y, t, d2);
-  };
-  const int x0 = std::max(0, static_cast<int>(std::floor(std::min(ax, bx) - reach)));
-  const int x1 = std::min(width - 1, static_cast<int>(std::floor(std::max(ax, bx) + reach)));
-  const int y0 = std::max(row0, static_cast<int>(std::floor(std::min(ay, by) - reach)));
-  const int y1 = std::min(row1 - 1, static_cast<int>(std::floor(std::max(ay, by) + reach)));
-  if (x0 > x1 || y0 > y1) return;
-  const float length = std::sqrt(length2);
-  if (std::abs(dy) >= std::abs(dx)) {
-    // In a row whose centre lies within the segment's y-range, the capsule lies inside the strip
-    // of half width reach·length/|dy| around the centre line; beyond the range only the end cap
-    // (radius reach ≤ that half width) remains, around the clamped centre. Pixel x is visited when
-    // its centre x + ½ lies within the span.
-    const float half = length2 > 0 ? reach * length / std::abs(dy) : reach;
-    const float slope = length2 > 0 ? dx / dy : 0.0f;
-    const float y_lo = std::min(ay, by), y_hi = std::max(ay, by);
-    for (int y = y0; y <= y1; ++y) {
-      const float xc = ax + (std::clamp(y + 0.5f, y_lo, y_hi) - ay) * slope;
-      const int xa = std::max(x0, static_cast<int>(std::ceil(xc - half - 0.5f)));
-      const int xb = std::min(x1, static_cast<int>(std::floor(xc + half - 0.5f)));
-      for (int x = xa; x <= xb; ++x) pixel(x, y);
-    }
-  } else {
-    const float half = reach * length / std::abs(dx);
-    const float slope = dy / dx;
-    const float x_lo = std::min(ax, bx), x_hi = std::max(ax, bx);
-    for (int x = x0; x <= x1; ++x) {
-      const float yc = ay + (std::clamp(x + 0.5f, x_lo, x_hi) - ax) * slope;
-      const int ya = std::max(y0, static_cast<int>(std::ceil(yc - half - 0.5f)));
-      const int yb = std::min(y1, static_cast<int>(std::floor(yc + half - 0.5f)));
-      for (int y = ya; y <= yb; ++y) pixel(x, y);
-    }
-  }
-}
-
-}  // namespace
 
 Image render_3d(const Drawing3D& drawing, const Camera& camera, const RenderOptions& options) {
   if (camera.width <= 0 || camera.height <= 0) throw std::invalid_argument("render_3d: camera has no size");
@@ -442,7 +390,7 @@ Image render_3d(const Drawing3D& drawing, const Camera& camera, const RenderOpti
   std::vector<std::vector<int>> segment_bands(out_bands);
   for (std::size_t item = 0; item < curve_ref.size(); ++item) {
     const CurveLayer& layer = drawing.curves[curve_ref[item].first];
-    const double h = 0.5 * std::max(layer.width, 1.0) + 1.0;
+    const double h = layer.width + 1.0;
     const int n = static_cast<int>((*layer.curves)[curve_ref[item].second].size());
     for (int k = 0; k + 1 < n; ++k) {
       const int v = static_cast<int>(first_vertex[item]) + k;
@@ -486,20 +434,20 @@ Image render_3d(const Drawing3D& drawing, const Camera& camera, const RenderOpti
       const CurveLayer& layer = drawing.curves[s.layer];
       const Vec3 &a = cv.screen[s.vertex], &b = cv.screen[s.vertex + 1];
       const Color &ca = cv.color[s.vertex], &cb = cv.color[s.vertex + 1];
-      // Box-filtered coverage of a stroke of half width h: clamp(h + ½ − d, 0, 1).
-      const float h = 0.5f * static_cast<float>(std::max(layer.width, 1.0));
-      const float alpha = layer.opacity * static_cast<float>(std::min(1.0, layer.width));
       const float za = static_cast<float>(a.z()), dz = static_cast<float>(b.z() - a.z());
       const Color dc{cb.r - ca.r, cb.g - ca.g, cb.b - ca.b};
-      visit_segment(a, b, h + 0.5f, out.width, row0, row1, [&](int x, int y, float t, float d2) {
-        const std::size_t i = out.at(x, y);
-        const float z = za + t * dz;
-        if (z > out.depth[i] + depth_bias) return;
-        const float cover = std::min(1.0f, h + 0.5f - std::sqrt(d2)) * alpha;
-        out.blend(i, {ca.r + t * dc.r, ca.g + t * dc.g, ca.b + t * dc.b}, cover);
-        // Only a mostly covered pixel occludes what comes later; fringes stay see-through.
-        if (cover >= 0.5f) out.depth[i] = std::min(out.depth[i], z);
-      });
+      raster::line_coverage(static_cast<float>(a.x()), static_cast<float>(a.y()), static_cast<float>(b.x()),
+                            static_cast<float>(b.y()), static_cast<float>(layer.width), out.width, row0, row1,
+                            [&](int x, int y, float coverage, float t) {
+                              const std::size_t i = out.at(x, y);
+                              const float z = za + t * dz;
+                              if (z > out.depth[i] + depth_bias) return;
+                              const float cover = coverage * layer.opacity;
+                              out.blend(i, {ca.r + t * dc.r, ca.g + t * dc.g, ca.b + t * dc.b}, cover);
+                              // Only a mostly covered pixel occludes what comes later; fringes stay
+                              // see-through.
+                              if (cover >= 0.5f) out.depth[i] = std::min(out.depth[i], z);
+                            });
     }
     for (int index : point_bands[band]) {
       const ScreenPoint& sp = points[index];
