@@ -12,5 +12,6 @@ int command_validate(const Arguments& args);
 int command_run(const Arguments& args);
 int command_scene_keys(const Arguments& args);
 int command_rod(const Arguments& args);
+int command_field(const Arguments& args);
 
 }  // namespace hairfit::cli

@@ -26,6 +26,7 @@ const Command kCommands[] = {
      hairfit::cli::command_scene_keys},
     {"rod", "rod [--length L] [--force x,y,z] [--torque x,y,z] [--solver ...] [--segments N]   solve one rod, print JSON (--help)",
      hairfit::cli::command_rod},
+    {"field", "field MESH --voxel H --band B [--margin M] [--max-memory GIB] --out F.nrrd [--threads N]   one distance field, timed", hairfit::cli::command_field},
 };
 
 void print_help() {
