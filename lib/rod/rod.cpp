@@ -82,8 +82,11 @@ SolvedRod solve_rod(const Rod& rod, const RodRoot& root, const RodLoad& load, co
 
   const RodScales scale = rod_scales(rod);
   const Vec3 force = load.terminal_force / scale.force;
+  const int n = options.segments + 1;
+  std::vector<double> nodes(3 * n), frames(9 * n), curvature(3 * n);
+  const RodTrace<double> trace{nodes.data(), frames.data(), curvature.data(), nullptr};
   SolvedRod solved;
-  Vec3 m0 = load.root_moment / scale.moment;
+  Vec3 m0 = load.root_moment / scale.moment, m1;
   if (options.solver == RodSolver::shooting) {
     ShootingOptions shooting;
     shooting.integrator = options.integrator;
@@ -91,17 +94,24 @@ SolvedRod solve_rod(const Rod& rod, const RodRoot& root, const RodLoad& load, co
     shooting.tolerance = options.tolerance;
     shooting.max_iterations = options.max_iterations;
     const ShootingResult s = shoot_root_moment(model, force, load.terminal_torque / scale.moment, m0, shooting);
+    // Trace piece by piece from the states shooting found (one long integration from m(0) would
+    // amplify its last bit by exp(√tension)); the centreline runs on continuously.
+    RodState<double> state{};
+    for (std::size_t k = 0; k + 1 < s.breaks.size(); ++k) {
+      Eigen::Map<Mat3>(state.frame) = s.frames[k];
+      Eigen::Map<Vec3>(state.moment) = s.moments[k];
+      integrate_rod_steps<double>(model, options.integrator, options.segments, s.breaks[k], s.breaks[k + 1],
+                                  force.data(), state, trace);
+    }
     m0 = s.root_moment;
+    m1 = Eigen::Map<const Vec3>(state.moment);
     solved.iterations = s.iterations;
     solved.residual = s.residual;
     solved.converged = s.converged;
+  } else {
+    integrate_rod<double>(model, options.integrator, options.segments, force.data(), m0.data(), m1.data(), trace);
   }
 
-  const int n = options.segments + 1;
-  std::vector<double> nodes(3 * n), frames(9 * n), curvature(3 * n);
-  Vec3 m1;
-  integrate_rod<double>(model, options.integrator, options.segments, force.data(), m0.data(), m1.data(),
-                        RodTrace<double>{nodes.data(), frames.data(), curvature.data(), nullptr});
   solved.nodes.resize(n);
   solved.frames.resize(n);
   solved.curvature.resize(n);

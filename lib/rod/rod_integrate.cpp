@@ -3,6 +3,7 @@
 #include <ceres/jet.h>
 
 #include "core/error.h"
+#include "rod/cayley.h"
 
 namespace hairfit {
 
@@ -36,23 +37,6 @@ Vec3 kappa_hat_at(const std::vector<Vec3>& kappa_hat, double s) {
   return (1.0 - t) * kappa_hat[i] + t * kappa_hat[i + 1];
 }
 
-// cay(θ)·v with cay(θ) = (I − [θ]/2)⁻¹(I + [θ]/2) = I + 4/(4+|θ|²)·([θ] + [θ]²/2): an exact
-// rotation by 2·atan(|θ|/2) about θ, with no trigonometry.
-template <typename T>
-V3<T> cayley_apply(const V3<T>& theta, const V3<T>& v) {
-  const T c = T(4.0) / (T(4.0) + theta.squaredNorm());
-  const V3<T> tv = theta.cross(v);
-  return v + c * (tv + T(0.5) * theta.cross(tv));
-}
-
-template <typename T>
-M3<T> cayley_matrix(const V3<T>& theta) {
-  const T c = T(4.0) / (T(4.0) + theta.squaredNorm());
-  M3<T> k;
-  k << T(0.0), -theta(2), theta(1), theta(2), T(0.0), -theta(0), -theta(1), theta(0), T(0.0);
-  return M3<T>::Identity() + c * (k + T(0.5) * (k * k));
-}
-
 // Right-hand side at one Runge–Kutta stage, where the frame is R_n·cay(θ) and the moment m.
 template <typename T>
 struct StageRate {
@@ -73,14 +57,14 @@ struct StepContext {
 template <typename T>
 StageRate<T> stage_rate(const StepContext<T>& ctx, const V3<T>& theta, const V3<T>& m, double s) {
   // Body components of m in the stage frame: cay(θ)ᵀ·R_nᵀ·m = cay(−θ)·(R_nᵀ m).
-  const V3<T> body = cayley_apply<T>(-theta, ctx.frame.transpose() * m);
+  const V3<T> body = cayley::apply<T>(-theta, ctx.frame.transpose() * m);
   const V3<T> kappa = ctx.model.kappa_hat.empty()
                           ? V3<T>(ctx.compliance.cwiseProduct(body))
                           : V3<T>(kappa_hat_at(ctx.model.kappa_hat, s).template cast<T>() +
                                   ctx.compliance.cwiseProduct(body));
   StageRate<T> rate;
   rate.theta = kappa + T(0.5) * theta.cross(kappa) + T(0.25) * theta.dot(kappa) * theta;
-  rate.r = ctx.frame * cayley_apply<T>(theta, V3<T>::UnitZ());
+  rate.r = ctx.frame * cayley::apply<T>(theta, V3<T>::UnitZ());
   const V3<T> n = ctx.force_at - T(s) * ctx.f;  // the stage's own arc length: gravity makes n vary
   rate.m = -rate.r.cross(n);
   return rate;
@@ -100,17 +84,17 @@ void write_node(const RodModel& model, const RodTrace<T>& trace, int i, double s
 }  // namespace
 
 template <typename T>
-void integrate_rod(const RodModel& model, RodIntegrator integrator, int segments, const T* terminal_force,
-                   const T* root_moment, T* terminal_moment, const RodTrace<T>& trace) {
+void integrate_rod_steps(const RodModel& model, RodIntegrator integrator, int segments, int first, int last,
+                         const T* terminal_force, RodState<T>& state, const RodTrace<T>& trace) {
   const V3<T> f = model.force_per_length.template cast<T>();
-  StepContext<T> ctx{model, model.root_frame.template cast<T>(), Eigen::Map<const V3<T>>(terminal_force) + f, f,
+  StepContext<T> ctx{model, Eigen::Map<const M3<T>>(state.frame), Eigen::Map<const V3<T>>(terminal_force) + f, f,
                      model.compliance.template cast<T>()};
-  V3<T> r = V3<T>::Zero();
-  V3<T> m = Eigen::Map<const V3<T>>(root_moment);
+  V3<T> r = Eigen::Map<const V3<T>>(state.position);
+  V3<T> m = Eigen::Map<const V3<T>>(state.moment);
   const double h = 1.0 / segments;
   const V3<T> zero = V3<T>::Zero();
-  write_node(model, trace, 0, 0.0, r, ctx.frame, m, ctx.compliance);
-  for (int i = 0; i < segments; ++i) {
+  write_node(model, trace, first, first * h, r, ctx.frame, m, ctx.compliance);
+  for (int i = first; i < last; ++i) {
     const double s = i * h;
     V3<T> theta;
     if (integrator == RodIntegrator::rk2) {  // explicit midpoint
@@ -129,10 +113,23 @@ void integrate_rod(const RodModel& model, RodIntegrator integrator, int segments
       r += w * (k1.r + T(2.0) * (k2.r + k3.r) + k4.r);
       m += w * (k1.m + T(2.0) * (k2.m + k3.m) + k4.m);
     }
-    ctx.frame = ctx.frame * cayley_matrix<T>(theta);
+    ctx.frame = ctx.frame * cayley::matrix<T>(theta);
     write_node(model, trace, i + 1, (i + 1) * h, r, ctx.frame, m, ctx.compliance);
   }
-  for (int k = 0; k < 3; ++k) terminal_moment[k] = m[k];
+  Eigen::Map<V3<T>>(state.position) = r;
+  Eigen::Map<M3<T>>(state.frame) = ctx.frame;
+  Eigen::Map<V3<T>>(state.moment) = m;
+}
+
+template <typename T>
+void integrate_rod(const RodModel& model, RodIntegrator integrator, int segments, const T* terminal_force,
+                   const T* root_moment, T* terminal_moment, const RodTrace<T>& trace) {
+  RodState<T> state;
+  Eigen::Map<V3<T>>(state.position) = V3<T>::Zero();
+  Eigen::Map<M3<T>>(state.frame) = model.root_frame.template cast<T>();
+  for (int k = 0; k < 3; ++k) state.moment[k] = root_moment[k];
+  integrate_rod_steps(model, integrator, segments, 0, segments, terminal_force, state, trace);
+  for (int k = 0; k < 3; ++k) terminal_moment[k] = state.moment[k];
 }
 
 template void integrate_rod<double>(const RodModel&, RodIntegrator, int, const double*, const double*, double*,
@@ -143,5 +140,12 @@ template void integrate_rod<ceres::Jet<double, 3>>(const RodModel&, RodIntegrato
 template void integrate_rod<ceres::Jet<double, 6>>(const RodModel&, RodIntegrator, int, const ceres::Jet<double, 6>*,
                                                    const ceres::Jet<double, 6>*, ceres::Jet<double, 6>*,
                                                    const RodTrace<ceres::Jet<double, 6>>&);
+
+template void integrate_rod_steps<double>(const RodModel&, RodIntegrator, int, int, int, const double*,
+    RodState<double>&, const RodTrace<double>&);
+template void integrate_rod_steps<ceres::Jet<double, 3>>(const RodModel&, RodIntegrator, int, int, int, const ceres::Jet<double, 3>*,
+    RodState<ceres::Jet<double, 3>>&, const RodTrace<ceres::Jet<double, 3>>&);
+template void integrate_rod_steps<ceres::Jet<double, 6>>(const RodModel&, RodIntegrator, int, int, int, const ceres::Jet<double, 6>*,
+    RodState<ceres::Jet<double, 6>>&, const RodTrace<ceres::Jet<double, 6>>&);
 
 }  // namespace hairfit

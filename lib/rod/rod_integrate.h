@@ -55,4 +55,19 @@ template <typename T>
 void integrate_rod(const RodModel& model, RodIntegrator integrator, int segments, const T* terminal_force,
                    const T* root_moment, T* terminal_moment, const RodTrace<T>& trace);
 
+// The state carried from step to step (world axes, dimensionless): r, R (column-major), m.
+template <typename T>
+struct RodState {
+  T position[3];
+  T frame[9];
+  T moment[3];
+};
+
+// Steps first … last−1 of the same N-step grid (s_i = i/N), from `state` at s = first/N; leaves
+// the state at s = last/N and writes nodes first … last to `trace` (indexed on the whole grid).
+// integrate_rod is this over all steps from (0, R0, m(0)); multiple shooting uses pieces.
+template <typename T>
+void integrate_rod_steps(const RodModel& model, RodIntegrator integrator, int segments, int first, int last,
+                         const T* terminal_force, RodState<T>& state, const RodTrace<T>& trace);
+
 }  // namespace hairfit

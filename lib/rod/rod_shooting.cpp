@@ -4,82 +4,32 @@
 #include <algorithm>
 #include <cmath>
 
+#include "rod/cayley.h"
 #include "rod/rod_jet.h"
 
 namespace hairfit {
 
+int shooting_pieces(const RodModel& model, const Vec3& terminal_force, int segments) {
+  const double tension = terminal_force.norm() + model.force_per_length.norm();
+  const int pieces = static_cast<int>(std::ceil(std::sqrt(tension) / 3.0));
+  return std::clamp(pieces, 1, std::min(segments, 48));
+}
+
 namespace {
 
-// The shooting problem at one continuation level λ: loads scaled by λ.
+// The unknowns: the state at the start of every piece. frames[0] is the clamp and never moves;
+// the other frames are updated multiplicatively, R ← R·cay(δφ), so they stay rotations.
+struct Iterate {
+  std::vector<Mat3> frames;
+  std::vector<Vec3> moments;
+};
+
+// The problem at one continuation level λ: loads scaled by λ.
 struct Level {
   RodModel model;
   Vec3 terminal_force;
   Vec3 terminal_torque;
 };
-
-struct Evaluation {
-  Vec3 residual;  // m(1) − t_L
-  Mat3 jacobian;  // ∂m(1)/∂m(0)
-};
-
-Vec3 residual_at(const Level& level, const ShootingOptions& options, const Vec3& m0) {
-  Vec3 m1;
-  integrate_rod<double>(level.model, options.integrator, options.segments, level.terminal_force.data(), m0.data(),
-                        m1.data(), RodTrace<double>{});
-  return m1 - level.terminal_torque;
-}
-
-Evaluation evaluate_with_jacobian(const Level& level, const ShootingOptions& options, const Vec3& m0) {
-  RodJet3 force[3], moment[3], m1[3];
-  for (int k = 0; k < 3; ++k) {
-    force[k] = RodJet3(level.terminal_force[k]);
-    moment[k] = RodJet3(m0[k], k);
-  }
-  integrate_rod<RodJet3>(level.model, options.integrator, options.segments, force, moment, m1, RodTrace<RodJet3>{});
-  Evaluation e;
-  for (int k = 0; k < 3; ++k) {
-    e.residual[k] = m1[k].a - level.terminal_torque[k];
-    e.jacobian.row(k) = m1[k].v.transpose();
-  }
-  return e;
-}
-
-bool finite(const Vec3& v) { return v.allFinite(); }
-
-// Damped Newton from `x` at one level; returns true and updates x when |residual| ≤ tol.
-bool newton(const Level& level, const ShootingOptions& options, double tol, int max_steps, Vec3& x, int& iterations,
-            double& residual) {
-  for (int step = 0; step <= max_steps; ++step) {
-    const Evaluation e = evaluate_with_jacobian(level, options, x);
-    const double norm = e.residual.norm();
-    if (!std::isfinite(norm)) return false;
-    residual = norm;
-    if (norm <= tol) return true;
-    if (step == max_steps || iterations >= options.max_iterations) return false;
-    ++iterations;
-    Vec3 delta = Vec3::Zero();
-    const Eigen::FullPivLU<Mat3> lu(e.jacobian);
-    if (lu.isInvertible()) delta = -lu.solve(e.residual);
-    if (!finite(delta) || !lu.isInvertible()) {  // singular Jacobian: a Levenberg–Marquardt step
-      const double mu = 1e-6 * std::max(1.0, e.jacobian.squaredNorm());
-      delta = -(e.jacobian.transpose() * e.jacobian + mu * Mat3::Identity()).ldlt().solve(e.jacobian.transpose() *
-                                                                                          e.residual);
-    }
-    // Backtracking on |residual|: full Newton steps near the root, shorter ones far from it.
-    double alpha = 1.0;
-    bool accepted = false;
-    for (int trial = 0; trial < 30 && !accepted; ++trial, alpha *= 0.5) {
-      const Vec3 candidate = x + alpha * delta;
-      const double n = residual_at(level, options, candidate).norm();
-      if (std::isfinite(n) && n <= (1.0 - 1e-4 * alpha) * norm) {
-        x = candidate;
-        accepted = true;
-      }
-    }
-    if (!accepted) return false;
-  }
-  return false;
-}
 
 Level level_at(const RodModel& model, const Vec3& force, const Vec3& torque, double lambda) {
   Level level{model, lambda * force, lambda * torque};
@@ -87,56 +37,244 @@ Level level_at(const RodModel& model, const Vec3& force, const Vec3& torque, dou
   return level;
 }
 
+struct Problem {
+  const ShootingOptions& options;
+  std::vector<int> breaks;  // K+1 step indices
+  int pieces() const { return static_cast<int>(breaks.size()) - 1; }
+  int size() const { return 6 * pieces() - 3; }
+};
+
+// Frame and moment at the end of piece k from the start state (double).
+void piece_end(const Problem& p, const Level& level, const Iterate& x, int k, Mat3& frame, Vec3& moment) {
+  RodState<double> state{};
+  Eigen::Map<Mat3>(state.frame) = x.frames[k];
+  Eigen::Map<Vec3>(state.moment) = x.moments[k];
+  integrate_rod_steps<double>(level.model, p.options.integrator, p.options.segments, p.breaks[k], p.breaks[k + 1],
+                              level.terminal_force.data(), state, RodTrace<double>{});
+  frame = Eigen::Map<const Mat3>(state.frame);
+  moment = Eigen::Map<const Vec3>(state.moment);
+}
+
+// All mismatches: per interior break, the frame (Cayley coordinates of R_next⁻¹·R_end) and the
+// moment; then m(1) − t_L.
+Eigen::VectorXd residual(const Problem& p, const Level& level, const Iterate& x) {
+  Eigen::VectorXd f(p.size());
+  for (int k = 0; k < p.pieces(); ++k) {
+    Mat3 frame;
+    Vec3 moment;
+    piece_end(p, level, x, k, frame, moment);
+    if (k + 1 < p.pieces()) {
+      f.segment<3>(6 * k) = cayley::log<double>(x.frames[k + 1].transpose() * frame);
+      f.segment<3>(6 * k + 3) = moment - x.moments[k + 1];
+    } else {
+      f.segment<3>(6 * k) = moment - level.terminal_torque;
+    }
+  }
+  return f;
+}
+
+// Residual and its Jacobian with respect to the corrections u = (δm0, δφ1, δm1, …): piece k's end
+// state by jets over its own 6 (3 for the root piece) start parameters; the dependence on the next
+// break's frame correction δφ by jets over 3, with the end state held fixed.
+void residual_and_jacobian(const Problem& p, const Level& level, const Iterate& x, Eigen::VectorXd& f,
+                           Eigen::MatrixXd& jacobian) {
+  using J6 = RodJet6;
+  using J3 = RodJet3;
+  f.resize(p.size());
+  jacobian.setZero(p.size(), p.size());
+  J6 force[3];
+  for (int i = 0; i < 3; ++i) force[i] = J6(level.terminal_force[i]);
+  for (int k = 0; k < p.pieces(); ++k) {
+    // Unknown columns of this piece: the root piece has δm0 at 0..2; piece k ≥ 1 has δφ_k at
+    // 6k−3 … 6k−1 and δm_k at 6k … 6k+2.
+    const int column = k == 0 ? 0 : 6 * k - 3;
+    Eigen::Matrix<J6, 3, 1> phi, dm;
+    for (int i = 0; i < 3; ++i) {
+      phi[i] = k == 0 ? J6(0.0) : J6(0.0, i);
+      dm[i] = k == 0 ? J6(0.0, i) : J6(0.0, 3 + i);
+    }
+    RodState<J6> state;
+    Eigen::Map<Eigen::Matrix<J6, 3, 1>>(state.position).setZero();
+    Eigen::Map<Eigen::Matrix<J6, 3, 3>>(state.frame) = x.frames[k].cast<J6>() * cayley::matrix<J6>(phi);
+    Eigen::Map<Eigen::Matrix<J6, 3, 1>>(state.moment) = x.moments[k].cast<J6>() + dm;
+    integrate_rod_steps<J6>(level.model, p.options.integrator, p.options.segments, p.breaks[k], p.breaks[k + 1],
+                            force, state, RodTrace<J6>{});
+    const Eigen::Map<const Eigen::Matrix<J6, 3, 3>> end_frame(state.frame);
+    const Eigen::Map<const Eigen::Matrix<J6, 3, 1>> end_moment(state.moment);
+    const int own = k == 0 ? 3 : 6;
+    auto put = [&](int row, const J6& value) {
+      f[row] = value.a;
+      for (int j = 0; j < own; ++j) jacobian(row, column + j) = value.v[j];
+    };
+    if (k + 1 < p.pieces()) {
+      const Eigen::Matrix<J6, 3, 1> psi = cayley::log<J6>(x.frames[k + 1].transpose().cast<J6>() * end_frame);
+      for (int i = 0; i < 3; ++i) put(6 * k + i, psi[i]);
+      for (int i = 0; i < 3; ++i) put(6 * k + 3 + i, end_moment[i] - J6(x.moments[k + 1][i]));
+      // ∂/∂δφ_{k+1} of log(cay(δφ)ᵀ·R_next⁻¹·R_end) and ∂/∂δm_{k+1} of −m_next.
+      Mat3 a;
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) a(r, c) = end_frame(r, c).a;
+      a = x.frames[k + 1].transpose() * a;
+      Eigen::Matrix<J3, 3, 1> next_phi;
+      for (int i = 0; i < 3; ++i) next_phi[i] = J3(0.0, i);
+      const Eigen::Matrix<J3, 3, 1> psi_next =
+          cayley::log<J3>(cayley::matrix<J3>(next_phi).transpose() * a.cast<J3>());
+      const int next = 6 * (k + 1) - 3;
+      for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < 3; ++j) jacobian(6 * k + i, next + j) = psi_next[i].v[j];
+        jacobian(6 * k + 3 + i, next + 3 + i) = -1.0;
+      }
+    } else {
+      for (int i = 0; i < 3; ++i) put(6 * k + i, end_moment[i] - J6(level.terminal_torque[i]));
+    }
+  }
+}
+
+Iterate moved(const Iterate& x, const Eigen::VectorXd& step) {
+  Iterate y = x;
+  y.moments[0] += step.head<3>();
+  for (std::size_t k = 1; k < x.frames.size(); ++k) {
+    const int at = 6 * static_cast<int>(k) - 3;
+    y.frames[k] = x.frames[k] * cayley::matrix<double>(step.segment<3>(at));
+    y.moments[k] += step.segment<3>(at + 3);
+  }
+  return y;
+}
+
+// A forward sweep from m(0) gives the other start states (exact when the load is zero).
+Iterate sweep(const Problem& p, const Level& level, const Vec3& root_moment) {
+  Iterate x;
+  x.frames.assign(p.pieces(), level.model.root_frame);
+  x.moments.assign(p.pieces(), root_moment);
+  for (int k = 0; k + 1 < p.pieces(); ++k) piece_end(p, level, x, k, x.frames[k + 1], x.moments[k + 1]);
+  return x;
+}
+
+// Damped Newton at one level from x; true (x updated) when the residual is below tol.
+bool newton(const Problem& p, const Level& level, double tol, int max_steps, Iterate& x, int& iterations,
+            double& residual_norm) {
+  Eigen::VectorXd f;
+  Eigen::MatrixXd jacobian;
+  for (int step = 0; step <= max_steps; ++step) {
+    residual_and_jacobian(p, level, x, f, jacobian);
+    const double norm = f.norm();
+    if (!std::isfinite(norm)) return false;
+    residual_norm = norm;
+    if (norm <= tol) return true;
+    if (step == max_steps || iterations >= p.options.max_iterations) return false;
+    ++iterations;
+    const Eigen::FullPivLU<Eigen::MatrixXd> lu(jacobian);
+    const Eigen::VectorXd delta = -lu.solve(f);
+    if (!lu.isInvertible() || !delta.allFinite()) return false;
+    // Backtracking on the residual: full Newton steps near the root, shorter ones far from it.
+    double alpha = 1.0;
+    bool accepted = false;
+    for (int trial = 0; trial < 20 && !accepted; ++trial, alpha *= 0.5) {
+      const Iterate candidate = moved(x, alpha * delta);
+      const double n = residual(p, level, candidate).norm();
+      if (std::isfinite(n) && n <= (1.0 - 1e-4 * alpha) * norm) {
+        x = candidate;
+        accepted = true;
+      }
+    }
+    // Round-off floor: an iterate Newton can no longer improve and that no longer moves is the
+    // root to machine precision; its residual is reported as it is.
+    if (!accepted) return delta.norm() <= 1e-10 * (1.0 + x.moments[0].norm());
+  }
+  return false;
+}
+
 }  // namespace
 
 ShootingResult shoot_root_moment(const RodModel& model, const Vec3& terminal_force, const Vec3& terminal_torque,
                                  const Vec3& guess, const ShootingOptions& options) {
+  const int pieces = shooting_pieces(model, terminal_force, options.segments);
+  Problem p{options, {}};
+  for (int k = 0; k <= pieces; ++k)
+    p.breaks.push_back(static_cast<int>((static_cast<long long>(k) * options.segments) / pieces));
   const double scale =
       std::max({1.0, terminal_force.norm(), terminal_torque.norm(), model.force_per_length.norm()});
   const double tol = options.tolerance * scale;
-  ShootingResult result;
   const Level full = level_at(model, terminal_force, terminal_torque, 1.0);
+  ShootingResult result;
+  double residual_norm = 0.0;
 
-  // First the warm start at the full load: most calls (continuation in callers, moderate loads) end here.
-  Vec3 x = finite(guess) ? guess : Vec3::Zero();
-  double residual = 0.0;
-  bool converged = newton(full, options, tol, 25, x, result.iterations, residual);
+  // First the warm start at the full load: callers that continue a load themselves end here.
+  Iterate x = sweep(p, full, guess.allFinite() ? guess : Vec3::Zero());
+  // A warm start is meant for a small load increment: a root far from it belongs to another
+  // equilibrium (Newton jumped branches), so it is not taken.
+  bool converged = !guess.isZero() && guess.allFinite() &&
+                   newton(p, full, tol, 8, x, result.iterations, residual_norm) &&
+                   (x.moments[0] - guess).norm() <= 0.1 + 0.25 * guess.norm();
 
   if (!converged) {
-    // Continuation from the unloaded rod, whose root moment is exactly zero.
-    double lambda = 0.0, previous_lambda = -1.0, step = 0.25;
-    Vec3 at = Vec3::Zero(), previous = Vec3::Zero();
+    // Continuation λ: 0 → 1 from the unloaded rod, whose solution is exact (m ≡ 0). Predictor for
+    // m(0): the tangent of the solution path at λ = 0, −J0⁻¹·∂F/∂λ (J0 from one jet sweep, ∂F/∂λ
+    // by a one-sided difference: F is smooth in λ and vanishes at λ = 0), then secants. Branch
+    // guard: a level counts only if its m(0) lands within half the predicted increment of the
+    // predictor; under large loads many equilibria (curled, looped) lie close together and Newton
+    // would otherwise jump to one of them. The step doubles after an easy level, halves after a
+    // failed one.
+    Vec3 tangent = Vec3::Zero();
+    {
+      const Problem single{options, {0, options.segments}};
+      const Level rest = level_at(model, terminal_force, terminal_torque, 0.0);
+      Iterate zero = sweep(single, rest, Vec3::Zero());
+      Eigen::VectorXd f0;
+      Eigen::MatrixXd j0;
+      residual_and_jacobian(single, rest, zero, f0, j0);
+      const double epsilon = 1e-7;
+      const Eigen::VectorXd rate =
+          residual(single, level_at(model, terminal_force, terminal_torque, epsilon), zero) / epsilon;
+      const Eigen::FullPivLU<Eigen::MatrixXd> lu(j0);
+      if (lu.isInvertible()) tangent = -lu.solve(rate);
+      if (!tangent.allFinite()) tangent = Vec3::Zero();
+    }
+    double lambda = 0.0, previous_lambda = -1.0, step = 1.0;
+    Iterate at = sweep(p, level_at(model, terminal_force, terminal_torque, 0.0), Vec3::Zero()), previous = at;
     while (lambda < 1.0 && step >= 1e-6 && result.iterations < options.max_iterations) {
       const double target = std::min(1.0, lambda + step);
-      Vec3 trial = at;
-      if (previous_lambda >= 0.0) trial += (at - previous) * ((target - lambda) / (lambda - previous_lambda));
-      double r = 0.0;
-      if (newton(level_at(model, terminal_force, terminal_torque, target), options, tol, 12, trial,
-                 result.iterations, r)) {
+      const Level level = level_at(model, terminal_force, terminal_torque, target);
+      Iterate trial = at;
+      if (previous_lambda < 0.0) {
+        trial = sweep(p, level, target * tangent);
+      } else {
+        const double ratio = (target - lambda) / (lambda - previous_lambda);
+        for (std::size_t k = 0; k < trial.moments.size(); ++k)
+          trial.moments[k] += ratio * (at.moments[k] - previous.moments[k]);
+      }
+      const Vec3 predicted = trial.moments[0];
+      const double radius = 0.5 * (predicted - at.moments[0]).norm() + 1e-6 * (1.0 + predicted.norm());
+      const int before = result.iterations;
+      if (newton(p, level, tol, 6, trial, result.iterations, residual_norm) &&
+          (trial.moments[0] - predicted).norm() <= radius) {
         previous = at;
         previous_lambda = lambda;
         at = trial;
         lambda = target;
-        step = std::min(1.0, 2.0 * step);
+        if (result.iterations - before <= 3) step = std::min(1.0, 2.0 * step);
       } else {
         step *= 0.5;
       }
     }
     converged = lambda >= 1.0;
     // On failure keep the better of the warm-start iterate and the last level reached.
-    if (converged || (residual_at(full, options, at).norm() < residual_at(full, options, x).norm())) x = at;
+    if (converged || residual(p, full, at).norm() < residual(p, full, x).norm()) x = at;
   }
 
-  result.root_moment = x;
-  result.terminal_moment = residual_at(full, options, x) + full.terminal_torque;
-  result.residual = (result.terminal_moment - full.terminal_torque).norm();
+  Eigen::VectorXd f = residual(p, full, x);
   result.converged = converged;
-  if (!std::isfinite(result.residual)) {  // cannot happen for finite input; never hand out NaN
-    result.root_moment = Vec3::Zero();
-    result.terminal_moment = residual_at(full, options, result.root_moment) + full.terminal_torque;
-    result.residual = (result.terminal_moment - full.terminal_torque).norm();
+  if (!f.allFinite()) {  // never hand out NaN: fall back to the unloaded start
+    x = sweep(p, full, Vec3::Zero());
+    f = residual(p, full, x);
     result.converged = false;
   }
+  result.residual = f.norm();
+  result.root_moment = x.moments[0];
+  result.terminal_moment = f.tail<3>() + full.terminal_torque;
+  result.breaks = p.breaks;
+  result.frames = x.frames;
+  result.moments = x.moments;
   return result;
 }
 

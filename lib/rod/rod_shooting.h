@@ -1,9 +1,17 @@
 // Shooting for the dimensionless rod (DESIGN §1): given the terminal force f_L and torque t_L,
-// find the root moment m(0) with m(1; f_L, m(0)) = t_L. Damped Newton (3×3 Jacobian from jets,
-// backtracking line search), and, when the full load cannot be reached from the start, load
-// continuation λ: 0 → 1 on (f_L, t_L, f) with a secant predictor. At λ = 0 the exact root is
-// m(0) = 0, so continuation follows the branch connected to the unloaded rod.
+// find the root moment m(0) with m(1; f_L, m(0)) = t_L.
+//
+// Under a large load the map m(0) ↦ m(1) is exponentially sensitive (a rod under tension T
+// amplifies a root perturbation by about exp(√T)), so plain shooting loses all digits past
+// T ≈ 10². We therefore shoot over K pieces of the N-step grid (multiple shooting; K grows like
+// √load so each piece amplifies by at most ≈ e³): the unknowns are m(0) and the frame and moment
+// at each interior break, the residuals the mismatches at the breaks and m(1) − t_L. Damped
+// Newton with the exact Jacobian from jets (6 parameters per piece), backtracking on the
+// residual, and load continuation λ: 0 → 1 on (f_L, t_L, f) from the unloaded rod (whose
+// solution is exact: m ≡ 0), the step doubling after an easy level and halving after a failure.
 #pragma once
+#include <vector>
+
 #include "rod/rod_integrate.h"
 
 namespace hairfit {
@@ -11,20 +19,30 @@ namespace hairfit {
 struct ShootingOptions {
   RodIntegrator integrator = RodIntegrator::rk4;
   int segments = 64;
-  double tolerance = 1e-11;  // on |m(1) − t_L|, relative to max(1, |f_L|, |t_L|, |f|)
+  double tolerance = 1e-11;  // on the residual norm, relative to max(1, |f_L|, |t_L|, |f|)
   int max_iterations = 400;  // Newton steps in total
 };
 
 struct ShootingResult {
-  Vec3 root_moment = Vec3::Zero();  // m(0), the best iterate (always finite)
-  Vec3 terminal_moment = Vec3::Zero();  // m(1) at that root moment
-  int iterations = 0;               // Newton steps (jet evaluations)
-  double residual = 0.0;            // |m(1) − t_L|
+  Vec3 root_moment = Vec3::Zero();      // m(0), the best iterate (always finite)
+  Vec3 terminal_moment = Vec3::Zero();  // m(1) reached by the last piece
+  // The pieces: step indices 0 = breaks[0] < … < breaks[K] = N, and the state (frame, moment)
+  // at the start of each piece (frames[0] = R0, moments[0] = m(0)). Tracing each piece from its
+  // own start reproduces the solution without the exponential growth of one long integration.
+  std::vector<int> breaks;
+  std::vector<Mat3> frames;
+  std::vector<Vec3> moments;
+  int iterations = 0;      // Newton steps (Jacobian evaluations)
+  double residual = 0.0;   // norm of all mismatches and m(1) − t_L
   bool converged = false;
 };
 
-// All quantities dimensionless (rod_integrate.h). `guess` is the warm start for m(0).
+// All quantities dimensionless (rod_integrate.h). `guess` is the warm start for m(0) (zero: none).
 ShootingResult shoot_root_moment(const RodModel& model, const Vec3& terminal_force, const Vec3& terminal_torque,
                                  const Vec3& guess, const ShootingOptions& options);
+
+// The number of pieces shooting uses for a load: 1 up to |f_L| + |f| ≈ 9, then ≈ √(|f_L| + |f|)/3,
+// at most min(segments, 48).
+int shooting_pieces(const RodModel& model, const Vec3& terminal_force, int segments);
 
 }  // namespace hairfit
