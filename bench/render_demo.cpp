@@ -2,6 +2,7 @@
 // hairfit_render_demo), and times the 3D renderer on many curves.
 //   bench_render_demo [OUT_DIR] [--strands N] [--threads T]
 #include <chrono>
+#include <ctime>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -112,10 +113,12 @@ int main(int argc, char** argv) {
     const Camera camera = fit_camera(parse_view(name), down, front, lo, hi, 800, 800);
     drawing.title = "strands, " + name;
     const auto start = std::chrono::steady_clock::now();
+    const std::clock_t cpu_start = std::clock();
     const Image image = render_3d(drawing, camera, options);
+    const double cpu_ms = 1000.0 * (std::clock() - cpu_start) / CLOCKS_PER_SEC;
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    std::printf("render_3d %s: %zu strands x 16 points, 800x800, ss 2, %d thread(s): %.1f ms\n", name.c_str(),
-                curves.size(), threads, ms);
+    std::printf("render_3d %s: %zu strands x 16 points, 800x800, ss 2, %d thread(s): %.0f ms wall, %.0f ms CPU\n",
+                name.c_str(), curves.size(), threads, ms, cpu_ms);
     write_png(out + "/strands_" + name + ".png", image);
     sheet.push_back(render_3d(drawing, fit_camera(parse_view(name), down, front, lo, hi, 400, 400), options));
     captions.push_back(name);
