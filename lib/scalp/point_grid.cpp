@@ -17,13 +17,36 @@ PointGrid::PointGrid(const std::vector<Vec3>& points, double cell) : points_(poi
   order_.resize(points.size());
   std::iota(order_.begin(), order_.end(), 0);
   std::sort(order_.begin(), order_.end(), [&](int a, int b) { return keys[a] != keys[b] ? keys[a] < keys[b] : a < b; });
-  cells_.reserve(points.size());
   for (std::size_t k = 0; k < order_.size();) {
     std::size_t e = k;
     while (e < order_.size() && keys[order_[e]] == keys[order_[k]]) ++e;
-    cells_.emplace(keys[order_[k]], std::make_pair(static_cast<int>(k), static_cast<int>(e)));
+    cell_keys_.push_back(keys[order_[k]]);
+    cell_begin_.push_back(static_cast<int>(k));
+    cell_coords_.push_back(cell_of(points_[order_[k]]));
     k = e;
   }
+  cell_begin_.push_back(static_cast<int>(order_.size()));
+  std::size_t capacity = 16;
+  while (capacity < 2 * cell_keys_.size()) capacity *= 2;
+  mask_ = capacity - 1;
+  table_.assign(capacity, -1);
+  for (int c = 0; c < static_cast<int>(cell_keys_.size()); ++c) {
+    std::size_t slot = mix(cell_keys_[c]) & mask_;
+    while (table_[slot] >= 0) slot = (slot + 1) & mask_;
+    table_[slot] = c;
+  }
+}
+
+std::vector<std::pair<int, int>> PointGrid::neighbourhood(int k, int reach) const {
+  std::vector<std::pair<int, int>> ranges;
+  const Vec3i c = cell_coords_[k];
+  for (int dz = -reach; dz <= reach; ++dz)
+    for (int dy = -reach; dy <= reach; ++dy)
+      for (int dx = -reach; dx <= reach; ++dx) {
+        const int cell = find(key(c + Vec3i(dx, dy, dz)));
+        if (cell >= 0) ranges.emplace_back(cell_begin_[cell], cell_begin_[cell + 1]);
+      }
+  return ranges;
 }
 
 int PointGrid::nearest(const Vec3& p, int exclude, double max_radius) const {

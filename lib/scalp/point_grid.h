@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -30,9 +29,9 @@ class PointGrid {
     for (int dz = -reach_x; dz <= reach_x; ++dz)
       for (int dy = -reach_x; dy <= reach_x; ++dy)
         for (int dx = -reach_x; dx <= reach_x; ++dx) {
-          const auto it = cells_.find(key(c + Vec3i(dx, dy, dz)));
-          if (it == cells_.end()) continue;
-          for (int k = it->second.first; k < it->second.second; ++k) {
+          const int cell = find(key(c + Vec3i(dx, dy, dz)));
+          if (cell < 0) continue;
+          for (int k = cell_begin_[cell]; k < cell_begin_[cell + 1]; ++k) {
             const int i = order_[k];
             const double d2 = (points_[i] - p).squaredNorm();
             if (d2 <= r2) visit(i, d2);
@@ -42,6 +41,14 @@ class PointGrid {
 
   // Index of the nearest point other than `exclude` (−1 for none), searching outward up to max_radius.
   int nearest(const Vec3& p, int exclude, double max_radius) const;
+
+  // Occupied cells, for work organised by cell (one hash lookup per neighbouring cell and cell,
+  // not per point): cell k holds the points order()[cell_begin(k) .. cell_begin(k + 1)).
+  int cell_count() const { return static_cast<int>(cell_begin_.size()) - 1; }
+  int cell_begin(int k) const { return cell_begin_[k]; }
+  const std::vector<int>& order() const { return order_; }
+  // The [begin, end) ranges in order() of the occupied cells within `reach` cells of cell k.
+  std::vector<std::pair<int, int>> neighbourhood(int k, int reach) const;
 
  private:
   Vec3i cell_of(const Vec3& p) const {
@@ -58,7 +65,24 @@ class PointGrid {
   double cell_;
   Vec3 origin_;
   std::vector<int> order_;  // point indices sorted by cell key, then index
-  std::unordered_map<std::uint64_t, std::pair<int, int>> cells_;
+  // Occupied cell with this key, or −1: open addressing, linear probing, power-of-two table.
+  int find(std::uint64_t k) const {
+    for (std::size_t slot = mix(k) & mask_;; slot = (slot + 1) & mask_) {
+      if (table_[slot] < 0) return -1;
+      if (cell_keys_[table_[slot]] == k) return table_[slot];
+    }
+  }
+  static std::uint64_t mix(std::uint64_t x) {
+    x ^= x >> 31;
+    x *= 0x7fb5d329728ea185ull;
+    return x ^ (x >> 27);
+  }
+
+  std::vector<int> table_;  // slot → occupied cell index, −1 empty
+  std::size_t mask_ = 0;
+  std::vector<std::uint64_t> cell_keys_;
+  std::vector<int> cell_begin_;  // occupied cells in key order, with a final end offset
+  std::vector<Vec3i> cell_coords_;
 };
 
 }  // namespace hairfit

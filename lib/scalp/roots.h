@@ -28,7 +28,7 @@ struct RootOptions {
   double cluster_overlap = 1.3;               // cluster circle radius / covering radius (≥ 1)
   std::uint64_t seed = 0;
   int threads = 1;                            // ≥ 1; results never depend on it
-  double oversampling = 5.0;                  // candidates per kept point for sample elimination
+  double oversampling = 3.0;                  // candidates per kept point for sample elimination
 };
 
 // Per-root columns (same length). Roots are ordered by the scalp triangle they lie in.

@@ -9,51 +9,6 @@
 
 namespace hairfit {
 
-namespace {
-
-// Max-heap of candidate indices keyed by weight, with positions for in-place updates. Ties go to
-// the lower index, so the order of elimination is fully determined by the weights.
-class WeightHeap {
- public:
-  explicit WeightHeap(const std::vector<double>& weight) : weight_(weight), heap_(weight.size()), slot_(weight.size()) {
-    std::iota(heap_.begin(), heap_.end(), 0);
-    for (std::size_t k = 0; k < heap_.size(); ++k) slot_[k] = static_cast<int>(k);
-    for (int k = static_cast<int>(heap_.size()) / 2 - 1; k >= 0; --k) sift_down(k);
-  }
-  int top() const { return heap_.front(); }
-  void pop() {
-    move(0, heap_.back());
-    heap_.pop_back();
-    if (!heap_.empty()) sift_down(0);
-  }
-  void decreased(int item) { sift_down(slot_[item]); }
-
- private:
-  bool above(int a, int b) const { return weight_[a] > weight_[b] || (weight_[a] == weight_[b] && a < b); }
-  void move(int k, int item) {
-    heap_[k] = item;
-    slot_[item] = k;
-  }
-  void sift_down(int k) {
-    const int n = static_cast<int>(heap_.size());
-    const int item = heap_[k];
-    for (;;) {
-      int child = 2 * k + 1;
-      if (child >= n) break;
-      if (child + 1 < n && above(heap_[child + 1], heap_[child])) ++child;
-      if (!above(heap_[child], item)) break;
-      move(k, heap_[child]);
-      k = child;
-    }
-    move(k, item);
-  }
-
-  const std::vector<double>& weight_;
-  std::vector<int> heap_, slot_;
-};
-
-}  // namespace
-
 std::vector<int> eliminate_samples(const std::vector<Vec3>& points, const std::vector<double>& radius, int target,
                                    int threads) {
   const int m = static_cast<int>(points.size());
@@ -66,7 +21,7 @@ std::vector<int> eliminate_samples(const std::vector<Vec3>& points, const std::v
   if (target <= 0) return kept;
 
   const double smallest = *std::min_element(radius.begin(), radius.end());
-  const PointGrid grid(points, 2.0 * smallest);
+  const PointGrid grid(points, 3.0 * smallest);
   const double limit = 0.65 * (1.0 - std::pow(static_cast<double>(target) / m, 1.5));
   auto pair_weight = [&](int i, int j, double d2) {
     const double r = std::min(radius[i], radius[j]);
@@ -80,38 +35,60 @@ std::vector<int> eliminate_samples(const std::vector<Vec3>& points, const std::v
     return j != i && d2 < 4.0 * r * r;
   };
 
-  // Neighbour lists (CSR), each in the grid's fixed visiting order.
+  // Neighbour lists (CSR), built cell by cell so each neighbouring cell is looked up once per
+  // cell; a point's list is in the grid's fixed order, so weights are thread-independent.
+  const std::vector<int>& order = grid.order();
+  auto scan_cell = [&](int cell, auto&& emit) {
+    double reach_radius = 0.0;
+    for (int k = grid.cell_begin(cell); k < grid.cell_begin(cell + 1); ++k) reach_radius = std::max(reach_radius, radius[order[k]]);
+    const auto ranges = grid.neighbourhood(cell, static_cast<int>(std::ceil(2.0 * reach_radius / grid.cell())));
+    for (int k = grid.cell_begin(cell); k < grid.cell_begin(cell + 1); ++k) {
+      const int i = order[k];
+      for (const auto& [begin, end] : ranges)
+        for (int q = begin; q < end; ++q) {
+          const int j = order[q];
+          const double d2 = (points[j] - points[i]).squaredNorm();
+          if (interacts(i, j, d2)) emit(i, j, d2);
+        }
+    }
+  };
   std::vector<int> start(m + 1, 0);
-  parallel_for(m, threads, [&](int i) {
-    int count = 0;
-    grid.for_each_within(points[i], 2.0 * radius[i], [&](int j, double d2) { count += interacts(i, j, d2); });
-    start[i + 1] = count;
-  });
+  parallel_for(grid.cell_count(), threads, [&](int cell) { scan_cell(cell, [&](int i, int, double) { ++start[i + 1]; }); });
   for (int i = 0; i < m; ++i) start[i + 1] += start[i];
   std::vector<int> neighbours(start[m]);
   std::vector<double> weight(m, 0.0);
-  parallel_for(m, threads, [&](int i) {
-    int k = start[i];
-    double w = 0.0;
-    grid.for_each_within(points[i], 2.0 * radius[i], [&](int j, double d2) {
-      if (!interacts(i, j, d2)) return;
-      neighbours[k++] = j;
-      w += pair_weight(i, j, d2);
+  std::vector<int> fill(start.begin(), start.end() - 1);
+  parallel_for(grid.cell_count(), threads, [&](int cell) {
+    scan_cell(cell, [&](int i, int j, double d2) {
+      neighbours[fill[i]++] = j;
+      weight[i] += pair_weight(i, j, d2);
     });
-    weight[i] = w;
   });
 
-  WeightHeap heap(weight);
+  // Greedy elimination of the most crowded candidate. Weights only decrease, so a lazy max-heap
+  // works: an entry whose weight is out of date is pushed back with its current weight when it
+  // reaches the top. Ties go to the lower index.
+  using Entry = std::pair<double, int>;
+  auto lower = [](const Entry& a, const Entry& b) { return a.first < b.first || (a.first == b.first && a.second > b.second); };
+  std::vector<Entry> heap(m);
+  for (int i = 0; i < m; ++i) heap[i] = {weight[i], i};
+  std::make_heap(heap.begin(), heap.end(), lower);
   std::vector<char> alive(m, 1);
-  for (int remaining = m; remaining > target; --remaining) {
-    const int i = heap.top();
-    heap.pop();
+  for (int remaining = m; remaining > target;) {
+    std::pop_heap(heap.begin(), heap.end(), lower);
+    const auto [w, i] = heap.back();
+    heap.pop_back();
+    if (!alive[i]) continue;
+    if (w != weight[i]) {
+      heap.push_back({weight[i], i});
+      std::push_heap(heap.begin(), heap.end(), lower);
+      continue;
+    }
     alive[i] = 0;
+    --remaining;
     for (int k = start[i]; k < start[i + 1]; ++k) {
       const int j = neighbours[k];
-      if (!alive[j]) continue;
-      weight[j] -= pair_weight(i, j, (points[i] - points[j]).squaredNorm());
-      heap.decreased(j);
+      if (alive[j]) weight[j] -= pair_weight(i, j, (points[i] - points[j]).squaredNorm());
     }
   }
   kept.reserve(target);
