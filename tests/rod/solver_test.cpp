@@ -1,0 +1,254 @@
+// The two solution schemes against each other, jet derivatives against finite differences, bad
+// input, and the `hairfit rod` command.
+#include <doctest/doctest.h>
+
+#include <cstdio>
+#include <string>
+
+#include "core/error.h"
+#include "rod/rod.h"
+#include "rod/rod_jet.h"
+#include "rod/rod_shooting.h"
+
+using namespace hairfit;
+
+namespace {
+
+Rod test_rod() {
+  Rod rod;
+  rod.length = 2.0;
+  rod.stiffness = Vec3(1.5, 2.5, 0.8);
+  rod.natural_curvature = {Vec3(0.3, -0.2, 0.1), Vec3(-0.4, 0.5, 0.0)};
+  rod.force_per_length = Vec3(0.1, -0.3, -0.6);
+  return rod;
+}
+
+RodRoot test_root() {
+  RodRoot root;
+  root.position = Vec3(0.5, 0.2, -1.0);
+  root.frame = Eigen::AngleAxisd(0.9, Vec3(1.0, -1.0, 0.5).normalized()).toRotationMatrix();
+  return root;
+}
+
+}  // namespace
+
+TEST_CASE("round trip: the terminal torque of the initial-value form, fed to shooting, returns the root moment") {
+  const Rod rod = test_rod();
+  const RodRoot root = test_root();
+  const Vec3 moments[] = {Vec3(0.2, -0.5, 0.1), Vec3(-1.0, 0.5, 0.3), Vec3(0.0, 2.0, -0.8)};
+  const Vec3 forces[] = {Vec3(0.3, 0.0, -0.2), Vec3(-0.6, 1.0, 0.3), Vec3(0.0, -1.5, 1.0)};
+  for (const RodIntegrator integrator : {RodIntegrator::rk2, RodIntegrator::rk4})
+    for (int i = 0; i < 3; ++i) {
+      CAPTURE(i);
+      RodOptions forward;
+      forward.solver = RodSolver::initial_value;
+      forward.integrator = integrator;
+      RodLoad given;
+      given.terminal_force = forces[i];
+      given.root_moment = moments[i];
+      const SolvedRod iv = solve_rod(rod, root, given, forward);
+      CHECK(iv.iterations == 0);
+      CHECK((iv.root_moment - moments[i]).norm() == 0.0);
+
+      RodOptions shooting = forward;
+      shooting.solver = RodSolver::shooting;
+      RodLoad target;
+      target.terminal_force = forces[i];
+      target.terminal_torque = iv.terminal_torque;
+      // Cold start: continuation follows the equilibrium connected to the unloaded rod, so these
+      // loads are moderate (a larger m(0) may sit on another branch; the warm start below finds it).
+      const SolvedRod shot = solve_rod(rod, root, target, shooting);
+      CHECK(shot.converged);
+      CHECK((shot.root_moment - moments[i]).norm() <= 1e-9);
+      CHECK((shot.tip() - iv.tip()).norm() <= 1e-9 * rod.length);
+
+      target.root_moment = moments[i] + Vec3(0.01, -0.02, 0.01);  // warm start next to the answer
+      const SolvedRod warm = solve_rod(rod, root, target, shooting);
+      CHECK(warm.converged);
+      CHECK(warm.iterations <= 4);
+      CHECK((warm.root_moment - moments[i]).norm() <= 1e-9);
+    }
+}
+
+TEST_CASE("shooting Newton converges quadratically from a warm start") {
+  // The residual of each Newton step is about the square of the previous one: from an error of
+  // 1e-2 the solver needs at most 3 steps to reach 1e-11.
+  const Rod rod = test_rod();
+  RodLoad load;
+  load.terminal_force = Vec3(0.5, -0.4, 0.2);
+  load.terminal_torque = Vec3(0.1, 0.2, -0.1);
+  const SolvedRod cold = solve_rod(rod, test_root(), load);
+  REQUIRE(cold.converged);
+  load.root_moment = cold.root_moment * 1.01;
+  const SolvedRod warm = solve_rod(rod, test_root(), load);
+  CHECK(warm.converged);
+  CHECK(warm.iterations <= 3);
+}
+
+TEST_CASE("jet derivatives of the forward integration agree with central finite differences") {
+  RodModel model = make_rod_model(test_rod(), test_root());
+  const int segments = 32;
+  const int nodes = segments + 1;
+  const double eta[6] = {0.7, -0.3, 0.5, 0.4, 1.1, -0.6};  // (f_L, m(0)), dimensionless
+  // All outputs of one integration stacked: nodes, frames, curvature, moments, m(1).
+  auto outputs = [&](const double* p) {
+    std::vector<double> out(nodes * 18 + 3);
+    RodTrace<double> trace{&out[0], &out[3 * nodes], &out[12 * nodes], &out[15 * nodes]};
+    integrate_rod<double>(model, RodIntegrator::rk4, segments, p, p + 3, &out[18 * nodes], trace);
+    return out;
+  };
+  std::vector<RodJet6> jet_out(nodes * 18 + 3);
+  RodJet6 parameters[6];
+  for (int i = 0; i < 6; ++i) parameters[i] = RodJet6(eta[i], i);
+  integrate_rod<RodJet6>(model, RodIntegrator::rk4, segments, parameters, parameters + 3, &jet_out[18 * nodes],
+                         RodTrace<RodJet6>{&jet_out[0], &jet_out[3 * nodes], &jet_out[12 * nodes], &jet_out[15 * nodes]});
+  const std::vector<double> value = outputs(eta);
+  double worst = 0.0;
+  for (int i = 0; i < 6; ++i) {
+    const double h = 1e-5;
+    double plus[6], minus[6];
+    std::copy(eta, eta + 6, plus);
+    std::copy(eta, eta + 6, minus);
+    plus[i] += h;
+    minus[i] -= h;
+    const std::vector<double> up = outputs(plus), down = outputs(minus);
+    for (std::size_t k = 0; k < value.size(); ++k) {
+      CHECK(jet_out[k].a == doctest::Approx(value[k]).epsilon(1e-13));  // the value part is the double computation
+      const double difference = (up[k] - down[k]) / (2 * h);
+      worst = std::max(worst, std::fabs(jet_out[k].v[i] - difference) / (1.0 + std::fabs(difference)));
+    }
+  }
+  CHECK(worst <= 1e-8);
+
+  // The 3-parameter jet used by shooting gives the same ∂m(1)/∂m(0).
+  RodJet3 force[3], moment[3], end[3];
+  for (int i = 0; i < 3; ++i) {
+    force[i] = RodJet3(eta[i]);
+    moment[i] = RodJet3(eta[3 + i], i);
+  }
+  integrate_rod<RodJet3>(model, RodIntegrator::rk4, segments, force, moment, end, RodTrace<RodJet3>{});
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) CHECK(end[r].v[c] == doctest::Approx(jet_out[18 * nodes + r].v[3 + c]).epsilon(1e-14));
+}
+
+TEST_CASE("a shooting solve that cannot finish keeps a finite best iterate and says so") {
+  Rod rod;
+  RodLoad load;
+  load.terminal_force = Vec3(0.0, 800.0, 0.0);
+  load.terminal_torque = Vec3(900.0, 0.0, 0.0);
+  RodOptions options;
+  options.max_iterations = 3;
+  const SolvedRod solved = solve_rod(rod, RodRoot{}, load, options);
+  CHECK_FALSE(solved.converged);
+  CHECK(std::isfinite(solved.residual));
+  CHECK(solved.residual > 0.0);
+  for (const Vec3& r : solved.nodes) CHECK(r.allFinite());
+  CHECK(solved.root_moment.allFinite());
+}
+
+TEST_CASE("bad rods and loads are rejected with a message naming the problem") {
+  auto message = [](const Rod& rod, const RodLoad& load, const RodOptions& options, const RodRoot& root = {}) {
+    try {
+      solve_rod(rod, root, load, options);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  const double nan = std::nan("");
+  Rod rod;
+  RodLoad load;
+  RodOptions options;
+  rod.length = -1.0;
+  CHECK(message(rod, load, options).find("length") != std::string::npos);
+  rod.length = 0.0;
+  CHECK(message(rod, load, options).find("length") != std::string::npos);
+  rod = Rod{};
+  rod.stiffness = Vec3(1.0, -2.0, 1.0);
+  CHECK(message(rod, load, options).find("EI2") != std::string::npos);
+  rod.stiffness = Vec3(1.0, 1.0, 0.0);
+  CHECK(message(rod, load, options).find("GJ") != std::string::npos);
+  rod = Rod{};
+  rod.natural_curvature = {Vec3(nan, 0, 0)};
+  CHECK(message(rod, load, options).find("natural curvature") != std::string::npos);
+  rod = Rod{};
+  rod.force_per_length = Vec3(0, 0, INFINITY);
+  CHECK(message(rod, load, options).find("force per length") != std::string::npos);
+  rod = Rod{};
+  load.terminal_force = Vec3(nan, 0, 0);
+  CHECK(message(rod, load, options).find("terminal force") != std::string::npos);
+  load = RodLoad{};
+  load.terminal_torque = Vec3(0, INFINITY, 0);
+  CHECK(message(rod, load, options).find("terminal torque") != std::string::npos);
+  load = RodLoad{};
+  options.segments = 0;
+  CHECK(message(rod, load, options).find("segments") != std::string::npos);
+  options = RodOptions{};
+  RodRoot skewed;
+  skewed.frame(0, 1) = 0.5;
+  CHECK(message(rod, load, options, skewed).find("root frame") != std::string::npos);
+  CHECK_THROWS_AS(parse_rod_integrator("rk3"), InputError);
+  CHECK_THROWS_AS(make_circular_rod(30.0, -1.0, 1.0, 1e-5), InputError);
+}
+
+namespace {
+
+struct Run {
+  int status;
+  std::string out;
+};
+
+Run run_cli(const std::string& arguments) {
+  const std::string command = std::string(HAIRFIT_BINARY) + " rod " + arguments + " 2>/dev/null";
+  FILE* pipe = popen(command.c_str(), "r");
+  REQUIRE(pipe != nullptr);
+  std::string out;
+  char buffer[4096];
+  while (std::size_t n = std::fread(buffer, 1, sizeof buffer, pipe)) out.append(buffer, n);
+  const int status = pclose(pipe);
+  return Run{WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+Vec3 json_vector(const std::string& json, const std::string& key) {
+  const std::size_t at = json.find("\"" + key + "\": [");
+  REQUIRE(at != std::string::npos);
+  Vec3 v;
+  REQUIRE(std::sscanf(json.c_str() + at + key.size() + 4, "[%lf, %lf, %lf]", &v[0], &v[1], &v[2]) == 3);
+  return v;
+}
+
+}  // namespace
+
+TEST_CASE("hairfit rod prints the solved rod as JSON") {
+  const Run run = run_cli("--length=2 --bend=0.5 --twist 0.3 --force=-0.3,0.1,0 --segments=16");
+  REQUIRE(run.status == 0);
+  Rod rod;
+  rod.length = 2.0;
+  rod.stiffness = Vec3(0.5, 0.5, 0.3);
+  RodLoad load;
+  load.terminal_force = Vec3(-0.3, 0.1, 0.0);
+  RodOptions options;
+  options.segments = 16;
+  const SolvedRod expected = solve_rod(rod, RodRoot{}, load, options);
+  CHECK((json_vector(run.out, "tip") - expected.tip()).norm() <= 1e-15);  // %.17g round-trips
+  CHECK((json_vector(run.out, "root_moment") - expected.root_moment).norm() <= 1e-15);
+  for (const char* key : {"\"tip_frame\"", "\"terminal_torque\"", "\"nodes\"", "\"iterations\"", "\"residual\""})
+    CHECK(run.out.find(key) != std::string::npos);
+
+  const Run iv = run_cli("--solver initial-value --root-moment=0,-1,0 --integrator rk2");
+  REQUIRE(iv.status == 0);
+  CHECK(json_vector(iv.out, "terminal_torque").isApprox(Vec3(0, -1, 0), 1e-15));  // no force: m constant
+  CHECK(json_vector(iv.out, "tip").x() < 0.0);
+  CHECK(run_cli("--help").status == 0);
+}
+
+TEST_CASE("hairfit rod rejects bad input with exit code 2") {
+  for (const char* bad : {"--length=-1", "--length 0", "--bend=-2", "--bend1=1 --bend2=0", "--twist=-1",
+                          "--segments 0", "--segments=2.5", "--force=nan,0,0", "--force=1,2", "--torque=inf,0,0",
+                          "--gravity=0,0,1e999", "--natural-curvature=1,2,nan", "--solver=newton",
+                          "--integrator=rk3", "--solver=initial-value --torque=1,0,0", "--bend=1 --bend1=2",
+                          "--unknown=1", "stray"}) {
+    CAPTURE(std::string(bad));
+    CHECK(run_cli(bad).status == 2);
+  }
+}
