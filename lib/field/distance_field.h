@@ -12,9 +12,11 @@
 //   patches) or the pseudo-normal vanishes (zero sum at a fold), the sign is unreliable (+ is used
 //   when the pseudo-normal is zero).
 // - Beyond the band: samples take the trilinear interpolation of a coarse signed distance grid
-//   (spacing floor(2·band) voxels) whose nodes hold the distance to a mesh point found by
-//   propagating closest points from the band: defined everywhere, continuous with the band,
-//   approximately 1-Lipschitz, its gradient pointing away from the surface (so −∇|d| leads back).
+//   (spacing H = floor(2·band) voxels). Coarse nodes within band + √3·H of the mesh are exact
+//   (a CPT scan of the coarse grid), farther ones hold the distance to a mesh point handed on by
+//   their neighbours (closest-point propagation, never below the true distance). So the field is
+//   defined everywhere, continuous with the band, and its gradient points away from the surface
+//   (−∇|d| leads back). Error beyond the band: O(H²·curvature) near it, up to √3·H near medial axes.
 //   Outside the grid, value = value at the clamped point + sign · distance to the grid box.
 // - Queries interpolate the samples trilinearly (a continuous, piecewise-trilinear field); the
 //   gradient is that of the interpolant. The guide optimiser builds Ceres jets from value and
