@@ -66,8 +66,8 @@ Vec3 closest_on_frustum(const Vec3& p, const Frustum& f, const Axis& ax) {
 
 // max over the frustum of n·x: the larger of its two end discs' supports.
 double frustum_support(const Vec3& n, const Frustum& f, const Axis& ax) {
-  const double nu = n.dot(ax.u);
-  const double across = std::sqrt(std::max(0.0, n.squaredNorm() - nu * nu));
+  const double nv = n.dot(ax.v), nw = n.dot(ax.w);
+  const double across = std::sqrt(nv * nv + nw * nw);
   return std::max(n.dot(f.a) + f.radius_a * across, n.dot(f.b) + f.radius_b * across);
 }
 
@@ -104,10 +104,103 @@ bool sat_box_obb(const Vec3& lower, const Vec3& upper, const Frustum& f, const A
   return true;
 }
 
-bool box_frustum_exact(const Vec3& lower, const Vec3& upper, const Frustum& f, const Axis& ax, double tolerance) {
-  // Alternating projections between the box and the frustum: the gap |p − q| shrinks towards
-  // their distance. Each step tries p − q as a separating axis, which becomes exact at the
-  // closest pair, so "apart" is proven by a certificate and "touching" means within tolerance.
+// The frustum's point farthest along d: on the rim of the end disc that reaches farther.
+Vec3 frustum_support_point(const Vec3& d, const Frustum& f, const Axis& ax) {
+  // The part of d across the axis, from its (v, w) components: d − (d·u)u would leave a
+  // round-off vector off the disc plane when d is nearly parallel to u.
+  const double dv = d.dot(ax.v), dw = d.dot(ax.w), n = std::sqrt(dv * dv + dw * dw);
+  const Vec3 rim = n > 0.0 ? Vec3((dv / n) * ax.v + (dw / n) * ax.w) : Vec3::Zero();
+  const Vec3 pa = f.a + f.radius_a * rim, pb = f.b + f.radius_b * rim;
+  return pa.dot(d) >= pb.dot(d) ? pa : pb;
+}
+
+// Boolean GJK (Gilbert–Johnson–Keerthi) on the Minkowski difference box − frustum: the sets meet
+// iff it contains the origin. Returns 1 (a simplex encloses the origin, or the origin lies on a
+// simplex feature: touching), 0 (a support plane separates: exact) or −1 (undecided: the origin
+// is within round-off of the difference's curved boundary).
+int gjk_box_frustum(const Vec3& lower, const Vec3& upper, const Frustum& f, const Axis& ax) {
+  auto support = [&](const Vec3& d) {
+    const Vec3 box(d.x() >= 0.0 ? upper.x() : lower.x(), d.y() >= 0.0 ? upper.y() : lower.y(),
+                   d.z() >= 0.0 ? upper.z() : lower.z());
+    return Vec3(box - frustum_support_point(-d, f, ax));
+  };
+  const double scale = (upper - lower).norm() + (f.b - f.a).norm() + f.radius_a + f.radius_b;
+  const double tiny = 1e-24 * scale * scale * scale * scale;  // |d|² of a degenerate direction (cm⁴)
+  Vec3 s[4];  // the simplex, newest last
+  int n = 0;
+  Vec3 d = 0.5 * (lower + upper) - 0.5 * (f.a + f.b);
+  if (d.squaredNorm() == 0.0) d = Vec3::UnitX();
+  s[n++] = support(d);
+  d = -s[0];
+  // The line case of the simplex [b, a] (a newest). By value: the arguments may alias s[].
+  auto line = [&](const Vec3 b, const Vec3 a) {
+    const Vec3 ab = b - a, ao = -a;
+    if (ab.dot(ao) > 0.0) {
+      s[0] = b, s[1] = a, n = 2;
+      d = ab.cross(ao).cross(ab);
+    } else {
+      s[0] = a, n = 1;
+      d = ao;
+    }
+  };
+  // The triangle case [c, b, a]; returns true when the origin lies in its plane inside it.
+  auto triangle = [&](const Vec3 c, const Vec3 b, const Vec3 a) {
+    const Vec3 ab = b - a, ac = c - a, ao = -a, abc = ab.cross(ac);
+    if (abc.cross(ac).dot(ao) > 0.0) {
+      if (ac.dot(ao) > 0.0) {
+        s[0] = c, s[1] = a, n = 2;
+        d = ac.cross(ao).cross(ac);
+      } else {
+        line(b, a);
+      }
+    } else if (ab.cross(abc).dot(ao) > 0.0) {
+      line(b, a);
+    } else {
+      const double side = abc.dot(ao);
+      if (side == 0.0) return true;
+      s[0] = side > 0.0 ? c : b, s[1] = side > 0.0 ? b : c, s[2] = a, n = 3;
+      d = side > 0.0 ? abc : Vec3(-abc);
+    }
+    return false;
+  };
+  for (int iteration = 0; iteration < 48; ++iteration) {
+    if (d.squaredNorm() <= tiny) return 1;  // the origin lies on the simplex
+    const Vec3 a = support(d);
+    if (a.dot(d) < 0.0) return 0;  // d separates the box from the frustum
+    // No progress along d: the origin is (nearly) on the boundary; let the fallback decide.
+    double reached = s[0].dot(d);
+    for (int i = 1; i < n; ++i) reached = std::max(reached, s[i].dot(d));
+    if (a.dot(d) - reached <= 1e-12 * scale * d.norm()) return -1;
+    s[n++] = a;
+    if (n == 2) {
+      line(s[0], s[1]);
+    } else if (n == 3) {
+      if (triangle(s[0], s[1], s[2])) return 1;
+    } else {
+      // Tetrahedron [d0, c, b, a]: the origin is outside a face through a (facing away from the
+      // fourth vertex) or inside all three, hence enclosed.
+      const Vec3 pd = s[0], pc = s[1], pb = s[2], pa = s[3], ao = -pa;
+      const Vec3 faces[3][3] = {{pc, pb, pd}, {pd, pc, pb}, {pb, pd, pc}};  // {x, y, opposite}
+      bool outside = false;
+      for (const auto& face : faces) {
+        Vec3 normal = (face[0] - pa).cross(face[1] - pa);
+        if (normal.dot(face[2] - pa) > 0.0) normal = -normal;
+        if (normal.dot(ao) > 0.0) {
+          if (triangle(face[0], face[1], pa)) return 1;
+          outside = true;
+          break;
+        }
+      }
+      if (!outside) return 1;
+    }
+  }
+  return -1;
+}
+
+// Alternating projections between the box and the frustum: the gap |p − q| shrinks towards
+// their distance; each step tries p − q as a separating axis, exact at the closest pair. Only
+// for what GJK leaves undecided (near-tangent contact), so slow convergence does not matter.
+bool box_frustum_projections(const Vec3& lower, const Vec3& upper, const Frustum& f, const Axis& ax, double tolerance) {
   Vec3 q = closest_on_frustum(0.5 * (lower + upper), f, ax);
   for (int iteration = 0; iteration < 64; ++iteration) {
     const Vec3 p = q.cwiseMax(lower).cwiseMin(upper);
@@ -118,6 +211,12 @@ bool box_frustum_exact(const Vec3& lower, const Vec3& upper, const Frustum& f, c
     if (box_min(n, lower, upper) > frustum_support(n, f, ax)) return false;
   }
   return true;  // still undecided after 64 steps: the two nearly touch; keep the voxel
+}
+
+bool box_frustum_exact(const Vec3& lower, const Vec3& upper, const Frustum& f, const Axis& ax, double tolerance) {
+  const int gjk = gjk_box_frustum(lower, upper, f, ax);
+  if (gjk >= 0) return gjk == 1;
+  return box_frustum_projections(lower, upper, f, ax, tolerance);
 }
 
 void check_frustum(const Frustum& f) {

@@ -31,10 +31,11 @@ enum class OccupancyShape {
   // The paper's test: the voxel intersects the frustum's oriented bounding box (15-axis SAT).
   // Conservative: also marks voxels near the OBB's corners, up to (√2 − 1)·r beyond the cone.
   obb,
-  // Ours, the default: the voxel intersects the frustum itself, decided exactly up to 1e-6 voxel
-  // (a voxel within that distance of the frustum may be marked). The OBB SAT remains the broad
-  // phase; voxels whose centre is clearly in or out are decided by the centre's distance; the
-  // rest by closest-point iteration with a separating-axis certificate (see voxelise.cpp).
+  // Ours, the default: the voxel intersects the frustum itself (closed sets). Voxels whose centre
+  // is clearly in or out are decided by the centre's distance; the rest by the OBB SAT (broad
+  // phase), then GJK on box − frustum (exact: a separating support plane or an enclosing
+  // simplex); the rare near-tangent cases GJK leaves open by closest-point iteration with a
+  // separating-axis certificate, which keeps a voxel it cannot prove apart within 1e-6 voxel.
   frustum,
 };
 

@@ -120,7 +120,7 @@ TEST_CASE("frustum voxelisation: no voxel missed, none extra beyond a thin toler
   // A voxel whose closest point to the frustum lies between lattice points is found within half a
   // lattice diagonal of it.
   const double tolerance = 0.5 * std::sqrt(3.0) * g.voxel / lattice + 1e-9;
-  for (int item = 0; item < 60; ++item) {
+  for (int item = 0; item < 120; ++item) {
     const Frustum f = random_frustum(item);
     const std::set<int64_t> cells = marked(g, f, OccupancyShape::frustum);
     const Frame fr = frame_of(f);
