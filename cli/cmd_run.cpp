@@ -19,7 +19,8 @@ int command_run(const Arguments& argv) {
   options.out_dir = args.text("out") ? std::filesystem::path(*args.text("out")) : scene.output.dir;
   options.until = args.text("until").value_or("");
   options.threads = resolve_thread_count(threads);
-  const RunReport report = run_pipeline(scene, inputs, options);
+  check_stage_name(options.until);
+  const RunReport report = run_pipeline(scene, inputs, options).report;
   std::printf("wrote %s\n", (options.out_dir / "report.json").string().c_str());
   for (const OutputFile& o : report.outputs) std::printf("wrote %s (%llu bytes)\n", (options.out_dir / o.path).string().c_str(),
                                                          static_cast<unsigned long long>(o.bytes));

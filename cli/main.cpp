@@ -22,6 +22,8 @@ const Command kCommands[] = {
      hairfit::cli::command_validate},
     {"run", "run SCENE [--out DIR] [--until STAGE] [--threads N]   run the pipeline, write outputs and report.json",
      hairfit::cli::command_run},
+    {"render", "render SCENE [--stage STAGE] [--view VIEW] [--size WxH] [--out PNG] [--threads N]   picture of a stage",
+     hairfit::cli::command_render},
     {"scene-keys", "scene-keys                print the table of scene keys (spec/reference.md embeds it)",
      hairfit::cli::command_scene_keys},
     {"rod", "rod [--length L] [--force x,y,z] [--torque x,y,z] [--solver ...] [--segments N]   solve one rod, print JSON (--help)",

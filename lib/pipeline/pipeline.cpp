@@ -1,32 +1,251 @@
 #include "pipeline/pipeline.h"
 
 #include <algorithm>
+#include <cmath>
 
+#include "guides/guide_outputs.h"
 #include "io/atomic_file.h"
+#include "io/curve_files.h"
+#include "io/nrrd.h"
+#include "pipeline/stage_options.h"
+#include "scalp/scalp_outputs.h"
 
 namespace hairfit {
 
+namespace fs = std::filesystem;
+
 const std::vector<std::string>& stage_names() {
-  static const std::vector<std::string> names{};
+  static const std::vector<std::string> names{"fields", "chart", "roots", "preguides", "guides", "strands"};
   return names;
 }
 
-RunReport run_pipeline(const Scene& scene, const Inputs& inputs, const RunOptions& options) {
+void check_stage_name(const std::string& stage, const std::string& option) {
   const std::vector<std::string>& names = stage_names();
-  if (!options.until.empty() && std::find(names.begin(), names.end(), options.until) == names.end()) {
-    std::string valid;
-    for (const std::string& n : names) valid += (valid.empty() ? "" : ", ") + n;
-    throw InputError("--until", "no stage named \"" + options.until + "\"; this build has: " +
-                                    (valid.empty() ? std::string("(no stages yet)") : valid));
+  if (stage.empty() || std::find(names.begin(), names.end(), stage) != names.end()) return;
+  std::string valid;
+  for (const std::string& n : names) valid += (valid.empty() ? "" : ", ") + n;
+  throw InputError(option, "no stage named \"" + stage + "\"; the stages are: " + valid);
+}
+
+namespace {
+
+NrrdVolume field_volume(const DistanceField& field) {
+  NrrdVolume v;
+  v.sizes = field.dims();
+  v.origin = field.origin();
+  v.spacing = Vec3::Constant(field.voxel());
+  v.data.resize(static_cast<std::size_t>(v.sizes.x()) * v.sizes.y() * v.sizes.z());
+  std::size_t at = 0;
+  for (int k = 0; k < v.sizes.z(); ++k)
+    for (int j = 0; j < v.sizes.y(); ++j)
+      for (int i = 0; i < v.sizes.x(); ++i) v.data[at++] = static_cast<float>(field.sample(i, j, k));
+  return v;
+}
+
+// Diameters along a fibre: a hair of section A at the root, tapering to half at the tip.
+void add_widths(Curves& curves, double cross_section) {
+  const double root = 2.0 * std::sqrt(cross_section / M_PI);
+  curves.widths.resize(curves.points.size());
+  for (std::size_t c = 0; c < curves.count(); ++c) {
+    const std::size_t n = curves.size(c);
+    for (std::size_t i = 0; i < n; ++i)
+      curves.widths[curves.offsets[c] + i] = static_cast<float>(root * (1.0 - 0.5 * i / std::max<std::size_t>(1, n - 1)));
   }
-  (void)inputs;
-  RunReport report;
-  report.scene = scene.file.string();
-  report.seed = scene.seed;
-  report.threads = options.threads;
-  report.effects = scene.effects.names();
-  write_text_file_atomically(options.out_dir / "report.json", report_json(report));
-  return report;
+}
+
+class Runner {
+ public:
+  Runner(const Scene& scene, const Inputs& inputs, const RunOptions& options)
+      : scene_(scene), inputs_(inputs), options_(options) {
+    result_.report.scene = scene.file.string();
+    result_.report.seed = scene.seed;
+    result_.report.threads = options.threads;
+    result_.report.effects = scene.effects.names();
+  }
+
+  PipelineResult run() {
+    const std::vector<std::string>& names = stage_names();
+    const std::size_t last = options_.until.empty()
+                                 ? names.size() - 1
+                                 : std::find(names.begin(), names.end(), options_.until) - names.begin();
+    for (std::size_t s = 0; s <= last; ++s) run_stage(names[s]);
+    if (options_.write_outputs)
+      write_text_file_atomically(options_.out_dir / "report.json", report_json(result_.report));
+    return result_;
+  }
+
+ private:
+  void run_stage(const std::string& name) {
+    StageReport stage;
+    stage.name = name;
+    const StageMeter meter;
+    if (name == "fields") fields(stage);
+    else if (name == "chart") chart(stage);
+    else if (name == "roots") roots(stage);
+    else if (name == "preguides") preguides(stage);
+    else if (name == "guides") guides(stage);
+    else if (name == "strands") strands(stage);
+    stage.seconds = meter.seconds();
+    stage.peak_memory_bytes = meter.peak_memory_bytes();
+    result_.report.stages.push_back(std::move(stage));
+  }
+
+  template <class Write>
+  void output(const std::string& relative, Write write) {
+    if (!options_.write_outputs) return;
+    const fs::path path = options_.out_dir / relative;
+    write(path);
+    result_.report.outputs.push_back({relative, static_cast<std::uint64_t>(fs::file_size(path))});
+  }
+
+  void fields(StageReport& stage) {
+    StageValues& v = result_.values;
+    v.scalp_field = std::make_shared<const DistanceField>(
+        make_distance_field(inputs_.scalp.mesh, field_spec(scene_, scene_.inputs.scalp.string()), options_.threads));
+    v.volume_field = std::make_shared<const DistanceField>(
+        make_distance_field(inputs_.volume.mesh, field_spec(scene_, scene_.inputs.volume.string()), options_.threads));
+    Digest d;
+    for (const DistanceField* f : {v.scalp_field.get(), v.volume_field.get()}) {
+      const NrrdVolume volume = field_volume(*f);
+      d.add_bytes(volume.data.data(), volume.data.size() * sizeof(float));
+    }
+    stage.digest = d.hex();
+    stage.add("voxel_cm", scene_.fields.voxel);
+    stage.add("scalp_grid", std::to_string(v.scalp_field->dims().x()) + "x" + std::to_string(v.scalp_field->dims().y()) +
+                                "x" + std::to_string(v.scalp_field->dims().z()));
+    stage.add("volume_grid", std::to_string(v.volume_field->dims().x()) + "x" +
+                                 std::to_string(v.volume_field->dims().y()) + "x" + std::to_string(v.volume_field->dims().z()));
+    stage.add("band_voxels", static_cast<std::int64_t>(v.scalp_field->band_voxels() + v.volume_field->band_voxels()));
+    stage.add("memory_bytes", static_cast<std::int64_t>(v.scalp_field->memory_bytes() + v.volume_field->memory_bytes()));
+    output("fields/scalp.nrrd", [&](const fs::path& p) { write_nrrd(p, field_volume(*v.scalp_field)); });
+    output("fields/volume.nrrd", [&](const fs::path& p) { write_nrrd(p, field_volume(*v.volume_field)); });
+  }
+
+  void chart(StageReport& stage) {
+    StageValues& v = result_.values;
+    v.chart = std::make_shared<const ScalpChart>(
+        make_scalp_chart(inputs_.scalp.mesh, scene_.units.front, scene_.units.down, scene_.inputs.scalp.string()));
+    stage.digest = digest(*v.chart).hex();
+    stage.add("scalp_area_cm2", v.chart->area);
+    stage.add("flipped_triangles", static_cast<std::int64_t>(v.chart->flipped_triangles));
+    stage.add("hairline_vertices", static_cast<std::int64_t>(v.chart->boundary.size()));
+    stage.add("solver", v.chart->solver);
+    output("chart.obj", [&](const fs::path& p) { write_chart_obj(p, *v.chart); });
+  }
+
+  ScalpMaps maps() const {
+    return ScalpMaps{inputs_.density_map ? &*inputs_.density_map : nullptr, inputs_.tilt_map ? &*inputs_.tilt_map : nullptr,
+                     inputs_.length_map ? &*inputs_.length_map : nullptr};
+  }
+
+  void roots(StageReport& stage) {
+    StageValues& v = result_.values;
+    const RootOptions o = root_options(scene_, options_.threads);
+    v.roots = std::make_shared<const Roots>(make_roots(*v.chart, maps(), o));
+    v.clusters = std::make_shared<const Clusters>(make_clusters(*v.chart, *v.roots, o));
+    v.preguide_roots = std::make_shared<const PreguideRoots>(make_preguide_roots(*v.chart, maps(), o));
+    stage.digest = Digest().add(digest(*v.roots).hex()).add(digest(*v.clusters).hex()).add(digest(*v.preguide_roots).hex()).hex();
+    const ScalpFigures f = scalp_figures(*v.chart, *v.roots, *v.clusters, *v.preguide_roots, options_.threads);
+    stage.add("scalp_area_cm2", f.scalp_area);
+    stage.add("expected_roots", f.expected_roots);
+    stage.add("roots", static_cast<std::int64_t>(f.roots));
+    stage.add("guides", static_cast<std::int64_t>(f.guides));
+    stage.add("preguide_roots", static_cast<std::int64_t>(f.preguide_roots));
+    stage.add("min_spacing_cm", f.min_spacing);
+    stage.add("mean_spacing_cm", f.mean_spacing);
+    output("roots.ply", [&](const fs::path& p) { write_roots_ply(p, *v.roots, *v.clusters); });
+  }
+
+  Boundary boundary() const { return Boundary{result_.values.scalp_field.get(), result_.values.volume_field.get()}; }
+
+  void preguides(StageReport& stage) {
+    StageValues& v = result_.values;
+    v.preguides = std::make_shared<const PreGuides>(
+        make_preguides(v.preguide_roots->roots, boundary(), preguide_options(scene_, options_.threads)));
+    stage.digest = digest(*v.preguides).hex();
+    int reached = 0;
+    double solves = 0;
+    for (const PreGuide& g : v.preguides->items) {
+      reached += g.reached;
+      solves += g.solves;
+    }
+    stage.add("preguides", static_cast<std::int64_t>(v.preguides->size()));
+    stage.add("reached_depth", static_cast<std::int64_t>(reached));
+    stage.add("flagged", static_cast<std::int64_t>(v.preguides->size() - reached));
+    stage.add("mean_newton_steps", v.preguides->size() ? solves / v.preguides->size() : 0.0);
+    Curves curves;
+    for (int i = 0; i < v.preguides->size(); ++i) curves.add(v.preguides->items[i].shape.nodes, i);
+    output("preguides.obj", [&](const fs::path& p) { write_obj_curves(p, curves); });
+  }
+
+  void guides(StageReport& stage) {
+    StageValues& v = result_.values;
+    v.guides = std::make_shared<const Guides>(
+        make_guides(v.clusters->bases, *v.preguides, boundary(), guide_options(scene_, options_.threads)));
+    stage.digest = digest(*v.guides).hex();
+    const GuideFigures f = guide_figures(*v.guides, *v.preguides, boundary());
+    stage.add("guides", static_cast<std::int64_t>(f.guides));
+    stage.add("failures", static_cast<std::int64_t>(f.failures));
+    stage.add("mean_iterations", f.mean_iterations);
+    stage.add("max_iterations", static_cast<std::int64_t>(f.max_iterations));
+    stage.add("mean_evaluations", f.mean_evaluations);
+    stage.add("inside_fraction", f.inside_fraction);
+    stage.add("inside_head_fraction", f.inside_head_fraction);
+    stage.add("outside_volume_fraction", f.outside_volume_fraction);
+    stage.add("mean_direction_mismatch", f.mean_direction_mismatch);
+    stage.add("start", scene_.guides.start);
+    output("guides.obj", [&](const fs::path& p) { write_obj_curves(p, v.guides->curves()); });
+    output("guides.csv", [&](const fs::path& p) { write_guides_csv(p, *v.guides); });
+  }
+
+  void strands(StageReport& stage) {
+    StageValues& v = result_.values;
+    Pores pores;
+    const RootSet& r = v.roots->pores;
+    pores.positions = r.positions;
+    pores.lengths = r.lengths;
+    pores.guide = v.clusters->pore_cluster;
+    const DistanceField* volume = v.volume_field.get();
+    const DistanceFunction inside_volume = [volume](const Vec3& p) { return volume->value(p); };
+    Strands s = make_strands(v.guides->curves(), pores, strand_options(scene_, options_.threads), inside_volume);
+    add_widths(s.fibres, scene_.hair.cross_section);
+    v.strands = std::make_shared<const Strands>(std::move(s));
+    const Curves& fibres = v.strands->fibres;
+    stage.digest = Digest().add(fibres.points).hex();
+    long long inside = 0;
+    const Boundary b = boundary();
+    for (const Vec3& p : fibres.points) inside += b.acceptable(p);
+    stage.add("fibres", static_cast<std::int64_t>(fibres.count()));
+    stage.add("points", static_cast<std::int64_t>(fibres.points.size()));
+    stage.add("cut", static_cast<std::int64_t>(v.strands->cut_count));
+    stage.add("inside_fraction", fibres.points.empty() ? 0.0 : static_cast<double>(inside) / fibres.points.size());
+    Curves guide_curves = v.guides->curves();
+    add_widths(guide_curves, scene_.hair.cross_section);
+    for (const std::string& format : scene_.output.strands) {
+      auto write = [&](const std::string& base, const Curves& curves) {
+        output(base + "." + format, [&](const fs::path& p) {
+          if (format == "hair") write_hair_file(p, curves, "hairfit " + base);
+          else if (format == "obj") write_obj_curves(p, curves);
+          else if (format == "usda") write_usda_curves(p, curves, 0.007, -scene_.units.down);
+          else write_ply_curves(p, curves);
+        });
+      };
+      write("strands", fibres);
+      if (format != "obj") write("guides", guide_curves);  // guides.obj comes from the guides stage
+    }
+  }
+
+  const Scene& scene_;
+  const Inputs& inputs_;
+  const RunOptions& options_;
+  PipelineResult result_;
+};
+
+}  // namespace
+
+PipelineResult run_pipeline(const Scene& scene, const Inputs& inputs, const RunOptions& options) {
+  check_stage_name(options.until);
+  return Runner(scene, inputs, options).run();
 }
 
 }  // namespace hairfit

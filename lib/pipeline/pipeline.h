@@ -1,12 +1,19 @@
-// The stages in order, run as pure functions of the scene and the earlier stages' values.
+// The stages in order, run as pure functions of the scene and the earlier stages' values:
+//   fields → chart → roots → preguides → guides → strands
 #pragma once
 #include <filesystem>
+#include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "field/distance_field.h"
+#include "guides/guides.h"
 #include "pipeline/inputs.h"
 #include "pipeline/report.h"
+#include "scalp/roots.h"
 #include "spec/scene.h"
+#include "strands/strands.h"
 
 namespace hairfit {
 
@@ -14,13 +21,33 @@ struct RunOptions {
   std::filesystem::path out_dir;  // where outputs and report.json go
   std::string until;              // last stage to run ("" = all)
   int threads = 1;                // already resolved (≥ 1)
+  bool write_outputs = true;      // false: compute only (render)
+};
+
+// Every stage's value; a stage not run (beyond --until) stays empty.
+struct StageValues {
+  std::shared_ptr<const DistanceField> scalp_field, volume_field;
+  std::shared_ptr<const ScalpChart> chart;
+  std::shared_ptr<const Roots> roots;
+  std::shared_ptr<const Clusters> clusters;
+  std::shared_ptr<const PreguideRoots> preguide_roots;
+  std::shared_ptr<const PreGuides> preguides;
+  std::shared_ptr<const Guides> guides;
+  std::shared_ptr<const Strands> strands;
 };
 
 // The stages this build runs, in order.
 const std::vector<std::string>& stage_names();
 
-// Runs the stages up to options.until, writes their outputs and report.json into out_dir, and
-// returns the report. Throws InputError when options.until names no stage.
-RunReport run_pipeline(const Scene& scene, const Inputs& inputs, const RunOptions& options);
+// Throws InputError listing the valid stages unless `stage` is one (or empty).
+void check_stage_name(const std::string& stage, const std::string& option = "--until");
+
+// Runs the stages up to options.until, writes their outputs and report.json into out_dir (unless
+// write_outputs is false), and returns the values and the report.
+struct PipelineResult {
+  StageValues values;
+  RunReport report;
+};
+PipelineResult run_pipeline(const Scene& scene, const Inputs& inputs, const RunOptions& options);
 
 }  // namespace hairfit

@@ -1,0 +1,20 @@
+// The acceptable region (paper §3): outside the scalp and inside the hair volume, as seen through
+// the two distance fields (negative behind each oriented surface, so the head is behind the scalp
+// and the hair is behind the volume boundary).
+#pragma once
+#include "field/distance_field.h"
+
+namespace hairfit {
+
+struct Boundary {
+  const DistanceField* scalp = nullptr;
+  const DistanceField* volume = nullptr;
+
+  // How far a point lies outside the acceptable region through each surface, cm: positive outside
+  // (inside the head / outside the volume), negative inside.
+  double beyond_scalp(const Vec3& p) const { return -scalp->value(p); }
+  double beyond_volume(const Vec3& p) const { return volume->value(p); }
+  bool acceptable(const Vec3& p) const { return beyond_scalp(p) <= 0.0 && beyond_volume(p) <= 0.0; }
+};
+
+}  // namespace hairfit

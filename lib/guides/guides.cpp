@@ -1,0 +1,173 @@
+#include "guides/guides.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "core/parallel.h"
+#include "guides/objective.h"
+
+namespace hairfit {
+
+namespace {
+
+// The neighbours' quantities at the guide's sample nodes (same normalised arc lengths, since
+// every rod has the same number of segments).
+GuideTargets make_targets(const RootSet& bases, int b, const PreGuides& preguides, const Boundary& boundary,
+                          const GuideOptions& o, std::vector<int>& chosen, std::vector<double>& weights) {
+  GuideTargets t;
+  t.root = bases.positions[b];
+  t.length = bases.lengths[b];
+  t.rod = o.rod;
+  const Vec3 bend = bending_direction(bases.normals[b], bases.directions[b], o.down, o.front);
+  t.model = make_rod_model(hair_rod(t.length, o.material), RodRoot{t.root, root_frame(bases.directions[b], bend)});
+  const int segments = o.rod.segments;
+  const int k_max = std::min(o.samples, segments);
+  for (int k = 0; k <= k_max; ++k) {
+    t.sample_nodes.push_back(static_cast<int>(std::lround(static_cast<double>(k) * segments / k_max)));
+    t.sample_weights.push_back((k == 0 || k == k_max ? 0.5 : 1.0) / k_max);
+  }
+
+  // The nearest pre-guides by root distance, weighted by inverse distance (softened so a
+  // pre-guide at the very root does not take all the weight).
+  std::vector<int> order(preguides.size());
+  std::iota(order.begin(), order.end(), 0);
+  const int count = std::min<int>(o.neighbours, preguides.size());
+  auto distance = [&](int j) { return (preguides.items[j].root - t.root).norm(); };
+  std::partial_sort(order.begin(), order.begin() + count, order.end(), [&](int a, int c) {
+    const double da = distance(a), dc = distance(c);
+    return da < dc || (da == dc && a < c);
+  });
+  chosen.assign(order.begin(), order.begin() + count);
+  const double soften = count > 0 ? 0.25 * distance(chosen.back()) + 1e-6 : 1.0;
+  weights.clear();
+  for (int j : chosen) weights.push_back(1.0 / (distance(j) + soften));
+  const double total = std::accumulate(weights.begin(), weights.end(), 0.0);
+  for (double& w : weights) w /= total;
+  for (int i = 0; i < count; ++i) {
+    GuideTargets::Neighbour nb;
+    nb.weight = weights[i];
+    const FibreShape& shape = preguides.items[chosen[i]].shape;
+    for (int node : t.sample_nodes) {
+      nb.tangents.push_back(shape.tangents[node]);
+      nb.darboux.push_back(shape.darboux[node]);
+    }
+    t.neighbours.push_back(std::move(nb));
+  }
+  t.boundary = &boundary;
+  t.weights = o.weights;
+  t.form = o.boundary;
+  t.outside_penalty = o.outside_penalty;
+  t.boundary_width = o.boundary_width;
+  return t;
+}
+
+Guide solve_guide(const RootSet& bases, int b, const PreGuides& preguides, const Boundary& boundary, const GuideOptions& o) {
+  Guide g;
+  g.root = bases.positions[b];
+  g.normal = bases.normals[b];
+  g.direction = bases.directions[b];
+  g.length = bases.lengths[b];
+  const GuideTargets targets = make_targets(bases, b, preguides, boundary, o, g.neighbours, g.neighbour_weights);
+
+  // Start: straight (the paper) or the neighbours' dimensionless loads, weighted (warm start).
+  double start[6] = {0, 0, 0, 0, 0, 0};
+  if (o.warm_start)
+    for (std::size_t i = 0; i < g.neighbours.size(); ++i) {
+      const PreGuide& p = preguides.items[g.neighbours[i]];
+      for (int a = 0; a < 3; ++a) {
+        start[a] += g.neighbour_weights[i] * p.force[a];
+        start[3 + a] += g.neighbour_weights[i] * p.root_moment[a];
+      }
+    }
+  const GuideSolve solve = optimise_guide(targets, start, o.max_iterations, o.tolerance);
+  g.force = Vec3(solve.eta[0], solve.eta[1], solve.eta[2]);
+  g.root_moment = Vec3(solve.eta[3], solve.eta[4], solve.eta[5]);
+  g.shape = fibre_shape(targets.model, g.root, g.length, o.rod, g.force, g.root_moment);
+  {
+    Vec3 m1;
+    integrate_rod<double>(targets.model, o.rod.integrator, o.rod.segments, solve.eta, solve.eta + 3, m1.data(),
+                          RodTrace<double>{});
+    g.terminal_torque = m1;
+  }
+  const RodScales scales = rod_scales(hair_rod(g.length, o.material));
+  g.force_scale = scales.force;
+  g.moment_scale = scales.moment;
+  g.iterations = solve.iterations;
+  g.evaluations = solve.evaluations;
+  g.converged = solve.converged;
+  g.termination = solve.termination;
+  g.initial_cost = 2.0 * solve.initial_cost;  // Ceres reports ½Σr²
+  const GuideTerms terms = evaluate_guide_terms(targets, solve.eta);
+  g.cost = terms.total;
+  g.f1 = terms.f1;
+  g.f2 = terms.f2;
+  g.f3 = terms.f3;
+  g.f4 = terms.f4;
+  return g;
+}
+
+}  // namespace
+
+Curves Guides::curves() const {
+  Curves c;
+  for (std::size_t i = 0; i < items.size(); ++i) c.add(items[i].shape.nodes, static_cast<std::int32_t>(i));
+  return c;
+}
+
+Guides make_guides(const RootSet& bases, const PreGuides& preguides, const Boundary& boundary, const GuideOptions& options) {
+  Guides guides;
+  guides.items.resize(bases.size());
+  parallel_for(bases.size(), options.threads,
+               [&](int b) { guides.items[b] = solve_guide(bases, b, preguides, boundary, options); });
+  return guides;
+}
+
+GuideFigures guide_figures(const Guides& guides, const PreGuides& preguides, const Boundary& boundary) {
+  GuideFigures f;
+  f.guides = guides.size();
+  long long nodes = 0, inside = 0, in_head = 0, out_volume = 0;
+  double mismatch = 0.0, mismatch_weight = 0.0;
+  for (const Guide& g : guides.items) {
+    f.failures += !g.converged;
+    f.mean_iterations += g.iterations;
+    f.max_iterations = std::max(f.max_iterations, g.iterations);
+    f.mean_evaluations += g.evaluations;
+    for (const Vec3& p : g.shape.nodes) {
+      const bool head = boundary.beyond_scalp(p) > 0.0, out = boundary.beyond_volume(p) > 0.0;
+      ++nodes;
+      in_head += head;
+      out_volume += out;
+      inside += !head && !out;
+    }
+    for (std::size_t j = 0; j < g.neighbours.size(); ++j) {
+      const FibreShape& p = preguides.items[g.neighbours[j]].shape;
+      for (std::size_t i = 0; i < g.shape.tangents.size(); ++i) {
+        mismatch += g.neighbour_weights[j] * (1.0 - g.shape.tangents[i].dot(p.tangents[i]));
+        mismatch_weight += g.neighbour_weights[j];
+      }
+    }
+  }
+  if (f.guides > 0) {
+    f.mean_iterations /= f.guides;
+    f.mean_evaluations /= f.guides;
+  }
+  if (nodes > 0) {
+    f.inside_fraction = static_cast<double>(inside) / nodes;
+    f.inside_head_fraction = static_cast<double>(in_head) / nodes;
+    f.outside_volume_fraction = static_cast<double>(out_volume) / nodes;
+  }
+  if (mismatch_weight > 0) f.mean_direction_mismatch = mismatch / mismatch_weight;
+  return f;
+}
+
+Digest digest(const Guides& guides) {
+  Digest d;
+  for (const Guide& g : guides.items) {
+    d.add(g.force).add(g.root_moment).add(g.shape.nodes);
+    d.add(static_cast<std::int64_t>(g.converged)).add(static_cast<std::int64_t>(g.iterations));
+  }
+  return d;
+}
+
+}  // namespace hairfit

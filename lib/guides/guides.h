@@ -1,0 +1,92 @@
+// Principal guides (paper §3.4, eq. 6–9): one per cluster, the rod whose six load parameters
+// minimise Σ wᵢ·Fᵢ, optimised with Ceres (Levenberg–Marquardt, automatic differentiation through
+// the rod integrator). The loads are parameterised in the initial-value form η̃ = (f_L, m(0))
+// (DESIGN §1): every evaluation is one forward integration and t_L = m(L) is an output.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "core/curves.h"
+#include "core/digest.h"
+#include "guides/preguides.h"
+
+namespace hairfit {
+
+enum class BoundaryForm {
+  smooth,  // flat deep inside, the step of c_d smoothed over the last boundary_width inside the
+           // surface, a Huber ramp outside: C¹, what the optimiser should see
+  paper,   // eq. 9 exactly: |d| inside, c_d + |d| outside (for comparison)
+};
+
+struct GuideWeights {
+  double direction = 0.4;   // w1, F1 (eq. 7)
+  double similarity = 0.2;  // w2, F2² (eq. 8, squared)
+  double boundary = 0.4;    // w3, F3 (eq. 9)
+  double density = 0.0;     // w4, F4 (§3.5)
+};
+
+struct GuideOptions {
+  HairMaterial material;
+  RodDiscretisation rod;
+  int samples = 16;            // residual samples K along each guide (normalised arc length)
+  int neighbours = 3;          // pre-guides each guide follows
+  int max_iterations = 50;
+  double tolerance = 1e-8;     // Ceres function tolerance (relative cost decrease)
+  BoundaryForm boundary = BoundaryForm::smooth;
+  double outside_penalty = 10.0;  // c_d, cm
+  double boundary_width = 0.1;    // cm
+  GuideWeights weights;
+  bool warm_start = true;      // start from the neighbours' loads (else straight, the paper)
+  Vec3 down{0, -1, 0};
+  Vec3 front{0, 0, 1};
+  int threads = 1;
+};
+
+struct Guide {
+  Vec3 root = Vec3::Zero();
+  Vec3 normal = Vec3::Zero();
+  Vec3 direction = Vec3::Zero();
+  double length = 0.0;              // cm
+  Vec3 force = Vec3::Zero();        // f_L, dimensionless (F·L²/EI), world axes
+  Vec3 root_moment = Vec3::Zero();  // m(0), dimensionless (M·L/EI)
+  Vec3 terminal_torque = Vec3::Zero();  // m(L), dimensionless: the paper's t_L
+  double force_scale = 1.0;         // EI/L², dyn: multiply dimensionless forces by it for cgs
+  double moment_scale = 1.0;        // EI/L, dyn·cm
+  FibreShape shape;
+  std::vector<int> neighbours;            // pre-guide indices followed
+  std::vector<double> neighbour_weights;  // their weights (sum 1)
+  int iterations = 0;     // Levenberg–Marquardt iterations
+  int evaluations = 0;    // cost evaluations (residual-only and with Jacobian)
+  bool converged = false;
+  std::string termination;  // Ceres' word for why it stopped
+  double initial_cost = 0.0;
+  double cost = 0.0;        // Σ wᵢ·Fᵢ at the result (as least squares: ½Σr² = ½·Σ wᵢFᵢ)
+  double f1 = 0.0, f2 = 0.0, f3 = 0.0, f4 = 0.0;  // unweighted terms at the result
+};
+
+struct Guides {
+  std::vector<Guide> items;
+  int size() const { return static_cast<int>(items.size()); }
+  Curves curves() const;  // one polyline per guide, guide id = index
+};
+
+// Optimises one guide per base. `bases` are the cluster centres (scalp/roots.h RootSet).
+Guides make_guides(const RootSet& bases, const PreGuides& preguides, const Boundary& boundary, const GuideOptions& options);
+
+// The figures report.json carries for the stage.
+struct GuideFigures {
+  int guides = 0;
+  int failures = 0;  // not converged
+  double mean_iterations = 0.0;
+  int max_iterations = 0;
+  double mean_evaluations = 0.0;
+  double inside_fraction = 0.0;       // share of all guide nodes in the acceptable region
+  double inside_head_fraction = 0.0;  // share behind the scalp
+  double outside_volume_fraction = 0.0;
+  double mean_direction_mismatch = 0.0;  // mean 1 − cos φ to the followed pre-guides
+};
+GuideFigures guide_figures(const Guides& guides, const PreGuides& preguides, const Boundary& boundary);
+
+Digest digest(const Guides& guides);
+
+}  // namespace hairfit

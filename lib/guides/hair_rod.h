@@ -1,0 +1,34 @@
+// What pre-guides and principal guides share: a hair fibre as a clamped Cosserat rod rooted on
+// the scalp, its root frame and the plane it bends in.
+#pragma once
+#include "rod/rod.h"
+
+namespace hairfit {
+
+struct HairMaterial {
+  double youngs_modulus = 3.89e10;  // E, dyn/cm²
+  double shear_modulus = 0.89e10;   // G, dyn/cm²
+  double cross_section = 1.5e-5;    // A, cm²
+  double mass_density = 1.32;       // ρ, g/cm³
+  Vec3 gravity = Vec3::Zero();      // g, cm/s² as a world vector; zero when gravity is off
+};
+
+struct RodDiscretisation {
+  RodIntegrator integrator = RodIntegrator::rk4;
+  int segments = 64;
+};
+
+// A fibre of the given length (cm): circular section, straight at rest, loaded by its weight
+// ρ·A·g per length when the material has gravity.
+Rod hair_rod(double length, const HairMaterial& material);
+
+// The direction a fibre at a root bends in (paper §3.4): perpendicular to the growth direction, in
+// the plane of the surface normal and the growth direction, pointing away from the normal (the
+// way the tilt leans). Where the growth direction is the normal, toward `down` projected; where
+// that vanishes too, toward −front projected. Unit, never NaN.
+Vec3 bending_direction(const Vec3& normal, const Vec3& direction, const Vec3& down, const Vec3& front);
+
+// The clamp at a root: d3 = growth direction, d1 = bending direction, d2 = d3 × d1.
+Mat3 root_frame(const Vec3& direction, const Vec3& bending);
+
+}  // namespace hairfit

@@ -1,0 +1,156 @@
+#include "guides/objective.h"
+
+#include <ceres/ceres.h>
+
+#include <cmath>
+
+#include "rod/rod_jet.h"
+
+namespace hairfit {
+
+namespace {
+
+using Jet = RodJet6;
+
+// Distance fields are tabulated in double; a jet takes the field's value at its scalar part and
+// its derivative by the chain rule through the field's gradient (STYLE.md).
+double field_at(const DistanceField& field, const double* p) { return field.value(Vec3(p[0], p[1], p[2])); }
+Jet field_at(const DistanceField& field, const Jet* p) {
+  const FieldValueGradient vg = field.value_and_gradient(Vec3(p[0].a, p[1].a, p[2].a));
+  Jet out(vg.value);
+  out.v = vg.gradient.x() * p[0].v + vg.gradient.y() * p[1].v + vg.gradient.z() * p[2].v;
+  return out;
+}
+
+// The boundary residual φ(u) of a sample lying u cm beyond a surface (u > 0: outside the
+// acceptable region). Smooth form: √c_d·S((u + w)/w) + H(u): the step of eq. 9 rises over the last
+// w cm inside the surface (S the C¹ smoothstep), so the full c_d applies at the surface itself and
+// the optimiser feels it coming; beyond the surface the C¹ Huber ramp H grows like u.
+// Paper form: √(|u| + c_d·[u > 0]), eq. 9 exactly (not differentiable at u = 0).
+template <typename T>
+T boundary_residual(const T& u, BoundaryForm form, double c_d, double w) {
+  using std::sqrt;
+  if (form == BoundaryForm::paper) {
+    const T cost = (u > T(0) ? u + T(c_d) : -u) + T(1e-12);
+    return sqrt(cost);
+  }
+  if (!(u > T(-w))) return T(0);
+  const T ramp = u <= T(0) ? T(0) : (u >= T(w) ? u - T(0.5 * w) : u * u / T(2 * w));
+  if (u >= T(0)) return T(std::sqrt(c_d)) + ramp;
+  const T x = (u + T(w)) / T(w);
+  return T(std::sqrt(c_d)) * x * x * (T(3) - T(2) * x);
+}
+
+class GuideCost {
+ public:
+  explicit GuideCost(const GuideTargets& t) : t_(t) {}
+
+  int residual_count() const {
+    return static_cast<int>(t_.sample_nodes.size() * (6 * t_.neighbours.size() + 2));
+  }
+
+  // Residuals in blocks: F1 (3 per neighbour and sample), F2 (3 per neighbour and sample), F3
+  // (scalp and volume per sample). Σr² = Σ wᵢFᵢ exactly, with the trapezoidal rule for ∫ds.
+  template <typename T>
+  bool operator()(const T* eta, T* residuals) const {
+    const int n = t_.rod.segments + 1;
+    std::vector<T> nodes(3 * n), frames(9 * n), curvature(3 * n);
+    T m1[3];
+    integrate_rod<T>(t_.model, t_.rod.integrator, t_.rod.segments, eta, eta + 3, m1,
+                     RodTrace<T>{nodes.data(), frames.data(), curvature.data(), nullptr});
+    const GuideWeights& w = t_.weights;
+    T* r = residuals;
+    const std::size_t samples = t_.sample_nodes.size();
+    for (const GuideTargets::Neighbour& nb : t_.neighbours)
+      for (std::size_t k = 0; k < samples; ++k) {
+        // 1 − cos φ = ½|t_G − t_j|² for unit tangents (the frame keeps d3 unit exactly).
+        const T scale = T(std::sqrt(w.direction * nb.weight * t_.sample_weights[k] / 2.0));
+        const T* d3 = &frames[9 * t_.sample_nodes[k] + 6];
+        for (int a = 0; a < 3; ++a) *r++ = scale * (d3[a] - T(nb.tangents[k][a]));
+      }
+    for (const GuideTargets::Neighbour& nb : t_.neighbours)
+      for (std::size_t k = 0; k < samples; ++k) {
+        // Darboux vectors in world axes, per unit normalised arc length: R·κ·L.
+        const T scale = T(std::sqrt(w.similarity * nb.weight * t_.sample_weights[k]));
+        const T* R = &frames[9 * t_.sample_nodes[k]];
+        const T* kappa = &curvature[3 * t_.sample_nodes[k]];
+        for (int a = 0; a < 3; ++a) {
+          const T omega = R[a] * kappa[0] + R[3 + a] * kappa[1] + R[6 + a] * kappa[2];
+          *r++ = scale * (omega - T(nb.darboux[k][a]));
+        }
+      }
+    for (std::size_t k = 0; k < samples; ++k) {
+      const T scale = T(std::sqrt(w.boundary * t_.sample_weights[k]));
+      T p[3];
+      for (int a = 0; a < 3; ++a) p[a] = T(t_.root[a]) + T(t_.length) * nodes[3 * t_.sample_nodes[k] + a];
+      const T beyond_scalp = -field_at(*t_.boundary->scalp, p);
+      const T beyond_volume = field_at(*t_.boundary->volume, p);
+      *r++ = scale * boundary_residual(beyond_scalp, t_.form, t_.outside_penalty, t_.boundary_width);
+      *r++ = scale * boundary_residual(beyond_volume, t_.form, t_.outside_penalty, t_.boundary_width);
+    }
+    return true;
+  }
+
+ private:
+  const GuideTargets& t_;
+};
+
+}  // namespace
+
+GuideTerms evaluate_guide_terms(const GuideTargets& targets, const double eta[6]) {
+  GuideCost cost(targets);
+  std::vector<double> r(cost.residual_count());
+  cost(eta, r.data());
+  GuideTerms terms;
+  const std::size_t block = targets.sample_nodes.size() * 3 * targets.neighbours.size();
+  auto sum_squares = [&](std::size_t from, std::size_t to) {
+    double s = 0.0;
+    for (std::size_t i = from; i < to; ++i) s += r[i] * r[i];
+    return s;
+  };
+  const GuideWeights& w = targets.weights;
+  const double e1 = sum_squares(0, block), e2 = sum_squares(block, 2 * block), e3 = sum_squares(2 * block, r.size());
+  terms.f1 = w.direction > 0 ? e1 / w.direction : 0.0;
+  terms.f2 = w.similarity > 0 ? e2 / w.similarity : 0.0;
+  terms.f3 = w.boundary > 0 ? e3 / w.boundary : 0.0;
+  terms.total = e1 + e2 + e3;
+  return terms;
+}
+
+GuideSolve optimise_guide(const GuideTargets& targets, const double start[6], int max_iterations, double tolerance) {
+  GuideSolve result;
+  std::copy(start, start + 6, result.eta);
+  double eta[6];
+  std::copy(start, start + 6, eta);
+
+  auto* functor = new GuideCost(targets);
+  const int residuals = functor->residual_count();
+  ceres::Problem::Options problem_options;
+  ceres::Problem problem(problem_options);
+  problem.AddResidualBlock(new ceres::AutoDiffCostFunction<GuideCost, ceres::DYNAMIC, 6>(functor, residuals), nullptr,
+                           eta);
+  ceres::Solver::Options options;
+  options.linear_solver_type = ceres::DENSE_QR;
+  options.max_num_iterations = max_iterations;
+  options.function_tolerance = tolerance;
+  options.gradient_tolerance = 1e-10;
+  options.parameter_tolerance = 1e-10;
+  options.num_threads = 1;
+  options.logging_type = ceres::SILENT;
+  options.minimizer_progress_to_stdout = false;
+  ceres::Solver::Summary summary;
+  ceres::Solve(options, &problem, &summary);
+
+  bool finite = true;
+  for (double x : eta) finite = finite && std::isfinite(x);
+  if (finite) std::copy(eta, eta + 6, result.eta);  // LM only ever accepts steps that lower the cost
+  result.iterations = static_cast<int>(summary.iterations.size()) - 1;
+  result.evaluations = summary.num_residual_evaluations + summary.num_jacobian_evaluations;
+  result.converged = finite && summary.termination_type == ceres::CONVERGENCE;
+  result.termination = ceres::TerminationTypeToString(summary.termination_type);
+  result.initial_cost = summary.initial_cost;
+  result.final_cost = finite ? summary.final_cost : summary.initial_cost;
+  return result;
+}
+
+}  // namespace hairfit

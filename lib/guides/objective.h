@@ -1,0 +1,55 @@
+// The principal-guide objective (paper eq. 6–9, DESIGN §5) as least-squares residuals, and its
+// minimisation with Ceres. Internal to lib/guides: Ceres and jets stay in objective.cpp.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "guides/guides.h"
+
+namespace hairfit {
+
+// Everything one guide's objective reads; sampled at K+1 nodes of the rod (normalised arc length
+// s_k = k/K), the pre-guides at the same normalised arc lengths.
+struct GuideTargets {
+  RodModel model;
+  Vec3 root = Vec3::Zero();
+  double length = 1.0;  // cm
+  RodDiscretisation rod;
+  std::vector<int> sample_nodes;       // node index of each sample
+  std::vector<double> sample_weights;  // trapezoidal Δs of each sample (sum 1)
+  struct Neighbour {
+    double weight = 0.0;          // ω_j, Σ ω_j = 1
+    std::vector<Vec3> tangents;   // at the samples
+    std::vector<Vec3> darboux;    // at the samples
+  };
+  std::vector<Neighbour> neighbours;
+  const Boundary* boundary = nullptr;
+  GuideWeights weights;
+  BoundaryForm form = BoundaryForm::smooth;
+  double outside_penalty = 10.0;
+  double boundary_width = 0.1;
+};
+
+// The unweighted terms: F1 = Σ_j ω_j ∫(1 − cos φ_j) ds, F2 = Σ_j ω_j ∫|Δu_j|² ds (F2² of eq. 8),
+// F3 = ∫ penalty ds over both surfaces, F4 = 0 (no density model yet). Quadrature is the
+// trapezoidal rule on the samples, exactly what the residuals sum to.
+struct GuideTerms {
+  double f1 = 0.0, f2 = 0.0, f3 = 0.0, f4 = 0.0;
+  double total = 0.0;       // Σ wᵢFᵢ
+};
+GuideTerms evaluate_guide_terms(const GuideTargets& targets, const double eta[6]);
+
+struct GuideSolve {
+  double eta[6] = {0, 0, 0, 0, 0, 0};  // best (f_L, m(0)), dimensionless
+  int iterations = 0;
+  int evaluations = 0;
+  bool converged = false;
+  std::string termination;
+  double initial_cost = 0.0, final_cost = 0.0;  // Ceres' ½Σr²
+};
+
+// Levenberg–Marquardt (dense QR, one thread) from `start`. Never returns NaN: a failed solve
+// keeps the best finite iterate (or the start).
+GuideSolve optimise_guide(const GuideTargets& targets, const double start[6], int max_iterations, double tolerance);
+
+}  // namespace hairfit

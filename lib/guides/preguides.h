@@ -1,0 +1,63 @@
+// Pre-guides (paper §3.4): sparse fibres that sample the main flow. Each starts straight along its
+// growth direction and is bent by a terminal force normal to that direction (in the plane of the
+// surface normal and the growth direction) whose magnitude grows by continuation until the tip is
+// immersed in the hair volume at a target depth: shallow at the top of the head, deeper for lower
+// roots, as a share of the local thickness of the hair layer.
+#pragma once
+#include <array>
+#include <vector>
+
+#include "core/digest.h"
+#include "guides/boundary.h"
+#include "guides/hair_rod.h"
+#include "scalp/roots.h"
+
+namespace hairfit {
+
+struct PreguideOptions {
+  HairMaterial material;
+  RodDiscretisation rod;
+  std::array<double, 2> depth_range{0.15, 0.6};  // share of the local thickness: top of head → lowest roots
+  double max_load = 1000.0;                       // largest dimensionless terminal force F·L²/EI tried
+  Vec3 down{0, -1, 0};
+  Vec3 front{0, 0, 1};
+  int threads = 1;
+};
+
+// A solved rod shape as the guide objective compares it: per node, in world axes.
+struct FibreShape {
+  std::vector<Vec3> nodes;     // cm, segments + 1, root first
+  std::vector<Vec3> tangents;  // d3, unit
+  std::vector<Vec3> darboux;   // R·κ·L: the frame's rotation rate per unit normalised arc length
+};
+
+struct PreGuide {
+  Vec3 root = Vec3::Zero();       // cm
+  Vec3 normal = Vec3::Zero();
+  Vec3 direction = Vec3::Zero();  // growth direction at the root
+  double length = 0.0;            // cm
+  double height = 0.0;            // [0, 1] on the head
+  Vec3 force = Vec3::Zero();        // terminal force f_L, dimensionless (F·L²/EI), world axes
+  Vec3 root_moment = Vec3::Zero();  // m(0), dimensionless (M·L/EI), world axes
+  FibreShape shape;
+  double thickness = 0.0;     // cm from the root to the volume boundary
+  double target_depth = 0.0;  // cm below the volume boundary the tip should reach
+  double depth = 0.0;         // cm below the volume boundary the tip reached (−Φ_volume(tip))
+  bool reached = false;       // the tip met its target depth (within 1e-3 of the thickness)
+  int solves = 0;             // forward integrations with jets (Newton steps) spent
+};
+
+struct PreGuides {
+  std::vector<PreGuide> items;
+  int size() const { return static_cast<int>(items.size()); }
+};
+
+PreGuides make_preguides(const RootSet& roots, const Boundary& boundary, const PreguideOptions& options);
+
+// The shape of a rod with dimensionless loads (initial-value form: one forward integration).
+FibreShape fibre_shape(const RodModel& model, const Vec3& root, double length, const RodDiscretisation& rod,
+                       const Vec3& force, const Vec3& root_moment);
+
+Digest digest(const PreGuides& preguides);
+
+}  // namespace hairfit

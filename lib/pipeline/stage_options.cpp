@@ -1,0 +1,88 @@
+#include "pipeline/stage_options.h"
+
+namespace hairfit {
+
+FieldSpec field_spec(const Scene& scene, const std::string& mesh_name) {
+  FieldSpec spec;
+  spec.voxel = scene.fields.voxel;
+  spec.band = scene.fields.band;
+  spec.margin = scene.fields.margin;
+  spec.max_memory_gib = scene.fields.max_memory / 2.0;  // the budget covers both fields
+  spec.name = mesh_name;
+  return spec;
+}
+
+RootOptions root_options(const Scene& scene, int threads) {
+  RootOptions o;
+  o.density = scene.hair.density;
+  o.tilt = scene.hair.tilt;
+  o.tilt_range = scene.hair.tilt_range;
+  o.length = scene.hair.length;
+  o.length_range = scene.hair.length_range;
+  o.guides = scene.roots.guides;
+  o.preguide_spacing = scene.roots.preguide_spacing;
+  o.cluster_overlap = scene.roots.cluster_overlap;
+  o.seed = static_cast<std::uint64_t>(scene.seed);
+  o.threads = threads;
+  return o;
+}
+
+HairMaterial hair_material(const Scene& scene) {
+  HairMaterial m;
+  m.youngs_modulus = scene.hair.youngs_modulus;
+  m.shear_modulus = scene.hair.shear_modulus;
+  m.cross_section = scene.hair.cross_section;
+  m.mass_density = scene.hair.mass_density;
+  m.gravity = scene.effects.gravity ? Vec3(scene.rod.gravity * scene.units.down) : Vec3::Zero();
+  return m;
+}
+
+RodDiscretisation rod_discretisation(const Scene& scene) {
+  return RodDiscretisation{parse_rod_integrator(scene.rod.integrator), scene.rod.segments};
+}
+
+PreguideOptions preguide_options(const Scene& scene, int threads) {
+  PreguideOptions o;
+  o.material = hair_material(scene);
+  o.rod = rod_discretisation(scene);
+  o.depth_range = scene.preguides.depth_range;
+  o.max_load = scene.preguides.max_load;
+  o.down = scene.units.down;
+  o.front = scene.units.front;
+  o.threads = threads;
+  return o;
+}
+
+GuideOptions guide_options(const Scene& scene, int threads) {
+  GuideOptions o;
+  o.material = hair_material(scene);
+  o.rod = rod_discretisation(scene);
+  o.samples = scene.guides.samples;
+  o.neighbours = scene.guides.neighbours;
+  o.max_iterations = scene.guides.max_iterations;
+  o.tolerance = scene.guides.tolerance;
+  o.boundary = scene.guides.boundary == "paper" ? BoundaryForm::paper : BoundaryForm::smooth;
+  o.outside_penalty = scene.guides.outside_penalty;
+  o.boundary_width = scene.guides.boundary_width;
+  o.weights = GuideWeights{scene.guides.weights.direction, scene.guides.weights.similarity,
+                           scene.guides.weights.boundary, scene.guides.weights.density};
+  o.warm_start = scene.guides.start == "warm";
+  o.down = scene.units.down;
+  o.front = scene.units.front;
+  o.threads = threads;
+  return o;
+}
+
+StrandOptions strand_options(const Scene& scene, int threads) {
+  StrandOptions o;
+  o.points = scene.strands.points;
+  o.root_radius = scene.strands.root_radius;
+  o.tip_radius = scene.strands.tip_radius;
+  o.turns = scene.effects.winding ? scene.strands.turns : 0.0;
+  o.cutting = scene.effects.cutting;
+  o.cut_threshold = scene.strands.cut_threshold;
+  o.threads = threads;
+  return o;
+}
+
+}  // namespace hairfit

@@ -1,0 +1,222 @@
+#include <doctest/doctest.h>
+
+#include <cmath>
+
+#include "guides/guides.h"
+#include "guides/objective.h"
+
+using namespace hairfit;
+
+namespace {
+
+// A UV sphere of radius r about the origin, outward triangles; `cap_below` keeps only the part
+// above that height (an open cap, like a scalp) when finite.
+Mesh sphere(double r, int rings, int segments, double cap_below = -1e9) {
+  Mesh m;
+  std::vector<std::vector<int>> index(rings + 1, std::vector<int>(segments, -1));
+  for (int i = 0; i <= rings; ++i)
+    for (int j = 0; j < segments; ++j) {
+      const double theta = M_PI * i / rings, phi = 2 * M_PI * j / segments;
+      const Vec3 p(r * std::sin(theta) * std::cos(phi), r * std::cos(theta), r * std::sin(theta) * std::sin(phi));
+      if ((i == 0 || i == rings) && j > 0) {
+        index[i][j] = index[i][0];
+        continue;
+      }
+      index[i][j] = static_cast<int>(m.positions.size());
+      m.positions.push_back(p);
+    }
+  for (int i = 0; i < rings; ++i)
+    for (int j = 0; j < segments; ++j) {
+      const int a = index[i][j], b = index[i][(j + 1) % segments], c = index[i + 1][j], d = index[i + 1][(j + 1) % segments];
+      const double y = r * std::cos(M_PI * (i + 1) / rings);
+      if (y < cap_below) continue;
+      if (a != b) m.triangles.emplace_back(a, b, c);  // outward for this parameterisation (checked below)
+      if (c != d) m.triangles.emplace_back(b, d, c);
+    }
+  // Orient outward: the origin is inside every sphere here.
+  for (Vec3i& t : m.triangles) {
+    const Vec3 n = (m.positions[t[1]] - m.positions[t[0]]).cross(m.positions[t[2]] - m.positions[t[0]]);
+    if (n.dot(m.positions[t[0]]) < 0) std::swap(t[1], t[2]);
+  }
+  // Drop unused vertices are harmless for the field; keep as is.
+  return m;
+}
+
+struct World {
+  DistanceField scalp, volume;
+  Boundary boundary() const { return Boundary{&scalp, &volume}; }
+};
+
+const World& world() {
+  static const World w{make_distance_field(sphere(8.0, 24, 48, 2.0), FieldSpec{0.4, 3, 20.0, 1.0, "scalp"}, 2),
+                       make_distance_field(sphere(12.0, 24, 48), FieldSpec{0.4, 3, 20.0, 1.0, "volume"}, 2)};
+  return w;
+}
+
+// Roots on the sphere of radius 8 at polar angle theta (from +y) and azimuth phi.
+RootSet roots_at(const std::vector<std::pair<double, double>>& angles, double length, double tilt_toward_down) {
+  RootSet r;
+  for (auto [theta, phi] : angles) {
+    const Vec3 n(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
+    r.positions.push_back(8.0 * n);
+    r.normals.push_back(n);
+    const Vec3 tangent_down = (Vec3(0, -1, 0) - n.dot(Vec3(0, -1, 0)) * n).normalized();
+    r.directions.push_back((std::cos(tilt_toward_down) * n + std::sin(tilt_toward_down) * tangent_down).normalized());
+    r.lengths.push_back(length);
+    r.heights.push_back(0.5 * (1 + std::cos(theta)));
+    r.chart.emplace_back(0, 0);
+    r.where.emplace_back();
+  }
+  return r;
+}
+
+// A pre-guide with given dimensionless loads at a root, built exactly as the guide stage builds
+// its rods.
+PreGuide preguide_with_loads(const RootSet& r, int i, const GuideOptions& o, const Vec3& force, const Vec3& m0) {
+  PreGuide p;
+  p.root = r.positions[i];
+  p.normal = r.normals[i];
+  p.direction = r.directions[i];
+  p.length = r.lengths[i];
+  p.force = force;
+  p.root_moment = m0;
+  const Vec3 bend = bending_direction(p.normal, p.direction, o.down, o.front);
+  const RodModel model = make_rod_model(hair_rod(p.length, o.material), RodRoot{p.root, root_frame(p.direction, bend)});
+  p.shape = fibre_shape(model, p.root, p.length, o.rod, force, m0);
+  p.reached = true;
+  return p;
+}
+
+double max_node_distance(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
+  double d = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) d = std::max(d, (a[i] - b[i]).norm());
+  return d;
+}
+
+}  // namespace
+
+TEST_CASE("the boundary fields of the test world have the expected signs") {
+  const Boundary b = world().boundary();
+  CHECK(b.acceptable(Vec3(0, 10, 0)));           // between the scalp (r = 8) and the volume (r = 12)
+  CHECK(b.beyond_scalp(Vec3(0, 6, 0)) > 0.0);    // inside the head
+  CHECK(b.beyond_volume(Vec3(0, 13, 0)) > 0.0);  // outside the volume
+}
+
+TEST_CASE("a guide at a pre-guide's root recovers the pre-guide's shape (boundary off)") {
+  GuideOptions o;
+  o.rod.segments = 32;
+  o.samples = 16;
+  o.neighbours = 1;
+  o.weights = GuideWeights{0.5, 0.5, 0.0, 0.0};
+  o.tolerance = 1e-14;
+  o.max_iterations = 200;
+  const RootSet r = roots_at({{0.3, 0.2}}, 10.0, 0.4);
+  PreGuides pre;
+  pre.items.push_back(preguide_with_loads(r, 0, o, Vec3(1.5, -0.5, 0.8), Vec3(0.3, 0.9, -0.2)));
+  for (bool warm : {true, false}) {
+    o.warm_start = warm;
+    const Guides g = make_guides(r, pre, world().boundary(), o);
+    REQUIRE(g.size() == 1);
+    INFO("warm start: " << warm);
+    CHECK(max_node_distance(g.items[0].shape.nodes, pre.items[0].shape.nodes) < 1e-6);
+    CHECK((g.items[0].force - pre.items[0].force).norm() < 1e-5);
+    CHECK(g.items[0].cost < 1e-12);
+    CHECK(g.items[0].converged);
+  }
+}
+
+TEST_CASE("the boundary penalty keeps a guide inside where the unpenalised optimum pokes out") {
+  GuideOptions o;
+  o.rod.segments = 32;
+  o.neighbours = 1;
+  o.max_iterations = 100;
+  o.boundary_width = 0.5;
+  o.outside_penalty = 10.0;
+  // A pre-guide that rises almost straight out of the 4 cm shell.
+  const RootSet r = roots_at({{0.5, 1.0}}, 10.0, 0.2);
+  PreGuides pre;
+  pre.items.push_back(preguide_with_loads(r, 0, o, Vec3(0.4, 0.0, 0.0), Vec3::Zero()));
+  auto outside = [&](const Guide& g) {
+    int n = 0;
+    for (const Vec3& p : g.shape.nodes) n += !world().boundary().acceptable(p);
+    return n;
+  };
+  o.weights = GuideWeights{0.5, 0.5, 0.0, 0.0};
+  const Guides free = make_guides(r, pre, world().boundary(), o);
+  o.weights = GuideWeights{0.2, 0.1, 0.7, 0.0};
+  const Guides held = make_guides(r, pre, world().boundary(), o);
+  INFO("outside nodes without / with penalty: " << outside(free.items[0]) << " / " << outside(held.items[0]) << "; " << held.items[0].iterations << " iterations, " << held.items[0].termination << ", cost " << held.items[0].initial_cost << " -> " << held.items[0].cost << " f3 " << held.items[0].f3);
+  CHECK(outside(free.items[0]) > 10);
+  CHECK(outside(held.items[0]) <= 2);
+  for (const Vec3& p : held.items[0].shape.nodes) CHECK(p.allFinite());
+}
+
+TEST_CASE("the residuals sum exactly to the weighted terms, and F1 is the mean of 1 − cos φ") {
+  GuideOptions o;
+  o.rod.segments = 16;
+  o.samples = 16;
+  const RootSet r = roots_at({{0.4, 0.0}}, 8.0, 0.0);
+  const PreGuide p = preguide_with_loads(r, 0, o, Vec3(2.0, 0.0, 0.0), Vec3(0.0, 1.0, 0.0));
+  GuideTargets t;
+  const Vec3 bend = bending_direction(r.normals[0], r.directions[0], o.down, o.front);
+  t.model = make_rod_model(hair_rod(8.0, o.material), RodRoot{r.positions[0], root_frame(r.directions[0], bend)});
+  t.root = r.positions[0];
+  t.length = 8.0;
+  t.rod = o.rod;
+  for (int k = 0; k <= 16; ++k) {
+    t.sample_nodes.push_back(k);
+    t.sample_weights.push_back((k == 0 || k == 16 ? 0.5 : 1.0) / 16);
+  }
+  GuideTargets::Neighbour nb;
+  nb.weight = 1.0;
+  nb.tangents = p.shape.tangents;
+  nb.darboux = p.shape.darboux;
+  t.neighbours.push_back(nb);
+  t.boundary = nullptr;
+  const World& w = world();
+  const Boundary b = w.boundary();
+  t.boundary = &b;
+  t.weights = GuideWeights{0.3, 0.3, 0.4, 0.0};
+  const double straight[6] = {0, 0, 0, 0, 0, 0};
+  const GuideTerms terms = evaluate_guide_terms(t, straight);
+  // Independent quadrature of ∫(1 − cos φ) ds against the straight rod (tangent = d3(0)).
+  double f1 = 0;
+  for (int k = 0; k <= 16; ++k) f1 += t.sample_weights[k] * (1.0 - p.shape.tangents[k].dot(r.directions[0].normalized()));
+  CHECK(terms.f1 == doctest::Approx(f1).epsilon(1e-12));
+  CHECK(terms.total == doctest::Approx(0.3 * terms.f1 + 0.3 * terms.f2 + 0.4 * terms.f3).epsilon(1e-12));
+}
+
+TEST_CASE("a guide stopped by the iteration cap is flagged, finite, and keeps its best iterate") {
+  GuideOptions o;
+  o.rod.segments = 32;
+  o.neighbours = 1;
+  o.max_iterations = 1;
+  const RootSet r = roots_at({{0.3, 0.2}}, 10.0, 0.4);
+  PreGuides pre;
+  pre.items.push_back(preguide_with_loads(r, 0, o, Vec3(3.0, -1.0, 0.5), Vec3(0.5, 1.0, -0.5)));
+  o.warm_start = false;
+  const Guides g = make_guides(r, pre, world().boundary(), o);
+  CHECK_FALSE(g.items[0].converged);
+  CHECK(g.items[0].cost <= g.items[0].initial_cost);
+  for (const Vec3& p : g.items[0].shape.nodes) CHECK(p.allFinite());
+  CHECK(std::isfinite(g.items[0].cost));
+}
+
+TEST_CASE("guides are identical for 1, 2 and 4 threads") {
+  GuideOptions o;
+  o.rod.segments = 24;
+  o.max_iterations = 30;
+  std::vector<std::pair<double, double>> angles;
+  for (int i = 0; i < 12; ++i) angles.emplace_back(0.2 + 0.08 * i, 0.5 * i);
+  const RootSet r = roots_at(angles, 9.0, 0.3);
+  PreGuides pre;
+  for (int i = 0; i < r.size(); i += 3)
+    pre.items.push_back(preguide_with_loads(r, i, o, Vec3(1.0 + 0.1 * i, 0, 0.2), Vec3(0, 0.5, 0)));
+  o.threads = 1;
+  const Guides one = make_guides(r, pre, world().boundary(), o);
+  for (int threads : {2, 4}) {
+    o.threads = threads;
+    const Guides many = make_guides(r, pre, world().boundary(), o);
+    CHECK(digest(many).hex() == digest(one).hex());
+  }
+}
