@@ -117,6 +117,17 @@ MeshFeatures extract_features(const Mesh& mesh, const std::string& name) {
       f.vertex_normals[f.faces[t][k]] += angle * f.face_normals[t];
     }
 
+  // An open rim has no back: a point whose closest point lies on a boundary edge or vertex (the
+  // wedge beyond the rim, e.g. below a scalp's hairline) is counted as outside. A zero
+  // pseudo-normal gives the + sign, so the scalp's field says "inside the head" only behind the
+  // scalp itself (spec/fields.md).
+  for (int e = 0; e < ne; ++e)
+    if (f.edge_face_offsets[e + 1] - f.edge_face_offsets[e] == 1) {
+      f.edge_normals[e] = Vec3::Zero();
+      f.vertex_normals[f.edges[e].first] = Vec3::Zero();
+      f.vertex_normals[f.edges[e].second] = Vec3::Zero();
+    }
+
   // Incident edges per vertex.
   f.vertex_edge_offsets.assign(nv + 1, 0);
   for (const auto& e : f.edges) {
