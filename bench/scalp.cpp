@@ -1,8 +1,8 @@
 // bench_scalp: the scalp chart against CGAL's mean-value parameterizer (same caps, same run), and
 // roots per second at 200 hairs/cm² on a full scalp. Usage: bench_scalp [threads]
-#include <Eigen/Geometry>
 #include <algorithm>
 #include <chrono>
+#include <complex>
 #include <ctime>
 #include <cstdio>
 #include <cstdlib>
@@ -48,19 +48,28 @@ double median_time(int runs, const std::function<void()>& f, double* cpu = nullp
 }
 
 // Largest distance between our chart and another parameterisation after the best similarity
-// (rotation, uniform scale, translation, optionally a reflection) maps the other onto ours.
-double aligned_difference(const std::vector<Vec2>& ours, std::vector<Vec2> other) {
+// (rotation, uniform scale, translation, optionally a reflection) maps the other onto ours:
+// in complex numbers the least-squares map z ↦ a·z + b has a = Σ(w−w̄)·conj(z−z̄) / Σ|z−z̄|².
+double aligned_difference(const std::vector<Vec2>& ours, const std::vector<Vec2>& other) {
+  using C = std::complex<double>;
   double best = INFINITY;
   for (int mirror = 0; mirror < 2; ++mirror) {
-    Eigen::Matrix2Xd src(2, other.size()), dst(2, ours.size());
+    std::vector<C> z, w;
     for (std::size_t i = 0; i < ours.size(); ++i) {
-      src.col(i) = Vec2(mirror ? -other[i].x() : other[i].x(), other[i].y());
-      dst.col(i) = ours[i];
+      z.emplace_back(other[i].x(), mirror ? -other[i].y() : other[i].y());
+      w.emplace_back(ours[i].x(), ours[i].y());
     }
-    const Eigen::Matrix3d t = Eigen::umeyama(src, dst, true);
+    const C zm = std::accumulate(z.begin(), z.end(), C(0)) / static_cast<double>(z.size());
+    const C wm = std::accumulate(w.begin(), w.end(), C(0)) / static_cast<double>(w.size());
+    C num(0);
+    double den = 0;
+    for (std::size_t i = 0; i < z.size(); ++i) {
+      num += (w[i] - wm) * std::conj(z[i] - zm);
+      den += std::norm(z[i] - zm);
+    }
+    const C a = num / den, b = wm - a * zm;
     double worst = 0.0;
-    for (std::size_t i = 0; i < ours.size(); ++i)
-      worst = std::max(worst, (t.topLeftCorner<2, 2>() * src.col(i) + t.topRightCorner<2, 1>() - dst.col(i)).norm());
+    for (std::size_t i = 0; i < z.size(); ++i) worst = std::max(worst, std::abs(a * z[i] + b - w[i]));
     best = std::min(best, worst);
   }
   return best;
@@ -139,7 +148,7 @@ int main(int argc, char** argv) {
                 1e3 * ours_cpu, cgal, diff, chart.flipped_triangles);
   }
 
-  std::printf("\n## Roots at 200 hairs/cm² on a full scalp (%d threads)\n\n", threads);
+  std::printf("\n## Roots at 200 hairs/cm² on a full scalp, threads: %d\n\n", threads);
   const Mesh scalp = test::head_cap(91, 1.45, 0.02);
   const ScalpChart chart = make_scalp_chart(scalp, front, down, "scalp");
   RootOptions o;
