@@ -32,7 +32,6 @@ RootSet subset(const RootSet& s, const std::vector<int>& index) {
 }  // namespace
 
 Clusters make_clusters(const ScalpChart& ch, const Roots& roots, const RootOptions& o) {
-  (void)ch;
   if (o.guides < 1) throw std::invalid_argument("clusters: guides must be ≥ 1");
   if (!(o.cluster_overlap >= 1.0)) throw std::invalid_argument("clusters: cluster_overlap must be ≥ 1");
   Clusters cl;
