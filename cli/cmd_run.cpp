@@ -3,7 +3,7 @@
 #include "args.h"
 #include "commands.h"
 #include "core/parallel.h"
-#include "pipeline/pipeline.h"
+#include "pipeline/stage_pictures.h"
 
 namespace hairfit::cli {
 
@@ -20,10 +20,25 @@ int command_run(const Arguments& argv) {
   options.until = args.text("until").value_or("");
   options.threads = resolve_thread_count(threads);
   check_stage_name(options.until);
-  const RunReport report = run_pipeline(scene, inputs, options).report;
+  const PipelineResult result = run_pipeline(scene, inputs, options);
+  const RunReport& report = result.report;
   std::printf("wrote %s\n", (options.out_dir / "report.json").string().c_str());
   for (const OutputFile& o : report.outputs) std::printf("wrote %s (%llu bytes)\n", (options.out_dir / o.path).string().c_str(),
                                                          static_cast<unsigned long long>(o.bytes));
+  // After a full run, the pictures the scene asks for: the strands from each view, and a contact
+  // sheet of every stage from the first view.
+  if (options.until.empty() && !scene.output.renders.empty()) {
+    const int width = static_cast<int>(scene.output.render_size[0]), height = static_cast<int>(scene.output.render_size[1]);
+    for (const std::string& view : scene.output.renders) {
+      const std::filesystem::path path = options.out_dir / "renders" / ("strands-" + view + ".png");
+      write_png(path, render_stage("strands", scene, inputs, result.values, parse_view(view), width, height, options.threads));
+      std::printf("wrote %s\n", path.string().c_str());
+    }
+    const std::filesystem::path sheet = options.out_dir / "renders" / "stages.png";
+    write_png(sheet, render_stage("all", scene, inputs, result.values, parse_view(scene.output.renders.front()), width,
+                                  height, options.threads));
+    std::printf("wrote %s\n", sheet.string().c_str());
+  }
   return 0;
 }
 

@@ -94,11 +94,11 @@ struct SceneGuides {
   std::string start = "warm";      // warm (from neighbouring pre-guides) | straight (paper)
   int samples = 16;                // residual sample points per guide
   int neighbours = 3;              // pre-guides each guide follows (paper: 3)
-  int max_iterations = 50;         // Levenberg–Marquardt iterations
-  double tolerance = 1e-8;         // relative cost decrease at which a guide is converged
+  int max_iterations = 100;        // Levenberg–Marquardt iterations
+  double tolerance = 1e-6;         // relative cost decrease at which a guide is converged
   std::string boundary = "smooth";  // smooth (C¹) | paper (eq. 9 exactly)
-  double outside_penalty = 10.0;   // c_d, cm: extra cost outside the acceptable region (eq. 9)
-  double boundary_width = 0.1;     // cm over which the smooth form ramps the step up
+  double outside_penalty = 3.0;    // c_d, cm: extra cost outside the acceptable region (eq. 9)
+  double boundary_width = 0.25;    // cm inside the surface over which the smooth form ramps c_d up
   SceneWeights weights;
 };
 

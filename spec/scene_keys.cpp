@@ -254,7 +254,7 @@ std::vector<SceneKey> build_keys() {
   keys.push_back(number("guides.outside_penalty", REF(guides.outside_penalty), "cm", closed(0, 1e6), "guides",
                         "c_d of eq. 9: extra cost of a sample outside the acceptable region."));
   keys.push_back(number("guides.boundary_width", REF(guides.boundary_width), "cm", above(0, 100), "guides",
-                        "Width over which the smooth boundary penalty ramps c_d up."));
+                        "Depth inside each surface over which the smooth boundary penalty ramps c_d up."));
   keys.push_back(number("guides.weights.direction", REF(guides.weights.direction), "", closed(0, 1), "guides",
                         "w1: follow the pre-guides' directions (F1, eq. 7). The four weights sum to 1 (eq. 6)."));
   keys.push_back(number("guides.weights.similarity", REF(guides.weights.similarity), "", closed(0, 1), "guides",

@@ -30,11 +30,11 @@ struct GuideOptions {
   RodDiscretisation rod;
   int samples = 16;            // residual samples K along each guide (normalised arc length)
   int neighbours = 3;          // pre-guides each guide follows
-  int max_iterations = 50;
-  double tolerance = 1e-8;     // Ceres function tolerance (relative cost decrease)
+  int max_iterations = 100;
+  double tolerance = 1e-6;     // Ceres function tolerance (relative cost decrease)
   BoundaryForm boundary = BoundaryForm::smooth;
-  double outside_penalty = 10.0;  // c_d, cm
-  double boundary_width = 0.1;    // cm
+  double outside_penalty = 3.0;   // c_d, cm
+  double boundary_width = 0.25;   // cm
   GuideWeights weights;
   bool warm_start = true;      // start from the neighbours' loads (else straight, the paper)
   Vec3 down{0, -1, 0};

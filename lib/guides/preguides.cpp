@@ -115,7 +115,7 @@ PreGuide solve_preguide(const RootSet& roots, int i, const Boundary& boundary, c
   State above = current, below = current;  // miss > 0 and miss ≤ 0 ends of the bracket
   // The march ends at the target, at max_load, or where the branch cannot be followed further
   // (load steps below 1e-4 of the load, or the Newton budget spent): the best tip so far is kept.
-  constexpr int kNewtonBudget = 600;
+  constexpr int kNewtonBudget = 250;
   while (!bracketed && current.load < o.max_load && step > 1e-4 * (1.0 + current.load) && g.solves < kNewtonBudget) {
     State next;
     next.load = std::min(o.max_load, current.load + step);

@@ -2,12 +2,15 @@
 
 #include <algorithm>
 
+#include "render/chart_plot.h"
+#include "render/contact_sheet.h"
+#include "render/plot.h"
 #include "render/render_3d.h"
 
 namespace hairfit {
 
 const std::vector<std::string>& picture_stages() {
-  static const std::vector<std::string> names{"inputs", "roots", "preguides", "guides", "strands"};
+  static const std::vector<std::string> names{"inputs", "fields", "chart", "roots", "preguides", "guides", "strands", "all"};
   return names;
 }
 
@@ -21,6 +24,7 @@ void check_picture_stage(const std::string& stage) {
 
 std::string stage_needed_for_picture(const std::string& stage) {
   if (stage == "inputs") return "fields";
+  if (stage == "all") return "";
   return stage;
 }
 
@@ -35,9 +39,82 @@ Polylines polylines(const Curves& curves) {
 
 }  // namespace
 
+namespace {
+
+// A slice of a distance field through the head's mid-sagittal plane (spanned by front and up),
+// sampled over the field's extent, as a diverging heat map with the surface as the zero contour.
+Image field_slice(const DistanceField& field, const Scene& scene, const std::string& title, int width, int height) {
+  const Vec3 up = -scene.units.down;
+  const Vec3 front = (scene.units.front - scene.units.front.dot(up) * up).normalized();
+  const Vec3 lo = field.origin(), hi = field.origin() + field.voxel() * field.dims().cast<double>();
+  const Vec3 centre = 0.5 * (lo + hi);
+  // Extents along front and up: project the box's corners.
+  double f_min = 1e300, f_max = -1e300, u_min = 1e300, u_max = -1e300;
+  for (int c = 0; c < 8; ++c) {
+    const Vec3 corner((c & 1) ? hi.x() : lo.x(), (c & 2) ? hi.y() : lo.y(), (c & 4) ? hi.z() : lo.z());
+    f_min = std::min(f_min, (corner - centre).dot(front)), f_max = std::max(f_max, (corner - centre).dot(front));
+    u_min = std::min(u_min, (corner - centre).dot(up)), u_max = std::max(u_max, (corner - centre).dot(up));
+  }
+  HeatMap map;
+  map.title = title;
+  map.x_label = "front (cm)";
+  map.y_label = "up (cm)";
+  map.value_label = "signed distance (cm)";
+  ScalarGrid& g = map.grid;
+  g.width = 200;
+  g.height = std::max(2, static_cast<int>(200 * (u_max - u_min) / (f_max - f_min)));
+  g.x_min = f_min, g.x_max = f_max, g.y_min = u_min, g.y_max = u_max;
+  g.values.resize(static_cast<std::size_t>(g.width) * g.height);
+  for (int j = 0; j < g.height; ++j)
+    for (int i = 0; i < g.width; ++i) {
+      const double x = f_min + (f_max - f_min) * i / (g.width - 1), y = u_min + (u_max - u_min) * j / (g.height - 1);
+      g.values[static_cast<std::size_t>(j) * g.width + i] = field.value(centre + x * front + y * up);
+    }
+  return render_heat_map(map, width, height);
+}
+
+Image chart_picture(const StageValues& v, bool with_roots, int width, int height) {
+  ChartDrawing d;
+  d.vertices = v.chart->chart;
+  d.triangles = v.chart->mesh.triangles;
+  d.title = "chart: Floater mean-value map onto the unit disk";
+  if (with_roots && v.roots) {
+    // At most ~20 000 pores keep the picture readable; a fixed stride keeps it deterministic.
+    const int n = v.roots->pores.size();
+    const int stride = std::max(1, n / 20000);
+    for (int i = 0; i < n; i += stride) {
+      d.points.push_back(v.roots->pores.chart[i]);
+      d.point_ids.push_back(v.clusters->pore_cluster[i]);
+    }
+    for (int c = 0; c < v.clusters->size(); ++c) {
+      d.circles.push_back(ChartCircle{v.clusters->bases.chart[c], v.clusters->radius[c], c});
+      d.highlights.push_back(v.clusters->bases.chart[c]);
+    }
+    d.title = "chart: " + std::to_string(n) + " pores in " + std::to_string(v.clusters->size()) + " clusters";
+  }
+  return render_chart(d, width, height);
+}
+
+}  // namespace
+
 Image render_stage(const std::string& stage, const Scene& scene, const Inputs& inputs, const StageValues& values,
                    ViewName view, int width, int height, int threads) {
   check_picture_stage(stage);
+  if (stage == "all") {
+    std::vector<Image> tiles;
+    std::vector<std::string> captions;
+    const int tile = std::max(200, std::min(width, height) / 2);
+    for (const std::string& s : picture_stages()) {
+      if (s == "all") continue;
+      tiles.push_back(render_stage(s, scene, inputs, values, view, tile, tile, threads));
+      captions.push_back(s);
+    }
+    return contact_sheet(tiles, captions, 4);
+  }
+  if (stage == "fields")
+    return side_by_side({field_slice(*values.scalp_field, scene, "scalp field, mid-sagittal slice", width / 2, height),
+                         field_slice(*values.volume_field, scene, "volume field, mid-sagittal slice", width / 2, height)});
+  if (stage == "chart") return chart_picture(values, false, width, height);
   Drawing3D drawing;
   MeshLayer scalp{&inputs.scalp.mesh};
   MeshLayer volume{&inputs.volume.mesh, MeshStyle::silhouette};
@@ -78,11 +155,14 @@ Image render_stage(const std::string& stage, const Scene& scene, const Inputs& i
     drawing.curves.push_back(curves);
     drawing.title = "strands: " + std::to_string(lines.size()) + " fibres";
   }
+  const int width_3d = stage == "roots" ? width / 2 : width;
   const auto [lo, hi] = drawing_bounds(drawing);
-  const Camera camera = fit_camera(view, scene.units.down, scene.units.front, lo, hi, width, height);
+  const Camera camera = fit_camera(view, scene.units.down, scene.units.front, lo, hi, width_3d, height);
   RenderOptions options;
   options.threads = threads;
-  return render_3d(drawing, camera, options);
+  const Image picture = render_3d(drawing, camera, options);
+  if (stage == "roots") return side_by_side({chart_picture(values, true, width - width_3d, height), picture});
+  return picture;
 }
 
 }  // namespace hairfit
