@@ -3,11 +3,19 @@
 // evaluation (Jet<double, 6>: the guides' six load parameters), µs per shooting solve.
 // Writes bench/results/rod.csv and bench/results/rod.png (error against time, log–log) and prints
 // the table as Markdown.  Usage: bench_rod [OUT_DIR]   (default: <source>/bench/results)
+//
+// Profiling driver: bench_rod --calls double|jet6 rk2|rk4 SEGMENTS CALLS runs only CALLS forward
+// integrations of the timed workload inside run_calls (no timing, no files), for
+//   valgrind --tool=callgrind --toggle-collect='*run_calls*' ./bench_rod --calls jet6 rk4 64 100
+// whose instruction count ÷ CALLS is reproducible on a loaded machine, unlike wall time.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <cstdlib>
+#include <cstring>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "io/atomic_file.h"
@@ -55,9 +63,56 @@ struct Row {
 
 volatile double sink = 0.0;  // keeps the timed work observable
 
+// The forward-integration workload: a loaded, anisotropic rod with gravity (GJ/EI = 0.46).
+RodModel workload_model() {
+  RodModel model;
+  model.compliance = Vec3(1.0, 0.8, 1.0 / 0.46);
+  model.force_per_length = Vec3(0.0, 0.0, -3.0);
+  return model;
+}
+const double kEta[6] = {2.0, -1.0, 0.5, 0.3, 1.2, -0.4};  // η̃ = (f_L, m(0)), dimensionless
+
+// `calls` forward integrations writing nodes and frames; not inlined so callgrind can count it.
+template <typename T>
+__attribute__((noinline)) void run_calls(const RodModel& model, RodIntegrator integrator, int segments, int calls) {
+  std::vector<T> nodes(3 * (segments + 1)), frames(9 * (segments + 1));
+  T eta[6], end[3];
+  for (int i = 0; i < 6; ++i) eta[i] = T(kEta[i]);
+  if constexpr (!std::is_same_v<T, double>)
+    for (int i = 0; i < 6; ++i) eta[i].v[i] = 1.0;
+  for (int c = 0; c < calls; ++c) {
+    integrate_rod<T>(model, integrator, segments, eta, eta + 3, end,
+                     RodTrace<T>{nodes.data(), frames.data(), nullptr, nullptr});
+    if constexpr (std::is_same_v<T, double>)
+      sink = sink + end[0];
+    else
+      sink = sink + end[0].a + end[0].v[5];
+  }
+}
+
+int profile_main(int argc, char** argv) {
+  if (argc != 6 || (std::strcmp(argv[2], "double") != 0 && std::strcmp(argv[2], "jet6") != 0)) {
+    std::fprintf(stderr, "usage: bench_rod --calls double|jet6 rk2|rk4 SEGMENTS CALLS\n");
+    return 2;
+  }
+  const RodIntegrator integrator = parse_rod_integrator(argv[3]);
+  const int segments = std::atoi(argv[4]), calls = std::atoi(argv[5]);
+  if (segments < 1 || calls < 1) {
+    std::fprintf(stderr, "SEGMENTS and CALLS must be positive\n");
+    return 2;
+  }
+  if (std::strcmp(argv[2], "double") == 0)
+    run_calls<double>(workload_model(), integrator, segments, calls);
+  else
+    run_calls<RodJet6>(workload_model(), integrator, segments, calls);
+  std::printf("%s %s %d segments: %d calls, checksum %.17g\n", argv[2], argv[3], segments, calls, sink);
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (argc > 1 && std::strcmp(argv[1], "--calls") == 0) return profile_main(argc, argv);
   const std::filesystem::path out_dir =
       argc > 1 ? std::filesystem::path(argv[1]) : std::filesystem::path(HAIRFIT_SOURCE_DIR) / "bench" / "results";
   const double alpha = 5.0;
@@ -66,10 +121,8 @@ int main(int argc, char** argv) {
   const double gj = 0.46;
   const test::HelixState helix = test::exact_helix(couple, 1.0, gj, Mat3::Identity(), 1.0);
 
-  RodModel model;  // the forward-integration workload: a loaded, anisotropic rod with gravity
-  model.compliance = Vec3(1.0, 0.8, 1.0 / gj);
-  model.force_per_length = Vec3(0.0, 0.0, -3.0);
-  const double eta[6] = {2.0, -1.0, 0.5, 0.3, 1.2, -0.4};
+  const RodModel model = workload_model();
+  const double* eta = kEta;
 
   std::vector<Row> rows;
   for (const RodIntegrator integrator : {RodIntegrator::rk2, RodIntegrator::rk4})

@@ -1,5 +1,8 @@
 #include "rod/rod_integrate.h"
 
+#include <algorithm>
+#include <array>
+
 #include <ceres/jet.h>
 
 #include "core/error.h"
@@ -21,10 +24,155 @@ int rod_integrator_order(RodIntegrator integrator) { return integrator == RodInt
 
 namespace {
 
+// A forward-mode dual number with N tangents. The integrator runs on it in place of
+// ceres::Jet<double, N>: plain loops over a fixed array, which GCC inlines and vectorises, where
+// Jet's Eigen expression templates stayed out-of-line calls. Its value part does exactly the
+// double operations, so a jet run's values are bit for bit the double run's.
+template <int N>
+struct Dual {
+  double a;
+  double v[N];
+};
+
+template <int N>
+inline Dual<N> operator+(const Dual<N>& x, const Dual<N>& y) {
+  Dual<N> z;
+  z.a = x.a + y.a;
+  for (int k = 0; k < N; ++k) z.v[k] = x.v[k] + y.v[k];
+  return z;
+}
+template <int N>
+inline Dual<N> operator-(const Dual<N>& x, const Dual<N>& y) {
+  Dual<N> z;
+  z.a = x.a - y.a;
+  for (int k = 0; k < N; ++k) z.v[k] = x.v[k] - y.v[k];
+  return z;
+}
+template <int N>
+inline Dual<N> operator-(const Dual<N>& x) {
+  Dual<N> z;
+  z.a = -x.a;
+  for (int k = 0; k < N; ++k) z.v[k] = -x.v[k];
+  return z;
+}
+template <int N>
+inline Dual<N> operator*(const Dual<N>& x, const Dual<N>& y) {
+  Dual<N> z;
+  z.a = x.a * y.a;
+  for (int k = 0; k < N; ++k) z.v[k] = x.a * y.v[k] + x.v[k] * y.a;
+  return z;
+}
+template <int N>
+inline Dual<N> operator*(double s, const Dual<N>& x) {
+  Dual<N> z;
+  z.a = s * x.a;
+  for (int k = 0; k < N; ++k) z.v[k] = s * x.v[k];
+  return z;
+}
+template <int N>
+inline Dual<N> operator*(const Dual<N>& x, double s) {
+  Dual<N> z;
+  z.a = x.a * s;
+  for (int k = 0; k < N; ++k) z.v[k] = x.v[k] * s;
+  return z;
+}
+template <int N>
+inline Dual<N> operator+(double s, const Dual<N>& x) {
+  Dual<N> z = x;
+  z.a = s + x.a;
+  return z;
+}
+template <int N>
+inline Dual<N> operator+(const Dual<N>& x, double s) {
+  Dual<N> z = x;
+  z.a = x.a + s;
+  return z;
+}
+template <int N>
+inline Dual<N> operator-(double s, const Dual<N>& x) {
+  Dual<N> z;
+  z.a = s - x.a;
+  for (int k = 0; k < N; ++k) z.v[k] = -x.v[k];
+  return z;
+}
+template <int N>
+inline Dual<N> operator-(const Dual<N>& x, double s) {
+  Dual<N> z = x;
+  z.a = x.a - s;
+  return z;
+}
+template <int N>
+inline Dual<N> operator/(double s, const Dual<N>& x) {  // d(s/x) = −(s/x)/x·dx
+  Dual<N> z;
+  z.a = s / x.a;
+  const double d = -z.a / x.a;
+  for (int k = 0; k < N; ++k) z.v[k] = d * x.v[k];
+  return z;
+}
+
+// Between the public scalar T and the working scalar S (double stays double, Jet becomes Dual).
+inline double to_work(double x) { return x; }
+inline void to_public(double x, double& out) { out = x; }
+template <int N>
+inline Dual<N> to_work(const ceres::Jet<double, N>& x) {
+  Dual<N> z;
+  z.a = x.a;
+  for (int k = 0; k < N; ++k) z.v[k] = x.v[k];
+  return z;
+}
+template <int N>
+inline void to_public(const Dual<N>& x, ceres::Jet<double, N>& out) {
+  out.a = x.a;
+  for (int k = 0; k < N; ++k) out.v[k] = x.v[k];
+}
 template <typename T>
-using V3 = Eigen::Matrix<T, 3, 1>;
-template <typename T>
-using M3 = Eigen::Matrix<T, 3, 3>;
+struct Work {
+  using type = double;
+};
+template <int N>
+struct Work<ceres::Jet<double, N>> {
+  using type = Dual<N>;
+};
+
+// 3-vectors and column-major 3×3 matrices on the scalar, as plain arrays.
+template <typename S>
+using V = std::array<S, 3>;
+template <typename S>
+using M = std::array<S, 9>;
+
+template <typename S>
+inline V<S> cross(const V<S>& a, const V<S>& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+template <typename S>
+inline S dot(const V<S>& a, const V<S>& b) {
+  return (a[0] * b[0] + a[1] * b[1]) + a[2] * b[2];
+}
+template <typename S>
+inline V<S> times(const M<S>& r, const V<S>& v) {  // R·v
+  return {(r[0] * v[0] + r[3] * v[1]) + r[6] * v[2], (r[1] * v[0] + r[4] * v[1]) + r[7] * v[2],
+          (r[2] * v[0] + r[5] * v[1]) + r[8] * v[2]};
+}
+template <typename S, typename U>
+inline V<S> transpose_times(const M<S>& r, const V<U>& v) {  // Rᵀ·v, v on S or double
+  return {(r[0] * v[0] + r[1] * v[1]) + r[2] * v[2], (r[3] * v[0] + r[4] * v[1]) + r[5] * v[2],
+          (r[6] * v[0] + r[7] * v[1]) + r[8] * v[2]};
+}
+template <typename S>
+inline M<S> times(const M<S>& a, const M<S>& b) {  // A·B
+  M<S> c;
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i) c[3 * j + i] = (a[i] * b[3 * j] + a[3 + i] * b[3 * j + 1]) + a[6 + i] * b[3 * j + 2];
+  return c;
+}
+
+// What stays fixed over one call, in double.
+struct Constants {
+  const std::vector<Vec3>& kappa_hat;
+  Vec3 compliance;
+  Vec3 f;        // force per length, world axes
+  bool gravity;  // f ≠ 0: n varies along the rod
+};
 
 // κ̂ at arc length s ∈ [0, 1]: constant, or linear between equally spaced samples.
 Vec3 kappa_hat_at(const std::vector<Vec3>& kappa_hat, double s) {
@@ -37,48 +185,104 @@ Vec3 kappa_hat_at(const std::vector<Vec3>& kappa_hat, double s) {
   return (1.0 - t) * kappa_hat[i] + t * kappa_hat[i + 1];
 }
 
-// Right-hand side at one Runge–Kutta stage, where the frame is R_n·cay(θ) and the moment m.
-template <typename T>
-struct StageRate {
-  V3<T> theta;  // θ' = dcay⁻¹_{−θ}(κ) = κ + θ×κ/2 + θ(θ·κ)/4 (exact for the Cayley map)
-  V3<T> r;      // r' = d3
-  V3<T> m;      // m' = −d3 × n
+// κ = κ̂ + C⁻¹·(body components of m).
+template <typename S>
+inline V<S> curvature(const Constants& k, const V<S>& body, double s) {
+  V<S> kappa{k.compliance[0] * body[0], k.compliance[1] * body[1], k.compliance[2] * body[2]};
+  if (!k.kappa_hat.empty()) {
+    const Vec3 kh = kappa_hat_at(k.kappa_hat, s);
+    for (int i = 0; i < 3; ++i) kappa[i] = kh[i] + kappa[i];
+  }
+  return kappa;
+}
+
+// The loads seen from the step's start frame R_n (its body coordinates). Every stage of the step
+// works in these coordinates, so a stage needs no product with R_n; the step maps its increments
+// back to world axes once.
+template <typename S>
+struct Local {
+  V<S> mu;   // R_nᵀ m
+  V<S> nu;   // R_nᵀ n(0) = R_nᵀ (f_L + f)
+  V<S> phi;  // R_nᵀ f (only with gravity)
 };
 
-template <typename T>
-struct StepContext {
-  const RodModel& model;
-  M3<T> frame;     // R_n
-  V3<T> force_at;  // n(0) = f_L + f: n(s) = force_at − f·s
-  V3<T> f;         // f (dimensionless), as T
-  V3<T> compliance;
+template <typename S>
+inline Local<S> local_loads(const Constants& k, const M<S>& frame, const V<S>& m, const V<S>& force_at) {
+  Local<S> local{};
+  local.mu = transpose_times(frame, m);
+  local.nu = transpose_times(frame, force_at);
+  if (k.gravity) local.phi = transpose_times(frame, V<double>{k.f[0], k.f[1], k.f[2]});
+  return local;
+}
+
+template <typename S>
+inline V<S> force(const Constants& k, const Local<S>& local, double s) {  // R_nᵀ n(s), n = n(0) − s·f
+  if (!k.gravity) return local.nu;
+  return {local.nu[0] - s * local.phi[0], local.nu[1] - s * local.phi[1], local.nu[2] - s * local.phi[2]};
+}
+
+// The rates at one Runge–Kutta stage, where the frame is R_n·cay(θ), in R_n's body coordinates.
+template <typename S>
+struct Rate {
+  V<S> theta;  // θ' = dcay⁻¹_{−θ}(κ) = κ + θ×κ/2 + θ(θ·κ)/4 (exact for the Cayley map)
+  V<S> t;      // R_nᵀ r' = cay(θ)·e3
+  V<S> mu;     // R_nᵀ m' = −t × R_nᵀ n
 };
 
-template <typename T>
-StageRate<T> stage_rate(const StepContext<T>& ctx, const V3<T>& theta, const V3<T>& m, double s) {
-  // Body components of m in the stage frame: cay(θ)ᵀ·R_nᵀ·m = cay(−θ)·(R_nᵀ m).
-  const V3<T> body = cayley::apply<T>(-theta, ctx.frame.transpose() * m);
-  const V3<T> kappa = ctx.model.kappa_hat.empty()
-                          ? V3<T>(ctx.compliance.cwiseProduct(body))
-                          : V3<T>(kappa_hat_at(ctx.model.kappa_hat, s).template cast<T>() +
-                                  ctx.compliance.cwiseProduct(body));
-  StageRate<T> rate;
-  rate.theta = kappa + T(0.5) * theta.cross(kappa) + T(0.25) * theta.dot(kappa) * theta;
-  rate.r = ctx.frame * cayley::apply<T>(theta, V3<T>::UnitZ());
-  const V3<T> n = ctx.force_at - T(s) * ctx.f;  // the stage's own arc length: gravity makes n vary
-  rate.m = -rate.r.cross(n);
+// The first stage (θ = 0): cay = I, so κ comes from μ directly and t = e3 (not stored).
+template <typename S>
+inline Rate<S> first_rate(const Constants& k, const Local<S>& local, double s) {
+  Rate<S> rate;
+  rate.theta = curvature(k, local.mu, s);
+  const V<S> n = force(k, local, s);
+  rate.mu = {n[1], -n[0], S{}};  // −e3 × n
   return rate;
 }
 
-template <typename T>
-void write_node(const RodModel& model, const RodTrace<T>& trace, int i, double s, const V3<T>& r, const M3<T>& frame,
-                const V3<T>& m, const V3<T>& compliance) {
-  if (trace.nodes) Eigen::Map<V3<T>>(trace.nodes + 3 * i) = r;
-  if (trace.frames) Eigen::Map<M3<T>>(trace.frames + 9 * i) = frame;
-  if (trace.moments) Eigen::Map<V3<T>>(trace.moments + 3 * i) = m;
-  if (trace.curvature)
-    Eigen::Map<V3<T>>(trace.curvature + 3 * i) =
-        kappa_hat_at(model.kappa_hat, s).template cast<T>() + compliance.cwiseProduct(frame.transpose() * m);
+template <typename S>
+inline Rate<S> stage_rate(const Constants& k, const Local<S>& local, const V<S>& theta, const V<S>& mu, double s) {
+  const S xx = theta[0] * theta[0], yy = theta[1] * theta[1];
+  const S c = 4.0 / (4.0 + ((xx + yy) + theta[2] * theta[2]));
+  const S ch = 0.5 * c;
+  // Body components of m in the stage frame: cay(−θ)μ = μ + c·(θ×(θ×μ)/2 − θ×μ).
+  const V<S> tm = cross(theta, mu);
+  const V<S> ttm = cross(theta, tm);
+  V<S> body;
+  for (int i = 0; i < 3; ++i) body[i] = mu[i] + c * (0.5 * ttm[i] - tm[i]);
+  const V<S> kappa = curvature(k, body, s);
+  Rate<S> rate;
+  const V<S> tk = cross(theta, kappa);
+  const S d = 0.25 * dot(theta, kappa);
+  for (int i = 0; i < 3; ++i) rate.theta[i] = (kappa[i] + 0.5 * tk[i]) + d * theta[i];
+  // cay(θ)e3 = e3 + c·θ×e3 + c/2·θ×(θ×e3), with θ×e3 = (θ1, −θ0, 0).
+  rate.t = {c * theta[1] + ch * (theta[0] * theta[2]), ch * (theta[1] * theta[2]) - c * theta[0],
+            1.0 - ch * (xx + yy)};
+  rate.mu = cross(force(k, local, s), rate.t);
+  return rate;
+}
+
+template <typename S>
+inline V<S> advance(const V<S>& x, double step, const V<S>& rate) {  // x + step·rate
+  return {x[0] + step * rate[0], x[1] + step * rate[1], x[2] + step * rate[2]};
+}
+template <typename S>
+inline V<S> scaled(double step, const V<S>& rate) {
+  return {step * rate[0], step * rate[1], step * rate[2]};
+}
+
+template <typename T, typename S>
+inline void write_node(const Constants& k, const RodTrace<T>& trace, int i, double s, const V<S>& r, const M<S>& frame,
+                       const V<S>& m, const Local<S>& local) {
+  if (trace.nodes)
+    for (int a = 0; a < 3; ++a) to_public(r[a], trace.nodes[3 * i + a]);
+  if (trace.frames)
+    for (int a = 0; a < 9; ++a) to_public(frame[a], trace.frames[9 * i + a]);
+  if (trace.moments)
+    for (int a = 0; a < 3; ++a) to_public(m[a], trace.moments[3 * i + a]);
+  if (trace.curvature) {
+    const V<S> kappa = curvature(k, local.mu, s);
+    for (int a = 0; a < 3; ++a) to_public(kappa[a], trace.curvature[3 * i + a]);
+  }
 }
 
 }  // namespace
@@ -86,50 +290,69 @@ void write_node(const RodModel& model, const RodTrace<T>& trace, int i, double s
 template <typename T>
 void integrate_rod_steps(const RodModel& model, RodIntegrator integrator, int segments, int first, int last,
                          const T* terminal_force, RodState<T>& state, const RodTrace<T>& trace) {
-  const V3<T> f = model.force_per_length.template cast<T>();
-  StepContext<T> ctx{model, Eigen::Map<const M3<T>>(state.frame), Eigen::Map<const V3<T>>(terminal_force) + f, f,
-                     model.compliance.template cast<T>()};
-  V3<T> r = Eigen::Map<const V3<T>>(state.position);
-  V3<T> m = Eigen::Map<const V3<T>>(state.moment);
-  const double h = 1.0 / segments;
-  const V3<T> zero = V3<T>::Zero();
-  write_node(model, trace, first, first * h, r, ctx.frame, m, ctx.compliance);
+  using S = typename Work<T>::type;
+  const Constants k{model.kappa_hat, model.compliance, model.force_per_length, !model.force_per_length.isZero(0.0)};
+  V<S> r, m, force_at;
+  M<S> frame;
+  for (int a = 0; a < 3; ++a) {
+    r[a] = to_work(state.position[a]);
+    m[a] = to_work(state.moment[a]);
+    force_at[a] = to_work(terminal_force[a]) + k.f[a];
+  }
+  for (int a = 0; a < 9; ++a) frame[a] = to_work(state.frame[a]);
+  const double h = 1.0 / segments, hh = 0.5 * h, w = h / 6.0;
+  Local<S> local = local_loads(k, frame, m, force_at);
+  write_node(k, trace, first, first * h, r, frame, m, local);
   for (int i = first; i < last; ++i) {
     const double s = i * h;
-    V3<T> theta;
+    // θ, R_nᵀΔr and R_nᵀΔm over the step.
+    V<S> theta, dr, dm;
+    const Rate<S> k1 = first_rate(k, local, s);
     if (integrator == RodIntegrator::rk2) {  // explicit midpoint
-      const StageRate<T> k1 = stage_rate(ctx, zero, m, s);
-      const StageRate<T> k2 = stage_rate<T>(ctx, T(0.5 * h) * k1.theta, m + T(0.5 * h) * k1.m, s + 0.5 * h);
-      theta = T(h) * k2.theta;
-      r += T(h) * k2.r;
-      m += T(h) * k2.m;
+      const Rate<S> k2 = stage_rate(k, local, scaled(hh, k1.theta), advance(local.mu, hh, k1.mu), s + hh);
+      theta = scaled(h, k2.theta);
+      dr = scaled(h, k2.t);
+      dm = scaled(h, k2.mu);
     } else {  // classical RK4 tableau
-      const StageRate<T> k1 = stage_rate(ctx, zero, m, s);
-      const StageRate<T> k2 = stage_rate<T>(ctx, T(0.5 * h) * k1.theta, m + T(0.5 * h) * k1.m, s + 0.5 * h);
-      const StageRate<T> k3 = stage_rate<T>(ctx, T(0.5 * h) * k2.theta, m + T(0.5 * h) * k2.m, s + 0.5 * h);
-      const StageRate<T> k4 = stage_rate<T>(ctx, T(h) * k3.theta, m + T(h) * k3.m, s + h);
-      const T w = T(h / 6.0);
-      theta = w * (k1.theta + T(2.0) * (k2.theta + k3.theta) + k4.theta);
-      r += w * (k1.r + T(2.0) * (k2.r + k3.r) + k4.r);
-      m += w * (k1.m + T(2.0) * (k2.m + k3.m) + k4.m);
+      const Rate<S> k2 = stage_rate(k, local, scaled(hh, k1.theta), advance(local.mu, hh, k1.mu), s + hh);
+      const Rate<S> k3 = stage_rate(k, local, scaled(hh, k2.theta), advance(local.mu, hh, k2.mu), s + hh);
+      const Rate<S> k4 = stage_rate(k, local, scaled(h, k3.theta), advance(local.mu, h, k3.mu), s + h);
+      for (int a = 0; a < 3; ++a) {
+        theta[a] = w * ((k1.theta[a] + 2.0 * (k2.theta[a] + k3.theta[a])) + k4.theta[a]);
+        dm[a] = w * ((k1.mu[a] + 2.0 * (k2.mu[a] + k3.mu[a])) + k4.mu[a]);
+      }
+      dr = {w * (2.0 * (k2.t[0] + k3.t[0]) + k4.t[0]), w * (2.0 * (k2.t[1] + k3.t[1]) + k4.t[1]),
+            w * ((1.0 + 2.0 * (k2.t[2] + k3.t[2])) + k4.t[2])};
     }
-    ctx.frame = ctx.frame * cayley::matrix<T>(theta);
-    write_node(model, trace, i + 1, (i + 1) * h, r, ctx.frame, m, ctx.compliance);
+    const V<S> dr_world = times(frame, dr), dm_world = times(frame, dm);
+    for (int a = 0; a < 3; ++a) {
+      r[a] = r[a] + dr_world[a];
+      m[a] = m[a] + dm_world[a];
+    }
+    M<S> q;
+    cayley::fill_matrix<S>(theta.data(), q.data());
+    frame = times(frame, q);
+    if (i + 1 < last || trace.curvature) local = local_loads(k, frame, m, force_at);
+    write_node(k, trace, i + 1, (i + 1) * h, r, frame, m, local);
   }
-  Eigen::Map<V3<T>>(state.position) = r;
-  Eigen::Map<M3<T>>(state.frame) = ctx.frame;
-  Eigen::Map<V3<T>>(state.moment) = m;
+  for (int a = 0; a < 3; ++a) {
+    to_public(r[a], state.position[a]);
+    to_public(m[a], state.moment[a]);
+  }
+  for (int a = 0; a < 9; ++a) to_public(frame[a], state.frame[a]);
 }
 
 template <typename T>
 void integrate_rod(const RodModel& model, RodIntegrator integrator, int segments, const T* terminal_force,
                    const T* root_moment, T* terminal_moment, const RodTrace<T>& trace) {
   RodState<T> state;
-  Eigen::Map<V3<T>>(state.position) = V3<T>::Zero();
-  Eigen::Map<M3<T>>(state.frame) = model.root_frame.template cast<T>();
-  for (int k = 0; k < 3; ++k) state.moment[k] = root_moment[k];
+  for (int a = 0; a < 3; ++a) {
+    state.position[a] = T(0.0);
+    state.moment[a] = root_moment[a];
+  }
+  for (int a = 0; a < 9; ++a) state.frame[a] = T(model.root_frame.data()[a]);
   integrate_rod_steps(model, integrator, segments, 0, segments, terminal_force, state, trace);
-  for (int k = 0; k < 3; ++k) terminal_moment[k] = state.moment[k];
+  for (int a = 0; a < 3; ++a) terminal_moment[a] = state.moment[a];
 }
 
 template void integrate_rod<double>(const RodModel&, RodIntegrator, int, const double*, const double*, double*,
