@@ -7,6 +7,7 @@
 #include <Eigen/LU>
 
 #include "rod/rod_jet.h"
+#include "rod/rod_shooting.h"
 
 namespace hairfit {
 
@@ -37,13 +38,26 @@ namespace {
 // exist at the same load (curled rods); a step is accepted only when Newton lands near the
 // predictor and the tip turns by less than kMaxTipTurn, else the load step is halved, so the
 // path stays on the branch connected to the unloaded rod.
+constexpr double kHeavy = 50.0;  // dimensionless load beyond which single shooting loses precision
+
 class Cantilever {
  public:
-  Cantilever(const RodModel& model, const Vec3& bend, const RodDiscretisation& rod)
-      : model_(model), bend_(bend), rod_(rod) {}
+  Cantilever(const Vec3& bend, const RodDiscretisation& rod) : bend_(bend), rod_(rod) {}
 
-  // Newton from `m0` at load P; true when |m(1)| ≤ 1e-10·max(1, P).
-  bool solve(double load, Vec3& m0, int& solves) const {
+  // Newton from `m0` at load P; true when |m(1)| ≤ 1e-10·max(1, P). A heavy rod (dimensionless
+  // weight above kHeavy) makes m(1) depend on m(0) like exp(√weight), beyond what one shooting
+  // interval resolves in double precision: then the rod library's multiple shooting takes over.
+  bool solve(const RodModel& model, double load, Vec3& m0, int& solves) const {
+    if (model.force_per_length.norm() > kHeavy || load > kHeavy) {
+      ShootingOptions options;
+      options.integrator = rod_.integrator;
+      options.segments = rod_.segments;
+      options.max_iterations = 40;
+      const ShootingResult r = shoot_root_moment(model, load * bend_, Vec3::Zero(), m0, options);
+      solves += std::max(1, r.iterations);
+      if (r.converged) m0 = r.root_moment;
+      return r.converged;
+    }
     const double tolerance = 1e-10 * std::max(1.0, load);
     for (int iteration = 0; iteration < 10; ++iteration) {
       ++solves;
@@ -52,7 +66,7 @@ class Cantilever {
         force[k] = RodJet3(load * bend_[k]);
         moment[k] = RodJet3(m0[k], k);
       }
-      integrate_rod<RodJet3>(model_, rod_.integrator, rod_.segments, force, moment, m1, RodTrace<RodJet3>{});
+      integrate_rod<RodJet3>(model, rod_.integrator, rod_.segments, force, moment, m1, RodTrace<RodJet3>{});
       Vec3 residual;
       Mat3 jacobian;
       for (int k = 0; k < 3; ++k) {
@@ -69,12 +83,12 @@ class Cantilever {
   }
 
  private:
-  const RodModel& model_;
   Vec3 bend_;
   RodDiscretisation rod_;
 };
 
 constexpr double kMaxTipTurn = 0.26;  // radians (15°) of tip rotation per accepted load step
+constexpr int kNewtonBudget = 250;    // Newton steps per pre-guide for following its branch
 
 PreGuide solve_preguide(const RootSet& roots, int i, const Boundary& boundary, const PreguideOptions& o) {
   PreGuide g;
@@ -85,7 +99,7 @@ PreGuide solve_preguide(const RootSet& roots, int i, const Boundary& boundary, c
   g.height = roots.heights[i];
   const Vec3 bend = bending_direction(g.normal, g.direction, o.down, o.front);
   const RodModel model = make_rod_model(hair_rod(g.length, o.material), RodRoot{g.root, root_frame(g.direction, bend)});
-  const Cantilever cantilever(model, bend, o.rod);
+  const Cantilever cantilever(bend, o.rod);
 
   g.thickness = std::max(0.0, -boundary.volume->value(g.root));
   const double share = o.depth_range[1] + (o.depth_range[0] - o.depth_range[1]) * std::clamp(g.height, 0.0, 1.0);
@@ -104,8 +118,42 @@ PreGuide solve_preguide(const RootSet& roots, int i, const Boundary& boundary, c
     st.tip_tangent = shape.tangents.back();
   };
   State current, previous;
-  // The unloaded rod (with gravity, if any) needs its own root moment first.
-  if (!cantilever.solve(0.0, current.m0, g.solves)) current.m0.setZero();
+  // The rod under its own weight first, by continuation in the weight from the straight rod: a
+  // heavy hair (ρAgL³/EI is ~10³ for 30 cm of hair) has many equilibria, and only this path finds
+  // the drooping one.
+  if (model.force_per_length.norm() > kHeavy) {
+    // Multiple shooting continues from the unloaded rod itself.
+    cantilever.solve(model, 0.0, current.m0, g.solves);
+  } else {
+    RodModel scaled = model;
+    double share = 0.0, share_step = model.force_per_length.norm() > 0.0 ? 0.05 : 1.0;
+    Vec3 m_prev = Vec3::Zero(), tip_prev = g.direction;
+    double share_prev = 0.0;
+    while (share < 1.0 && share_step > 1e-5 && g.solves < kNewtonBudget) {
+      const double next = std::min(1.0, share + share_step);
+      scaled.force_per_length = next * model.force_per_length;
+      const Vec3 predictor = share > share_prev ? Vec3(current.m0 + (current.m0 - m_prev) * ((next - share) / (share - share_prev)))
+                                                : current.m0;
+      Vec3 m0 = predictor;
+      bool accepted = cantilever.solve(scaled, 0.0, m0, g.solves) && (m0 - predictor).norm() <= 0.1 * (1.0 + current.m0.norm());
+      Vec3 tip = tip_prev;
+      if (accepted) {
+        tip = fibre_shape(scaled, g.root, g.length, o.rod, Vec3::Zero(), m0).tangents.back();
+        accepted = std::acos(std::clamp(tip.dot(tip_prev), -1.0, 1.0)) <= kMaxTipTurn;
+      }
+      if (!accepted) {
+        share_step *= 0.5;
+        continue;
+      }
+      m_prev = current.m0;
+      share_prev = share;
+      current.m0 = m0;
+      tip_prev = tip;
+      share = next;
+      share_step = std::min(share_step * 1.5, 0.25);
+    }
+    if (share < 1.0) current.m0 = Vec3::Zero();  // could not follow the weight: flagged below by the miss
+  }
   settle(current);
   previous = current;
   State best = current;
@@ -115,7 +163,6 @@ PreGuide solve_preguide(const RootSet& roots, int i, const Boundary& boundary, c
   State above = current, below = current;  // miss > 0 and miss ≤ 0 ends of the bracket
   // The march ends at the target, at max_load, or where the branch cannot be followed further
   // (load steps below 1e-4 of the load, or the Newton budget spent): the best tip so far is kept.
-  constexpr int kNewtonBudget = 250;
   while (!bracketed && current.load < o.max_load && step > 1e-4 * (1.0 + current.load) && g.solves < kNewtonBudget) {
     State next;
     next.load = std::min(o.max_load, current.load + step);
@@ -124,7 +171,7 @@ PreGuide solve_preguide(const RootSet& roots, int i, const Boundary& boundary, c
                                                                                   (current.load - previous.load)))
                                : current.m0;
     next.m0 = predictor;
-    bool accepted = cantilever.solve(next.load, next.m0, g.solves) &&
+    bool accepted = cantilever.solve(model, next.load, next.m0, g.solves) &&
                     (next.m0 - predictor).norm() <= 0.1 * (1.0 + current.m0.norm());
     if (accepted) {
       settle(next);
@@ -152,7 +199,7 @@ PreGuide solve_preguide(const RootSet& roots, int i, const Boundary& boundary, c
        ++k) {
     State mid = above;
     mid.load = 0.5 * (above.load + below.load);
-    if (!cantilever.solve(mid.load, mid.m0, g.solves)) break;
+    if (!cantilever.solve(model, mid.load, mid.m0, g.solves)) break;
     settle(mid);
     if (std::fabs(mid.miss) < std::fabs(best.miss)) best = mid;
     (mid.miss > 0.0 ? above : below) = mid;
