@@ -12,8 +12,13 @@ namespace hairfit::cayley {
 // cay(θ) column-major into q[9] (q[3c + r] = entry (r, c)). With [θ]² = θθᵀ − |θ|²I the diagonal
 // is 1 − c/2·(θ_j² + θ_k²), which keeps the columns unit to round-off.
 template <typename S>
+inline S square(const S& x) {  // the integrator's dual number overloads this with a cheaper one
+  return x * x;
+}
+
+template <typename S>
 inline void fill_matrix(const S* theta, S* q) {
-  const S xx = theta[0] * theta[0], yy = theta[1] * theta[1], zz = theta[2] * theta[2];
+  const S xx = square(theta[0]), yy = square(theta[1]), zz = square(theta[2]);
   const S c = 4.0 / (4.0 + ((xx + yy) + zz));
   const S ch = 0.5 * c;
   const S cx = c * theta[0], cy = c * theta[1], cz = c * theta[2];
