@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <stdexcept>
 
 #include "core/parallel.h"
+#include "density/accumulator.h"
 #include "guides/objective.h"
 
 namespace hairfit {
@@ -62,13 +64,16 @@ GuideTargets make_targets(const RootSet& bases, int b, const PreGuides& preguide
   return t;
 }
 
-Guide solve_guide(const RootSet& bases, int b, const PreGuides& preguides, const Boundary& boundary, const GuideOptions& o) {
+Guide solve_guide(const RootSet& bases, int b, const PreGuides& preguides, const Boundary& boundary, const GuideOptions& o,
+                  const DensityGrid* density = nullptr, const DensityTermOptions& term = {}) {
   Guide g;
   g.root = bases.positions[b];
   g.normal = bases.normals[b];
   g.direction = bases.directions[b];
   g.length = bases.lengths[b];
-  const GuideTargets targets = make_targets(bases, b, preguides, boundary, o, g.neighbours, g.neighbour_weights);
+  GuideTargets targets = make_targets(bases, b, preguides, boundary, o, g.neighbours, g.neighbour_weights);
+  targets.density = density;
+  targets.density_term = term;
 
   // Start: straight (the paper) or the neighbours' dimensionless loads, weighted (warm start).
   double start[6] = {0, 0, 0, 0, 0, 0};
@@ -121,6 +126,44 @@ Guides make_guides(const RootSet& bases, const PreGuides& preguides, const Bound
   parallel_for(bases.size(), options.threads,
                [&](int b) { guides.items[b] = solve_guide(bases, b, preguides, boundary, options); });
   return guides;
+}
+
+DensityGuides make_guides_with_density(const RootSet& bases, const PreGuides& preguides, const Boundary& boundary,
+                                       const GuideOptions& options, const GuideDensityOptions& density) {
+  if (density.batch < 1) throw std::invalid_argument("make_guides_with_density: batch must be >= 1");
+  const int count = bases.size();
+  DensityGuides out;
+  out.guides.items.resize(count);
+  // The pores of each cluster, in pore order (CDM deposits the fibres they will grow).
+  std::vector<std::vector<int>> pores_of(count);
+  if (density.term.model == GuideDensityModel::continuous)
+    for (std::size_t i = 0; i < density.pores.guide.size(); ++i) {
+      const int g = density.pores.guide[i];
+      if (g >= 0 && g < count) pores_of[g].push_back(static_cast<int>(i));
+    }
+  DensityAccumulator accumulator(density.grid);
+  for (int begin = 0; begin < count; begin += density.batch) {
+    const int end = std::min(count, begin + density.batch);
+    const DensityGrid frozen = accumulator.freeze();  // the earlier batches only
+    parallel_for(end - begin, options.threads, [&](int i) {
+      out.guides.items[begin + i] = solve_guide(bases, begin + i, preguides, boundary, options, &frozen, density.term);
+    });
+    if (density.term.model == GuideDensityModel::continuous) {
+      std::vector<std::vector<Vec3>> fibres;
+      for (int g = begin; g < end; ++g)
+        for (std::vector<Vec3>& f : guide_deposit_fibres(out.guides.items[g].shape.nodes, pores_of[g], density))
+          fibres.push_back(std::move(f));
+      accumulator.add_fibres(fibres, options.threads);
+    } else {
+      std::vector<Tube> tubes;
+      for (int g = begin; g < end; ++g)
+        tubes.push_back(guide_tube(out.guides.items[g].shape.nodes, density.strands.root_radius, density.strands.tip_radius));
+      accumulator.occupy_all(tubes, options.threads);
+    }
+    ++out.batches;
+  }
+  out.density = std::move(accumulator).freeze();
+  return out;
 }
 
 GuideFigures guide_figures(const Guides& guides, const PreGuides& preguides, const Boundary& boundary) {

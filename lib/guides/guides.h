@@ -8,6 +8,8 @@
 
 #include "core/curves.h"
 #include "core/digest.h"
+#include "density/grid.h"
+#include "guides/density_term.h"
 #include "guides/preguides.h"
 
 namespace hairfit {
@@ -72,6 +74,19 @@ struct Guides {
 
 // Optimises one guide per base. `bases` are the cluster centres (scalp/roots.h RootSet).
 Guides make_guides(const RootSet& bases, const PreGuides& preguides, const Boundary& boundary, const GuideOptions& options);
+
+// With a density model (paper §3.5, DESIGN §6): guides in index order, in batches of
+// density.batch; each batch is optimised in parallel (options.threads) with the F4 term against
+// the frozen density of all earlier batches, then its guides deposit into the grid in index
+// order (guide_deposit_fibres for CDM, guide_tube for BOM). Byte-identical for any thread count.
+// `density` is the grid after the last batch (BOM occupancy 0/1, CDM cell diagonals).
+struct DensityGuides {
+  Guides guides;
+  DensityGrid density;
+  int batches = 0;
+};
+DensityGuides make_guides_with_density(const RootSet& bases, const PreGuides& preguides, const Boundary& boundary,
+                                       const GuideOptions& options, const GuideDensityOptions& density);
 
 // The figures report.json carries for the stage.
 struct GuideFigures {

@@ -22,6 +22,39 @@ Jet field_at(const DistanceField& field, const Jet* p) {
   return out;
 }
 
+// The grid's trilinear value (BOM occupancy) and, for jets, its exact piecewise-trilinear gradient.
+double density_at(const DensityGrid& grid, const double* p) { return grid.value(Vec3(p[0], p[1], p[2])); }
+Jet density_at(const DensityGrid& grid, const Jet* p) {
+  const DensityValueGradient vg = grid.value_and_gradient(Vec3(p[0].a, p[1].a, p[2].a));
+  Jet out(vg.value);
+  out.v = vg.gradient.x() * p[0].v + vg.gradient.y() * p[1].v + vg.gradient.z() * p[2].v;
+  return out;
+}
+
+// CDM: ⟨∇Φρ(p), t⟩ with ∇Φρ by central differences; for jets d⟨g, t⟩ = (Jᵀt)·dp + g·dt, J the
+// derivative of the central-difference gradient in p.
+double density_slope(const DensityGrid& grid, const double* p, const double* t) {
+  return grid.central_gradient(Vec3(p[0], p[1], p[2])).dot(Vec3(t[0], t[1], t[2]));
+}
+Jet density_slope(const DensityGrid& grid, const Jet* p, const Jet* t) {
+  const DensityGradientJacobian gj = grid.central_gradient_and_jacobian(Vec3(p[0].a, p[1].a, p[2].a));
+  const Vec3 ta(t[0].a, t[1].a, t[2].a);
+  const Vec3 jt = gj.jacobian.transpose() * ta;  // ∂⟨g, t⟩/∂p
+  Jet out(gj.gradient.dot(ta));
+  out.v = jt.x() * p[0].v + jt.y() * p[1].v + jt.z() * p[2].v;
+  for (int a = 0; a < 3; ++a) out.v += gj.gradient[a] * t[a].v;
+  return out;
+}
+
+// The C¹ surcharge step of surcharge_step (density_term.h), for jets too.
+template <typename T>
+T surcharge_residual(const T& occupancy, double threshold, double width) {
+  const T x = (occupancy - T(threshold)) / T(width) + T(0.5);
+  if (!(x > T(0))) return T(0);
+  if (!(x < T(1))) return T(1);
+  return x * x * (T(3) - T(2) * x);
+}
+
 // The boundary residual φ(u) of a sample lying u cm beyond a surface (u > 0: outside the
 // acceptable region). Smooth form: √c_d·S((u + w)/w) + H(u): the step of eq. 9 rises over the last
 // w cm inside the surface (S the C¹ smoothstep), so the full c_d applies at the surface itself and
@@ -46,11 +79,17 @@ class GuideCost {
   explicit GuideCost(const GuideTargets& t) : t_(t) {}
 
   int residual_count() const {
-    return static_cast<int>(t_.sample_nodes.size() * (6 * t_.neighbours.size() + 2));
+    return static_cast<int>(t_.sample_nodes.size() * (6 * t_.neighbours.size() + 2 + density_per_sample()));
+  }
+  // F4 residuals per sample: none without a grid, 1 for CDM, 2 for BOM (occupancy, surcharge).
+  int density_per_sample() const {
+    if (!t_.density) return 0;
+    return t_.density_term.model == GuideDensityModel::continuous ? 1 : 2;
   }
 
   // Residuals in blocks: F1 (3 per neighbour and sample), F2 (3 per neighbour and sample), F3
-  // (scalp and volume per sample). Σr² = Σ wᵢFᵢ exactly, with the trapezoidal rule for ∫ds.
+  // (scalp and volume per sample), F4 (density_per_sample per sample, only with a grid).
+  // Σr² = Σ wᵢFᵢ exactly, with the trapezoidal rule for ∫ds.
   template <typename T>
   bool operator()(const T* eta, T* residuals) const {
     const int n = t_.rod.segments + 1;
@@ -88,6 +127,23 @@ class GuideCost {
       *r++ = scale * boundary_residual(beyond_scalp, t_.form, t_.outside_penalty, t_.boundary_width);
       *r++ = scale * boundary_residual(beyond_volume, t_.form, t_.outside_penalty, t_.boundary_width);
     }
+    if (t_.density) {
+      const DensityTermOptions& d = t_.density_term;
+      for (std::size_t k = 0; k < samples; ++k) {
+        const int node = t_.sample_nodes[k];
+        T p[3];
+        for (int a = 0; a < 3; ++a) p[a] = T(t_.root[a]) + T(t_.length) * nodes[3 * node + a];
+        if (d.model == GuideDensityModel::continuous) {
+          const T scale = T(std::sqrt(w.density * d.strength * t_.sample_weights[k]));
+          *r++ = scale * density_slope(*t_.density, p, &frames[9 * node + 6]);
+        } else {
+          const T occupancy = density_at(*t_.density, p);
+          *r++ = T(std::sqrt(w.density * t_.sample_weights[k])) * occupancy;
+          *r++ = T(std::sqrt(w.density * d.surcharge * t_.sample_weights[k])) *
+                 surcharge_residual(occupancy, d.threshold, d.surcharge_width);
+        }
+      }
+    }
     return true;
   }
 
@@ -109,11 +165,20 @@ GuideTerms evaluate_guide_terms(const GuideTargets& targets, const double eta[6]
     return s;
   };
   const GuideWeights& w = targets.weights;
-  const double e1 = sum_squares(0, block), e2 = sum_squares(block, 2 * block), e3 = sum_squares(2 * block, r.size());
+  const std::size_t f3_end = 2 * block + 2 * targets.sample_nodes.size();
+  const double e1 = sum_squares(0, block), e2 = sum_squares(block, 2 * block), e3 = sum_squares(2 * block, f3_end);
+  const double e4 = sum_squares(f3_end, r.size());
   terms.f1 = w.direction > 0 ? e1 / w.direction : 0.0;
   terms.f2 = w.similarity > 0 ? e2 / w.similarity : 0.0;
   terms.f3 = w.boundary > 0 ? e3 / w.boundary : 0.0;
-  terms.total = e1 + e2 + e3;
+  if (targets.density && w.density > 0) {
+    terms.f4 = e4 / w.density;
+  } else if (targets.density) {  // unweighted F4 even when w4 = 0: evaluate with w4 = 1
+    GuideTargets unit = targets;
+    unit.weights = GuideWeights{0.0, 0.0, 0.0, 1.0};
+    terms.f4 = evaluate_guide_terms(unit, eta).total;
+  }
+  terms.total = e1 + e2 + e3 + e4;
   return terms;
 }
 

@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "density/grid.h"
+#include "guides/density_term.h"
 #include "guides/guides.h"
 
 namespace hairfit {
@@ -28,11 +30,18 @@ struct GuideTargets {
   BoundaryForm form = BoundaryForm::smooth;
   double outside_penalty = 10.0;
   double boundary_width = 0.1;
+  // The density of the earlier guides (paper §3.5); null: no density model, no F4 residual.
+  const DensityGrid* density = nullptr;
+  DensityTermOptions density_term;
 };
 
 // The unweighted terms: F1 = Σ_j ω_j ∫(1 − cos φ_j) ds, F2 = Σ_j ω_j ∫|Δu_j|² ds (F2² of eq. 8),
-// F3 = ∫ penalty ds over both surfaces, F4 = 0 (no density model yet). Quadrature is the
-// trapezoidal rule on the samples, exactly what the residuals sum to.
+// F3 = ∫ penalty ds over both surfaces, and with a density grid (otherwise F4 = 0):
+//   CDM: F4 = c_ρ ∫⟨∇Φρ, t⟩² ds (∇Φρ by central differences of the grid),
+//   BOM: F4 = ∫ o² ds + c_BOM ∫ S(o)² ds, o the trilinear occupancy at the guide, S the smoothed
+//        surcharge step around the threshold (surcharge_step): the paper's ∫δ ds where o is 0 or
+//        1, plus c_BOM where the guide runs through a region denser than the threshold.
+// Quadrature is the trapezoidal rule on the samples, exactly what the residuals sum to.
 struct GuideTerms {
   double f1 = 0.0, f2 = 0.0, f3 = 0.0, f4 = 0.0;
   double total = 0.0;       // Σ wᵢFᵢ

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "density/accumulator.h"
+#include "density/statistics.h"
 #include "guides/guide_outputs.h"
 #include "io/atomic_file.h"
 #include "io/curve_files.h"
@@ -15,7 +17,7 @@ namespace hairfit {
 namespace fs = std::filesystem;
 
 const std::vector<std::string>& stage_names() {
-  static const std::vector<std::string> names{"fields", "chart", "roots", "preguides", "guides", "strands"};
+  static const std::vector<std::string> names{"fields", "chart", "roots", "preguides", "guides", "strands", "density"};
   return names;
 }
 
@@ -76,6 +78,7 @@ class Runner {
 
  private:
   void run_stage(const std::string& name) {
+    if (name == "density" && !density_declared(scene_)) return;  // no trace of a disabled effect
     StageReport stage;
     stage.name = name;
     const StageMeter meter;
@@ -85,6 +88,7 @@ class Runner {
     else if (name == "preguides") preguides(stage);
     else if (name == "guides") guides(stage);
     else if (name == "strands") strands(stage);
+    else if (name == "density") density(stage);
     stage.seconds = meter.seconds();
     stage.peak_memory_bytes = meter.peak_memory_bytes();
     result_.report.stages.push_back(std::move(stage));
@@ -178,11 +182,37 @@ class Runner {
     output("preguides.obj", [&](const fs::path& p) { write_obj_curves(p, curves); });
   }
 
+  // The fibres' pores: one fibre per pore, grown along its cluster's guide.
+  Pores pores() const {
+    const StageValues& v = result_.values;
+    Pores p;
+    p.positions = v.roots->pores.positions;
+    p.lengths = v.roots->pores.lengths;
+    p.guide = v.clusters->pore_cluster;
+    return p;
+  }
+
   void guides(StageReport& stage) {
     StageValues& v = result_.values;
-    v.guides = std::make_shared<const Guides>(
-        make_guides(v.clusters->bases, *v.preguides, boundary(), guide_options(scene_, options_.threads)));
-    stage.digest = digest(*v.guides).hex();
+    const GuideOptions o = guide_options(scene_, options_.threads);
+    Digest density_digest;
+    if (density_declared(scene_)) {
+      const GuideDensityOptions d =
+          guide_density_options(scene_, density_geometry(scene_, inputs_.volume.mesh), pores(), options_.threads);
+      DensityGuides result = make_guides_with_density(v.clusters->bases, *v.preguides, boundary(), o, d);
+      v.guides = std::make_shared<const Guides>(std::move(result.guides));
+      v.guide_density = std::make_shared<const DensityGrid>(std::move(result.density));
+      const std::vector<double>& values = v.guide_density->values();
+      density_digest.add_bytes(values.data(), values.size() * sizeof(double));
+      stage.add("density_batches", static_cast<std::int64_t>(result.batches));
+      double f4 = 0.0;
+      for (const Guide& g : v.guides->items) f4 += g.f4;
+      stage.add("mean_f4", v.guides->size() ? f4 / v.guides->size() : 0.0);
+    } else {
+      v.guides = std::make_shared<const Guides>(make_guides(v.clusters->bases, *v.preguides, boundary(), o));
+    }
+    stage.digest = density_declared(scene_) ? Digest().add(digest(*v.guides).hex()).add(density_digest.hex()).hex()
+                                            : digest(*v.guides).hex();
     const GuideFigures f = guide_figures(*v.guides, *v.preguides, boundary());
     stage.add("guides", static_cast<std::int64_t>(f.guides));
     stage.add("failures", static_cast<std::int64_t>(f.failures));
@@ -200,14 +230,9 @@ class Runner {
 
   void strands(StageReport& stage) {
     StageValues& v = result_.values;
-    Pores pores;
-    const RootSet& r = v.roots->pores;
-    pores.positions = r.positions;
-    pores.lengths = r.lengths;
-    pores.guide = v.clusters->pore_cluster;
     const DistanceField* volume = v.volume_field.get();
     const DistanceFunction inside_volume = [volume](const Vec3& p) { return volume->value(p); };
-    Strands s = make_strands(v.guides->curves(), pores, strand_options(scene_, options_.threads), inside_volume);
+    Strands s = make_strands(v.guides->curves(), pores(), strand_options(scene_, options_.threads), inside_volume);
     add_widths(s.fibres, scene_.hair.cross_section);
     v.strands = std::make_shared<const Strands>(std::move(s));
     const Curves& fibres = v.strands->fibres;
@@ -233,6 +258,41 @@ class Runner {
       write("strands", fibres);
       if (format != "obj") write("guides", guide_curves);  // guides.obj comes from the guides stage
     }
+  }
+
+  // Paper §3.5, Fig. 5–6: what the final fibres' density looks like, measured the same way for
+  // every model (a CDM deposit of the final, cut fibres) so models can be compared. Runs after
+  // strands because the fibres exist only then.
+  void density(StageReport& stage) {
+    StageValues& v = result_.values;
+    const GridGeometry grid = density_geometry(scene_, inputs_.volume.mesh);
+    const Curves& curves = v.strands->fibres;
+    std::vector<std::vector<Vec3>> fibres(curves.count());
+    for (std::size_t c = 0; c < curves.count(); ++c)
+      fibres[c].assign(curves.points.begin() + curves.offsets[c], curves.points.begin() + curves.offsets[c + 1]);
+    DensityAccumulator accumulator(grid);
+    accumulator.add_fibres(fibres, options_.threads);
+    v.fibre_density = std::make_shared<const DensityGrid>(std::move(accumulator).freeze());
+    const Boundary b = boundary();
+    const DensityStatistics s = density_statistics(*v.fibre_density, [&b](const Vec3& p) { return b.acceptable(p); });
+    const SegmentHistogram histogram = segment_histogram(grid, fibres, options_.threads);
+    const std::vector<double>& values = v.fibre_density->values();
+    stage.digest = Digest().add_bytes(values.data(), values.size() * sizeof(double)).hex();
+    stage.add("model", scene_.effects.density == DensityModel::binary ? std::string("binary") : std::string("continuous"));
+    stage.add("voxel_cm", grid.voxel);
+    stage.add("grid", std::to_string(grid.dims.x()) + "x" + std::to_string(grid.dims.y()) + "x" + std::to_string(grid.dims.z()));
+    stage.add("region_cells", s.region_cells);
+    stage.add("occupied_cells", s.occupied_cells);
+    stage.add("mean_density", s.mean);
+    stage.add("coefficient_of_variation", s.coefficient_of_variation);
+    stage.add("empty_share", s.empty_share);
+    stage.add("max_segments_per_cell", static_cast<std::int64_t>(histogram.cells_with.empty() ? 0 : histogram.cells_with.size() - 1));
+    output("density/histogram.csv", [&](const fs::path& p) { write_text_file_atomically(p, histogram_csv(histogram)); });
+    // Centre sagittal slice (Fig. 6): normal = the head's left–right axis = front × up.
+    const Vec3 up = -scene_.units.down;
+    const Vec3 left_right = scene_.units.front.cross(up);
+    output("density/sagittal.nrrd",
+           [&](const fs::path& p) { write_nrrd(p, slice_to_nrrd(centre_slice(*v.fibre_density, left_right, up))); });
   }
 
   const Scene& scene_;

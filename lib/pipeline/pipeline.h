@@ -1,5 +1,7 @@
 // The stages in order, run as pure functions of the scene and the earlier stages' values:
-//   fields → chart → roots → preguides → guides → strands
+//   fields → chart → roots → preguides → guides → strands → density
+// The density stage exists only when the scene declares a density model (effects.density); then
+// the guides stage also optimises in batches against the density (make_guides_with_density).
 #pragma once
 #include <filesystem>
 #include <memory>
@@ -7,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "density/grid.h"
 #include "field/distance_field.h"
 #include "guides/guides.h"
 #include "pipeline/inputs.h"
@@ -34,9 +37,13 @@ struct StageValues {
   std::shared_ptr<const PreGuides> preguides;
   std::shared_ptr<const Guides> guides;
   std::shared_ptr<const Strands> strands;
+  // Only with a density model: the model's grid after the last guide batch (BOM occupancy or CDM),
+  // and the CDM density of the final fibres (the density stage).
+  std::shared_ptr<const DensityGrid> guide_density, fibre_density;
 };
 
-// The stages this build runs, in order.
+// The stages this build runs, in order ("density" is skipped, and absent from the report, when
+// the scene declares no density model).
 const std::vector<std::string>& stage_names();
 
 // Throws InputError listing the valid stages unless `stage` is one (or empty).

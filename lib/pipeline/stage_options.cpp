@@ -85,4 +85,24 @@ StrandOptions strand_options(const Scene& scene, int threads) {
   return o;
 }
 
+bool density_declared(const Scene& scene) { return scene.effects.density != DensityModel::none; }
+
+GridGeometry density_geometry(const Scene& scene, const Mesh& volume) {
+  const auto [lower, upper] = bounding_box(volume);
+  return make_density_geometry(lower, upper, scene.density.voxel, 2.0 * scene.density.voxel, scene.fields.max_memory);
+}
+
+GuideDensityOptions guide_density_options(const Scene& scene, const GridGeometry& grid, Pores pores, int threads) {
+  GuideDensityOptions o;
+  o.term.model = scene.effects.density == DensityModel::binary ? GuideDensityModel::binary : GuideDensityModel::continuous;
+  o.term.strength = scene.density.strength;
+  o.term.threshold = scene.density.threshold;
+  o.term.surcharge = scene.density.surcharge;
+  o.grid = grid;
+  o.batch = scene.density.batch;
+  o.pores = std::move(pores);
+  o.strands = strand_options(scene, threads);
+  return o;
+}
+
 }  // namespace hairfit

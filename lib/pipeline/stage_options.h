@@ -2,6 +2,8 @@
 // they can be used and tested without a scene file.
 #pragma once
 #include "field/distance_field.h"
+#include "core/mesh.h"
+#include "guides/density_term.h"
 #include "guides/guides.h"
 #include "scalp/roots.h"
 #include "spec/scene.h"
@@ -16,5 +18,14 @@ RodDiscretisation rod_discretisation(const Scene& scene);
 PreguideOptions preguide_options(const Scene& scene, int threads);
 GuideOptions guide_options(const Scene& scene, int threads);
 StrandOptions strand_options(const Scene& scene, int threads);
+
+// Whether the scene declares a density model (effects.density ≠ none).
+bool density_declared(const Scene& scene);
+// The density grid: the hair-volume mesh's bounding box plus two voxels on every side, at
+// density.voxel cm, within fields.max_memory.
+GridGeometry density_geometry(const Scene& scene, const Mesh& volume);
+// The batched guide optimisation's options (requires density_declared); `pores` are the fibres'
+// pores with their cluster (guide) index, what CDM deposits.
+GuideDensityOptions guide_density_options(const Scene& scene, const GridGeometry& grid, Pores pores, int threads);
 
 }  // namespace hairfit

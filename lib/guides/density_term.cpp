@@ -1,0 +1,51 @@
+#include "guides/density_term.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "strands/guide_track.h"
+
+namespace hairfit {
+
+GridGeometry make_density_geometry(const Vec3& lower, const Vec3& upper, double voxel, double margin,
+                                   double max_memory_gib) {
+  const Vec3 grow = Vec3::Constant(margin);
+  return make_grid_geometry(lower - grow, upper + grow, voxel, max_memory_gib);
+}
+
+double surcharge_step(double occupancy, double threshold, double width) {
+  const double x = std::clamp((occupancy - threshold) / width + 0.5, 0.0, 1.0);
+  return x * x * (3.0 - 2.0 * x);
+}
+
+std::vector<std::vector<Vec3>> guide_deposit_fibres(const std::vector<Vec3>& guide, const std::vector<int>& pores_of_guide,
+                                                    const GuideDensityOptions& options) {
+  if (pores_of_guide.empty()) return {guide};
+  // The wisp extent exactly as make_strands measures it: the largest distance of the cluster's
+  // pores from the guide root in the plane of the root frame.
+  const GuideTrack track(guide);
+  Vec3 g0, t0, d1, d2;
+  track.at(0.0, g0, t0, d1, d2);
+  double extent = 0.0;
+  for (int i : pores_of_guide) {
+    const Vec3 delta = options.pores.positions[i] - g0;
+    extent = std::max(extent, std::hypot(delta.dot(d1), delta.dot(d2)));
+  }
+  std::vector<std::vector<Vec3>> fibres;
+  fibres.reserve(pores_of_guide.size());
+  for (int i : pores_of_guide)
+    fibres.push_back(make_fibre(guide, options.pores.positions[i], options.pores.lengths[i], extent, options.strands));
+  return fibres;
+}
+
+Tube guide_tube(const std::vector<Vec3>& guide, double root_radius, double tip_radius) {
+  Tube tube;
+  tube.points = guide;
+  std::vector<double> s(guide.size(), 0.0);
+  for (std::size_t i = 1; i < guide.size(); ++i) s[i] = s[i - 1] + (guide[i] - guide[i - 1]).norm();
+  const double total = s.empty() || s.back() <= 0.0 ? 1.0 : s.back();
+  for (double si : s) tube.radii.push_back(root_radius + (tip_radius - root_radius) * si / total);
+  return tube;
+}
+
+}  // namespace hairfit

@@ -1,0 +1,60 @@
+// The density term F4 of the principal-guide objective (paper §3.5, DESIGN §5–6) and what a final
+// guide deposits into the density grid. Guides then depend on each other: they are optimised in
+// fixed-size batches (make_guides_with_density, guides.h), each batch against the frozen density
+// of all earlier batches, and deposited in guide order, so results do not depend on threads.
+#pragma once
+#include <vector>
+
+#include "density/grid.h"
+#include "density/voxelise.h"
+#include "strands/strands.h"
+
+namespace hairfit {
+
+enum class GuideDensityModel {
+  binary,      // BOM: occupancy grid, 1 where an earlier wisp's tube lies
+  continuous,  // CDM: Σ fibre length in the cell / cell diagonal
+};
+
+// Everything the F4 residuals read besides the grid (weights.density = w4 multiplies them all).
+struct DensityTermOptions {
+  GuideDensityModel model = GuideDensityModel::continuous;
+  double strength = 1.0;         // c_ρ (CDM): F4 = c_ρ ∫⟨∇Φρ, t⟩² ds
+  double threshold = 0.5;        // BOM: occupancy above which the surcharge applies
+  double surcharge = 10.0;       // c_BOM
+  double surcharge_width = 0.2;  // BOM: occupancy over which the surcharge rises (smoothstep)
+};
+
+struct GuideDensityOptions {
+  DensityTermOptions term;
+  GridGeometry grid;  // make_density_geometry
+  int batch = 64;     // guides per batch
+  // What a final guide deposits. CDM: the fibres the strand stage will grow from its cluster's
+  // pores (make_fibre with the same wisp extent, before cutting); a pore list with no pores for a
+  // guide deposits the guide polyline once instead. BOM: a tube along the guide, radius
+  // strands.root_radius → strands.tip_radius (cm).
+  Pores pores;
+  StrandOptions strands;
+};
+
+// The density grid's cells: the box [lower, upper] (cm, e.g. the hair-volume mesh's bounding
+// box) grown by `margin` cm on every side, at cells of edge `voxel` cm (make_grid_geometry; throws
+// InputError beyond max_memory_gib).
+GridGeometry make_density_geometry(const Vec3& lower, const Vec3& upper, double voxel, double margin,
+                                   double max_memory_gib);
+
+// The paper's surcharge indicator on occupancy o ∈ [0, 1], smoothed: 0 below threshold − width/2,
+// 1 above threshold + width/2, the C¹ smoothstep 3x² − 2x³ between (x the position in the ramp).
+double surcharge_step(double occupancy, double threshold, double width);
+
+// The fibres a guide deposits (CDM): one per pore of its cluster, as make_strands grows them
+// (uncut), in pore order; `pores_of_guide` are indices into options.pores. No pores: the guide
+// polyline itself.
+std::vector<std::vector<Vec3>> guide_deposit_fibres(const std::vector<Vec3>& guide, const std::vector<int>& pores_of_guide,
+                                                    const GuideDensityOptions& options);
+
+// The generalised cylinder a guide occupies (BOM): radius root_radius at the root to tip_radius at
+// the tip, linear in arc length.
+Tube guide_tube(const std::vector<Vec3>& guide, double root_radius, double tip_radius);
+
+}  // namespace hairfit
