@@ -41,6 +41,19 @@ Polylines polylines(const Curves& curves) {
 
 namespace {
 
+// Two panels, each drawn at (width/2 or the rest) × height, joined into exactly width × height.
+Image two_panels(const Image& left, const Image& right, int width, int height) {
+  Image out = make_image(width, height, 0, 0, 0);
+  auto blit = [&](const Image& panel, int x0) {
+    for (int y = 0; y < std::min(height, panel.height); ++y)
+      for (int x = 0; x < panel.width && x0 + x < width; ++x)
+        std::copy(panel.pixel(x, y), panel.pixel(x, y) + 4, &out.rgba[(static_cast<std::size_t>(y) * width + x0 + x) * 4]);
+  };
+  blit(left, 0);
+  blit(right, left.width);
+  return out;
+}
+
 // A slice of a distance field through the head's mid-sagittal plane (spanned by front and up),
 // sampled over the field's extent, as a diverging heat map with the surface as the zero contour.
 Image field_slice(const DistanceField& field, const Scene& scene, const std::string& title, int width, int height) {
@@ -112,8 +125,9 @@ Image render_stage(const std::string& stage, const Scene& scene, const Inputs& i
     return contact_sheet(tiles, captions, 4);
   }
   if (stage == "fields")
-    return side_by_side({field_slice(*values.scalp_field, scene, "scalp field, mid-sagittal slice", width / 2, height),
-                         field_slice(*values.volume_field, scene, "volume field, mid-sagittal slice", width / 2, height)});
+    return two_panels(field_slice(*values.scalp_field, scene, "scalp field, mid-sagittal slice", width / 2, height),
+                      field_slice(*values.volume_field, scene, "volume field, mid-sagittal slice", width - width / 2, height),
+                      width, height);
   if (stage == "chart") return chart_picture(values, false, width, height);
   Drawing3D drawing;
   MeshLayer scalp{&inputs.scalp.mesh};
@@ -161,7 +175,7 @@ Image render_stage(const std::string& stage, const Scene& scene, const Inputs& i
   RenderOptions options;
   options.threads = threads;
   const Image picture = render_3d(drawing, camera, options);
-  if (stage == "roots") return side_by_side({chart_picture(values, true, width - width_3d, height), picture});
+  if (stage == "roots") return two_panels(chart_picture(values, true, width - width_3d, height), picture, width, height);
   return picture;
 }
 
