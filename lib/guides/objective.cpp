@@ -182,6 +182,25 @@ GuideTerms evaluate_guide_terms(const GuideTargets& targets, const double eta[6]
   return terms;
 }
 
+std::vector<double> guide_residuals(const GuideTargets& targets, const double eta[6], std::vector<double>* jacobian) {
+  GuideCost cost(targets);
+  std::vector<double> r(cost.residual_count());
+  if (!jacobian) {
+    cost(eta, r.data());
+    return r;
+  }
+  Jet x[6];
+  for (int i = 0; i < 6; ++i) x[i] = Jet(eta[i], i);
+  std::vector<Jet> rj(r.size());
+  cost(x, rj.data());
+  jacobian->assign(6 * r.size(), 0.0);
+  for (std::size_t i = 0; i < r.size(); ++i) {
+    r[i] = rj[i].a;
+    for (int j = 0; j < 6; ++j) (*jacobian)[6 * i + j] = rj[i].v[j];
+  }
+  return r;
+}
+
 GuideSolve optimise_guide(const GuideTargets& targets, const double start[6], int max_iterations, double tolerance) {
   GuideSolve result;
   std::copy(start, start + 6, result.eta);

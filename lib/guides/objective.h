@@ -48,6 +48,11 @@ struct GuideTerms {
 };
 GuideTerms evaluate_guide_terms(const GuideTargets& targets, const double eta[6]);
 
+// The residuals the optimiser sees at eta (blocks F1, F2, F3, then F4 when targets.density is
+// set), and, when `jacobian` is given, their derivatives in eta by automatic differentiation
+// (row-major, 6 per residual). For tests of the residuals and their jets.
+std::vector<double> guide_residuals(const GuideTargets& targets, const double eta[6], std::vector<double>* jacobian = nullptr);
+
 struct GuideSolve {
   double eta[6] = {0, 0, 0, 0, 0, 0};  // best (f_L, m(0)), dimensionless
   int iterations = 0;

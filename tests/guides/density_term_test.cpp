@@ -1,0 +1,203 @@
+// F4 (paper §3.5): residuals against independently computed integrals, jets against central
+// finite differences, and no trace without a density model.
+#include <doctest/doctest.h>
+
+#include <cmath>
+
+#include "density/accumulator.h"
+#include "guides/density_term.h"
+#include "guides/objective.h"
+
+using namespace hairfit;
+
+namespace {
+
+// A closed UV sphere of radius r about the origin, outward triangles.
+Mesh ball(double r, int rings, int segments) {
+  Mesh m;
+  m.positions.emplace_back(0, r, 0);
+  for (int i = 1; i < rings; ++i)
+    for (int j = 0; j < segments; ++j) {
+      const double th = M_PI * i / rings, ph = 2 * M_PI * j / segments;
+      m.positions.emplace_back(r * std::sin(th) * std::cos(ph), r * std::cos(th), r * std::sin(th) * std::sin(ph));
+    }
+  m.positions.emplace_back(0, -r, 0);
+  const int bottom = static_cast<int>(m.positions.size()) - 1;
+  auto at = [&](int i, int j) { return 1 + (i - 1) * segments + (j % segments); };
+  for (int j = 0; j < segments; ++j) {
+    m.triangles.emplace_back(0, at(1, j), at(1, j + 1));
+    m.triangles.emplace_back(bottom, at(rings - 1, j + 1), at(rings - 1, j));
+    for (int i = 1; i + 1 < rings; ++i) {
+      m.triangles.emplace_back(at(i, j), at(i + 1, j), at(i + 1, j + 1));
+      m.triangles.emplace_back(at(i, j), at(i + 1, j + 1), at(i, j + 1));
+    }
+  }
+  for (Vec3i& t : m.triangles) {  // outward: the origin is inside
+    const Vec3 n = (m.positions[t[1]] - m.positions[t[0]]).cross(m.positions[t[2]] - m.positions[t[0]]);
+    if (n.dot(m.positions[t[0]]) < 0) std::swap(t[1], t[2]);
+  }
+  return m;
+}
+
+struct World {
+  DistanceField scalp = make_distance_field(ball(8.0, 16, 32), FieldSpec{0.5, 3, 20.0, 1.0, "scalp"}, 2);
+  DistanceField volume = make_distance_field(ball(14.0, 16, 32), FieldSpec{0.5, 3, 20.0, 1.0, "volume"}, 2);
+  Boundary boundary() const { return Boundary{&scalp, &volume}; }
+};
+const World& world() {
+  static const World w;
+  return w;
+}
+
+// One guide rooted on top of the head, growing up and bending toward +x, following one straight
+// pre-guide; K samples.
+GuideTargets targets(int samples = 8) {
+  GuideTargets t;
+  t.root = Vec3(0, 8, 0);
+  t.length = 10.0;
+  t.rod.segments = 32;
+  t.model = make_rod_model(hair_rod(t.length, HairMaterial{}), RodRoot{t.root, root_frame(Vec3(0, 1, 0), Vec3(1, 0, 0))});
+  for (int k = 0; k <= samples; ++k) {
+    t.sample_nodes.push_back(k * t.rod.segments / samples);
+    t.sample_weights.push_back((k == 0 || k == samples ? 0.5 : 1.0) / samples);
+  }
+  GuideTargets::Neighbour nb;
+  nb.weight = 1.0;
+  for (int k = 0; k <= samples; ++k) {
+    nb.tangents.push_back(Vec3(0, 1, 0));
+    nb.darboux.push_back(Vec3::Zero());
+  }
+  t.neighbours.push_back(nb);
+  t.boundary = new Boundary(world().boundary());  // leaked on purpose: tests only
+  t.weights = GuideWeights{0.3, 0.2, 0.3, 0.2};
+  return t;
+}
+
+// Fibres criss-crossing the space the guide sweeps, so the density has structure there.
+DensityGrid cdm_grid(const GridGeometry& g) {
+  DensityAccumulator acc(g);
+  std::vector<std::vector<Vec3>> fibres;
+  for (int i = 0; i < 40; ++i) {
+    const double a = 0.37 * i, y = 8.0 + 0.3 * i;
+    fibres.push_back({Vec3(-6 * std::cos(a), y, -6 * std::sin(a)), Vec3(6 * std::cos(a), y + 2.0, 6 * std::sin(a))});
+  }
+  acc.add_fibres(fibres);
+  return std::move(acc).freeze();
+}
+DensityGrid bom_grid(const GridGeometry& g) {
+  DensityAccumulator acc(g);
+  std::vector<Tube> tubes;
+  for (int i = 0; i < 6; ++i) {
+    const double y = 9.0 + 1.5 * i;
+    tubes.push_back(guide_tube({Vec3(-6, y, -1), Vec3(0, y + 0.5, 0.3), Vec3(6, y, 1)}, 0.4, 0.7));
+  }
+  acc.occupy_all(tubes);
+  return std::move(acc).freeze();
+}
+
+const GridGeometry& grid() {
+  static const GridGeometry g = make_density_geometry(Vec3(-14, -14, -14), Vec3(14, 22, 14), 0.5, 1.0, 1.0);
+  return g;
+}
+
+const double kEta[6] = {0.8, -0.4, 0.3, 0.2, 0.5, -0.3};
+
+}  // namespace
+
+TEST_CASE("F4 adds no residual and is zero without a density model") {
+  const GuideTargets t = targets();
+  const std::vector<double> r = guide_residuals(t, kEta);
+  CHECK(r.size() == t.sample_nodes.size() * (6 * t.neighbours.size() + 2));
+  CHECK(evaluate_guide_terms(t, kEta).f4 == 0.0);
+
+  // With an empty grid the residuals exist but are zero, and the other terms are unchanged.
+  DensityAccumulator empty(grid());
+  const DensityGrid zero = std::move(empty).freeze();
+  for (GuideDensityModel model : {GuideDensityModel::continuous, GuideDensityModel::binary}) {
+    GuideTargets d = targets();
+    d.density = &zero;
+    d.density_term.model = model;
+    const std::vector<double> rd = guide_residuals(d, kEta);
+    const std::size_t per = model == GuideDensityModel::continuous ? 1 : 2;
+    REQUIRE(rd.size() == r.size() + per * t.sample_nodes.size());
+    for (std::size_t i = 0; i < r.size(); ++i) CHECK(rd[i] == r[i]);
+    for (std::size_t i = r.size(); i < rd.size(); ++i) CHECK(rd[i] == 0.0);
+    CHECK(evaluate_guide_terms(d, kEta).f4 == 0.0);
+  }
+}
+
+TEST_CASE("F4 equals the paper's integrals by the trapezoidal rule on the guide's samples") {
+  const DensityGrid cdm = cdm_grid(grid()), bom = bom_grid(grid());
+  GuideTargets t = targets();
+  const FibreShape shape = fibre_shape(t.model, t.root, t.length, t.rod, Vec3(kEta[0], kEta[1], kEta[2]),
+                                       Vec3(kEta[3], kEta[4], kEta[5]));
+  // CDM: c_ρ Σ Δs ⟨∇Φρ, t⟩², gradient from the grid's own central differences.
+  t.density = &cdm;
+  t.density_term.model = GuideDensityModel::continuous;
+  t.density_term.strength = 2.5;
+  double expect = 0.0;
+  for (std::size_t k = 0; k < t.sample_nodes.size(); ++k) {
+    const int n = t.sample_nodes[k];
+    const double slope = cdm.central_gradient(shape.nodes[n]).dot(shape.tangents[n]);
+    expect += 2.5 * t.sample_weights[k] * slope * slope;
+  }
+  CHECK(expect > 1e-4);  // the fixture gives the term something to measure
+  CHECK(evaluate_guide_terms(t, kEta).f4 == doctest::Approx(expect).epsilon(1e-9));
+
+  // BOM: Σ Δs (o² + c_BOM·S(o)²).
+  t.density = &bom;
+  t.density_term.model = GuideDensityModel::binary;
+  t.density_term.surcharge = 7.0;
+  expect = 0.0;
+  double surcharged = 0.0;
+  for (std::size_t k = 0; k < t.sample_nodes.size(); ++k) {
+    const double o = bom.value(shape.nodes[t.sample_nodes[k]]);
+    const double s = surcharge_step(o, t.density_term.threshold, t.density_term.surcharge_width);
+    expect += t.sample_weights[k] * (o * o + 7.0 * s * s);
+    surcharged += s;
+  }
+  CHECK(surcharged > 0.0);  // the guide crosses occupied cells
+  CHECK(evaluate_guide_terms(t, kEta).f4 == doctest::Approx(expect).epsilon(1e-9));
+  // The weighted total includes w4·F4.
+  const GuideTerms terms = evaluate_guide_terms(t, kEta);
+  const GuideWeights& w = t.weights;
+  CHECK(terms.total == doctest::Approx(w.direction * terms.f1 + w.similarity * terms.f2 + w.boundary * terms.f3 +
+                                       w.density * terms.f4).epsilon(1e-12));
+  // w4 = 0: F4 is still reported, unweighted.
+  t.weights = GuideWeights{0.4, 0.2, 0.4, 0.0};
+  CHECK(evaluate_guide_terms(t, kEta).f4 == doctest::Approx(expect).epsilon(1e-9));
+}
+
+TEST_CASE("F4 jets match central finite differences of the double residuals") {
+  const DensityGrid cdm = cdm_grid(grid()), bom = bom_grid(grid());
+  for (GuideDensityModel model : {GuideDensityModel::continuous, GuideDensityModel::binary}) {
+    CAPTURE(static_cast<int>(model));
+    GuideTargets t = targets();
+    t.density = model == GuideDensityModel::continuous ? &cdm : &bom;
+    t.density_term.model = model;
+    t.density_term.surcharge_width = 0.5;  // a wide ramp: more samples on it
+    const std::size_t first = t.sample_nodes.size() * (6 * t.neighbours.size() + 2);
+    std::vector<double> jacobian;
+    const std::vector<double> r = guide_residuals(t, kEta, &jacobian);
+    int compared = 0, nonzero = 0;
+    for (int j = 0; j < 6; ++j) {
+      const double h = 1e-6;
+      double plus[6], minus[6];
+      std::copy(kEta, kEta + 6, plus);
+      std::copy(kEta, kEta + 6, minus);
+      plus[j] += h;
+      minus[j] -= h;
+      const std::vector<double> rp = guide_residuals(t, plus), rm = guide_residuals(t, minus);
+      for (std::size_t i = first; i < r.size(); ++i) {
+        const double fd = (rp[i] - rm[i]) / (2 * h), ad = jacobian[6 * i + j];
+        // Trilinear interpolants have kinks on cell-centre planes; a sample within h of one
+        // would make the difference quotient meaningless, and then rp/rm straddle it.
+        CHECK(ad == doctest::Approx(fd).epsilon(1e-5).scale(1.0));
+        ++compared;
+        nonzero += std::fabs(ad) > 1e-6;
+      }
+    }
+    CHECK(compared > 0);
+    CHECK(nonzero > 6);  // the derivatives are not trivially zero
+  }
+}
