@@ -8,7 +8,7 @@
 #include "commands.h"
 #include "core/parallel.h"
 #include "field/distance_field.h"
-#include "io/nrrd.h"
+#include "field/field_nrrd.h"
 #include "io/obj_mesh.h"
 
 namespace hairfit::cli {
@@ -33,16 +33,7 @@ int command_field(const Arguments& argv) {
   const DistanceField field = make_distance_field(loaded.mesh, spec, threads);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-  NrrdVolume volume;
-  volume.sizes = field.dims();
-  volume.origin = field.origin();
-  volume.spacing = Vec3::Constant(field.voxel());
-  volume.data.resize(int64_t(field.dims().x()) * field.dims().y() * field.dims().z());
-  size_t at = 0;
-  for (int k = 0; k < field.dims().z(); ++k)
-    for (int j = 0; j < field.dims().y(); ++j)
-      for (int i = 0; i < field.dims().x(); ++i) volume.data[at++] = static_cast<float>(field.sample(i, j, k));
-  write_nrrd(*args.text("out"), volume);
+  write_nrrd(*args.text("out"), field_to_nrrd(field));
 
   std::printf("%s: %zu triangles\n", spec.name.c_str(), loaded.mesh.triangles.size());
   std::printf("  grid     %d×%d×%d voxels of %g cm, origin (%g, %g, %g) cm\n", field.dims().x(), field.dims().y(),
