@@ -25,122 +25,128 @@ int rod_integrator_order(RodIntegrator integrator) { return integrator == RodInt
 namespace {
 
 // A forward-mode dual number with N tangents. The integrator runs on it in place of
-// ceres::Jet<double, N>: plain loops over a fixed array, which GCC inlines and vectorises, where
-// Jet's Eigen expression templates stayed out-of-line calls. Its value part does exactly the
-// double operations, so a jet run's values are bit for bit the double run's.
-template <int N>
+// ceres::Jet<double, N>, whose Eigen expression templates GCC left as out-of-line calls here
+// (~25× the double cost). The tangents are held in explicit SIMD packs P (GCC vector extension:
+// two doubles for SSE2, four for AVX2; unused slots of the last pack stay zero), so they are
+// vectorised the same way whatever the inliner decides. The value part does exactly the double
+// operations, so a jet run's values are bit for bit the double run's.
+typedef double Pair2 __attribute__((vector_size(16)));
+typedef double Pair4 __attribute__((vector_size(32)));
+
+template <int N, typename P>
 struct Dual {
-  alignas(16) double v[N];  // tangents first, aligned: whole SSE packets
+  static constexpr int W = sizeof(P) / sizeof(double);
+  static constexpr int K = (N + W - 1) / W;
+  P v[K];
   double a;
 };
 
-template <int N>
-inline Dual<N> operator+(const Dual<N>& x, const Dual<N>& y) {
-  Dual<N> z;
+template <int N, typename P>
+inline Dual<N, P> operator+(const Dual<N, P>& x, const Dual<N, P>& y) {
+  Dual<N, P> z;
   z.a = x.a + y.a;
-  for (int k = 0; k < N; ++k) z.v[k] = x.v[k] + y.v[k];
+  for (int k = 0; k < Dual<N, P>::K; ++k) z.v[k] = x.v[k] + y.v[k];
   return z;
 }
-template <int N>
-inline Dual<N> operator-(const Dual<N>& x, const Dual<N>& y) {
-  Dual<N> z;
+template <int N, typename P>
+inline Dual<N, P> operator-(const Dual<N, P>& x, const Dual<N, P>& y) {
+  Dual<N, P> z;
   z.a = x.a - y.a;
-  for (int k = 0; k < N; ++k) z.v[k] = x.v[k] - y.v[k];
+  for (int k = 0; k < Dual<N, P>::K; ++k) z.v[k] = x.v[k] - y.v[k];
   return z;
 }
-template <int N>
-inline Dual<N> operator-(const Dual<N>& x) {
-  Dual<N> z;
+template <int N, typename P>
+inline Dual<N, P> operator-(const Dual<N, P>& x) {
+  Dual<N, P> z;
   z.a = -x.a;
-  for (int k = 0; k < N; ++k) z.v[k] = -x.v[k];
+  for (int k = 0; k < Dual<N, P>::K; ++k) z.v[k] = -x.v[k];
   return z;
 }
-template <int N>
-inline Dual<N> operator*(const Dual<N>& x, const Dual<N>& y) {
-  Dual<N> z;
+template <int N, typename P>
+inline Dual<N, P> operator*(const Dual<N, P>& x, const Dual<N, P>& y) {
+  Dual<N, P> z;
   z.a = x.a * y.a;
-  for (int k = 0; k < N; ++k) z.v[k] = x.a * y.v[k] + x.v[k] * y.a;
+  for (int k = 0; k < Dual<N, P>::K; ++k) z.v[k] = x.a * y.v[k] + x.v[k] * y.a;
   return z;
 }
-template <int N>
-inline Dual<N> operator*(double s, const Dual<N>& x) {
-  Dual<N> z;
+template <int N, typename P>
+inline Dual<N, P> operator*(double s, const Dual<N, P>& x) {
+  Dual<N, P> z;
   z.a = s * x.a;
-  for (int k = 0; k < N; ++k) z.v[k] = s * x.v[k];
+  for (int k = 0; k < Dual<N, P>::K; ++k) z.v[k] = s * x.v[k];
   return z;
 }
-template <int N>
-inline Dual<N> operator*(const Dual<N>& x, double s) {
-  Dual<N> z;
+template <int N, typename P>
+inline Dual<N, P> operator*(const Dual<N, P>& x, double s) {
+  Dual<N, P> z;
   z.a = x.a * s;
-  for (int k = 0; k < N; ++k) z.v[k] = x.v[k] * s;
+  for (int k = 0; k < Dual<N, P>::K; ++k) z.v[k] = x.v[k] * s;
   return z;
 }
-template <int N>
-inline Dual<N> operator+(double s, const Dual<N>& x) {
-  Dual<N> z = x;
+template <int N, typename P>
+inline Dual<N, P> operator+(double s, const Dual<N, P>& x) {
+  Dual<N, P> z = x;
   z.a = s + x.a;
   return z;
 }
-template <int N>
-inline Dual<N> operator+(const Dual<N>& x, double s) {
-  Dual<N> z = x;
+template <int N, typename P>
+inline Dual<N, P> operator+(const Dual<N, P>& x, double s) {
+  Dual<N, P> z = x;
   z.a = x.a + s;
   return z;
 }
-template <int N>
-inline Dual<N> operator-(double s, const Dual<N>& x) {
-  Dual<N> z;
+template <int N, typename P>
+inline Dual<N, P> operator-(double s, const Dual<N, P>& x) {
+  Dual<N, P> z;
   z.a = s - x.a;
-  for (int k = 0; k < N; ++k) z.v[k] = -x.v[k];
+  for (int k = 0; k < Dual<N, P>::K; ++k) z.v[k] = -x.v[k];
   return z;
 }
-template <int N>
-inline Dual<N> operator-(const Dual<N>& x, double s) {
-  Dual<N> z = x;
+template <int N, typename P>
+inline Dual<N, P> operator-(const Dual<N, P>& x, double s) {
+  Dual<N, P> z = x;
   z.a = x.a - s;
   return z;
 }
-template <int N>
-inline Dual<N> square(const Dual<N>& x) {  // x·x with half the tangent work, same bits as x * x
-  Dual<N> z;
+template <int N, typename P>
+inline Dual<N, P> square(const Dual<N, P>& x) {  // x·x with half the tangent work, same bits as x * x
+  Dual<N, P> z;
   z.a = x.a * x.a;
   const double d = 2.0 * x.a;
-  for (int k = 0; k < N; ++k) z.v[k] = d * x.v[k];
+  for (int k = 0; k < Dual<N, P>::K; ++k) z.v[k] = d * x.v[k];
   return z;
 }
 inline double square(double x) { return x * x; }
-template <int N>
-inline Dual<N> operator/(double s, const Dual<N>& x) {  // d(s/x) = −(s/x)/x·dx
-  Dual<N> z;
+template <int N, typename P>
+inline Dual<N, P> operator/(double s, const Dual<N, P>& x) {  // d(s/x) = −(s/x)/x·dx
+  Dual<N, P> z;
   z.a = s / x.a;
   const double d = -z.a / x.a;
-  for (int k = 0; k < N; ++k) z.v[k] = d * x.v[k];
+  for (int k = 0; k < Dual<N, P>::K; ++k) z.v[k] = d * x.v[k];
   return z;
 }
 
 // Between the public scalar T and the working scalar S (double stays double, Jet becomes Dual).
-inline double to_work(double x) { return x; }
+inline void to_work(double x, double& out) { out = x; }
 inline void to_public(double x, double& out) { out = x; }
-template <int N>
-inline Dual<N> to_work(const ceres::Jet<double, N>& x) {
-  Dual<N> z;
+template <int N, typename P>
+inline void to_work(const ceres::Jet<double, N>& x, Dual<N, P>& z) {
   z.a = x.a;
-  for (int k = 0; k < N; ++k) z.v[k] = x.v[k];
-  return z;
+  z.v[Dual<N, P>::K - 1] = P{};
+  for (int k = 0; k < N; ++k) z.v[k / Dual<N, P>::W][k % Dual<N, P>::W] = x.v[k];
 }
-template <int N>
-inline void to_public(const Dual<N>& x, ceres::Jet<double, N>& out) {
+template <int N, typename P>
+inline void to_public(const Dual<N, P>& x, ceres::Jet<double, N>& out) {
   out.a = x.a;
-  for (int k = 0; k < N; ++k) out.v[k] = x.v[k];
+  for (int k = 0; k < N; ++k) out.v[k] = x.v[k / Dual<N, P>::W][k % Dual<N, P>::W];
 }
-template <typename T>
+template <typename T, typename P>
 struct Work {
   using type = double;
 };
-template <int N>
-struct Work<ceres::Jet<double, N>> {
-  using type = Dual<N>;
+template <int N, typename P>
+struct Work<ceres::Jet<double, N>, P> {
+  using type = Dual<N, P>;
 };
 
 // 3-vectors and column-major 3×3 matrices on the scalar, as plain arrays.
@@ -292,20 +298,21 @@ inline void write_node(const Constants& k, const RodTrace<T>& trace, int i, doub
   }
 }
 
-// integrate_rod_steps, defined here so that each instantiation can be compiled twice (below).
-template <typename T>
+// integrate_rod_steps on the working scalar with tangent packs P (compiled twice, see below).
+template <typename T, typename P>
 inline void steps(const RodModel& model, RodIntegrator integrator, int segments, int first, int last,
                   const T* terminal_force, RodState<T>& state, const RodTrace<T>& trace) {
-  using S = typename Work<T>::type;
+  using S = typename Work<T, P>::type;
   const Constants k{model.kappa_hat, model.compliance, model.force_per_length, !model.force_per_length.isZero(0.0)};
   V<S> r, m, force_at;
   M<S> frame;
   for (int a = 0; a < 3; ++a) {
-    r[a] = to_work(state.position[a]);
-    m[a] = to_work(state.moment[a]);
-    force_at[a] = to_work(terminal_force[a]) + k.f[a];
+    to_work(state.position[a], r[a]);
+    to_work(state.moment[a], m[a]);
+    to_work(terminal_force[a], force_at[a]);
+    force_at[a] = force_at[a] + k.f[a];
   }
-  for (int a = 0; a < 9; ++a) frame[a] = to_work(state.frame[a]);
+  for (int a = 0; a < 9; ++a) to_work(state.frame[a], frame[a]);
   const double h = 1.0 / segments, hh = 0.5 * h, w = h / 6.0;
   Local<S> local;
   if (!k.gravity) local.phi = {};
@@ -351,39 +358,30 @@ inline void steps(const RodModel& model, RodIntegrator integrator, int segments,
   for (int a = 0; a < 9; ++a) to_public(frame[a], state.frame[a]);
 }
 
-// Each scalar's integrator is compiled for the baseline x86-64 (SSE2) and for AVX2, chosen once at
-// load time (GCC function multiversioning). Without FMA (not enabled, and -ffp-contract=off) both
-// do the same IEEE operations in the same order, so the results are bit for bit the same; AVX2's
-// wider, three-operand arithmetic makes the Jet<6> run ~1.4× faster. flatten inlines the stages
-// into each clone so that they are compiled for its target too.
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
-#define HAIRFIT_ROD_CLONES __attribute__((flatten, target_clones("avx2", "default")))
-#else
-#define HAIRFIT_ROD_CLONES
+// The integrator compiled twice: for the baseline x86-64 (SSE2, tangents in pairs) and for AVX2
+// (tangents in fours), chosen at run time. Neither enables FMA (and -ffp-contract=off), so both
+// do the same IEEE operations in the same order: the results are bit for bit the same. flatten
+// inlines the stages, so that all of the AVX2 variant is compiled for AVX2.
+#if defined(__GNUC__) && defined(__x86_64__)
+#define HAIRFIT_ROD_AVX2 1
+template <typename T>
+__attribute__((target("avx2"), flatten)) void steps_avx2(const RodModel& model, RodIntegrator integrator,
+                                                         int segments, int first, int last, const T* terminal_force,
+                                                         RodState<T>& state, const RodTrace<T>& trace) {
+  steps<T, Pair4>(model, integrator, segments, first, last, terminal_force, state, trace);
+}
 #endif
-
-HAIRFIT_ROD_CLONES void run_steps(const RodModel& model, RodIntegrator integrator, int segments, int first, int last,
-                                  const double* terminal_force, RodState<double>& state,
-                                  const RodTrace<double>& trace) {
-  steps(model, integrator, segments, first, last, terminal_force, state, trace);
-}
-HAIRFIT_ROD_CLONES void run_steps(const RodModel& model, RodIntegrator integrator, int segments, int first, int last,
-                                  const ceres::Jet<double, 3>* terminal_force, RodState<ceres::Jet<double, 3>>& state,
-                                  const RodTrace<ceres::Jet<double, 3>>& trace) {
-  steps(model, integrator, segments, first, last, terminal_force, state, trace);
-}
-HAIRFIT_ROD_CLONES void run_steps(const RodModel& model, RodIntegrator integrator, int segments, int first, int last,
-                                  const ceres::Jet<double, 6>* terminal_force, RodState<ceres::Jet<double, 6>>& state,
-                                  const RodTrace<ceres::Jet<double, 6>>& trace) {
-  steps(model, integrator, segments, first, last, terminal_force, state, trace);
-}
 
 }  // namespace
 
 template <typename T>
 void integrate_rod_steps(const RodModel& model, RodIntegrator integrator, int segments, int first, int last,
                          const T* terminal_force, RodState<T>& state, const RodTrace<T>& trace) {
-  run_steps(model, integrator, segments, first, last, terminal_force, state, trace);
+#ifdef HAIRFIT_ROD_AVX2
+  if (__builtin_cpu_supports("avx2"))
+    return steps_avx2<T>(model, integrator, segments, first, last, terminal_force, state, trace);
+#endif
+  steps<T, Pair2>(model, integrator, segments, first, last, terminal_force, state, trace);
 }
 
 template <typename T>
