@@ -8,7 +8,7 @@
 #include "guides/guide_outputs.h"
 #include "io/atomic_file.h"
 #include "io/curve_files.h"
-#include "io/nrrd.h"
+#include "field/field_nrrd.h"
 #include "pipeline/stage_options.h"
 #include "scalp/scalp_outputs.h"
 
@@ -31,18 +31,6 @@ void check_stage_name(const std::string& stage, const std::string& option) {
 
 namespace {
 
-NrrdVolume field_volume(const DistanceField& field) {
-  NrrdVolume v;
-  v.sizes = field.dims();
-  v.origin = field.origin();
-  v.spacing = Vec3::Constant(field.voxel());
-  v.data.resize(static_cast<std::size_t>(v.sizes.x()) * v.sizes.y() * v.sizes.z());
-  std::size_t at = 0;
-  for (int k = 0; k < v.sizes.z(); ++k)
-    for (int j = 0; j < v.sizes.y(); ++j)
-      for (int i = 0; i < v.sizes.x(); ++i) v.data[at++] = static_cast<float>(field.sample(i, j, k));
-  return v;
-}
 
 // Diameters along a fibre: a hair of section A at the root, tapering to half at the tip.
 void add_widths(Curves& curves, double cross_section) {
@@ -110,7 +98,7 @@ class Runner {
         make_distance_field(inputs_.volume.mesh, field_spec(scene_, scene_.inputs.volume.string()), options_.threads));
     Digest d;
     for (const DistanceField* f : {v.scalp_field.get(), v.volume_field.get()}) {
-      const NrrdVolume volume = field_volume(*f);
+      const NrrdVolume volume = field_to_nrrd(*f);
       d.add_bytes(volume.data.data(), volume.data.size() * sizeof(float));
     }
     stage.digest = d.hex();
@@ -121,8 +109,8 @@ class Runner {
                                  std::to_string(v.volume_field->dims().y()) + "x" + std::to_string(v.volume_field->dims().z()));
     stage.add("band_voxels", static_cast<std::int64_t>(v.scalp_field->band_voxels() + v.volume_field->band_voxels()));
     stage.add("memory_bytes", static_cast<std::int64_t>(v.scalp_field->memory_bytes() + v.volume_field->memory_bytes()));
-    output("fields/scalp.nrrd", [&](const fs::path& p) { write_nrrd(p, field_volume(*v.scalp_field)); });
-    output("fields/volume.nrrd", [&](const fs::path& p) { write_nrrd(p, field_volume(*v.volume_field)); });
+    output("fields/scalp.nrrd", [&](const fs::path& p) { write_nrrd(p, field_to_nrrd(*v.scalp_field)); });
+    output("fields/volume.nrrd", [&](const fs::path& p) { write_nrrd(p, field_to_nrrd(*v.volume_field)); });
   }
 
   void chart(StageReport& stage) {

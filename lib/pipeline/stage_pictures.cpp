@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "density/statistics.h"
 #include "render/chart_plot.h"
 #include "render/contact_sheet.h"
 #include "render/plot.h"
@@ -10,7 +11,8 @@
 namespace hairfit {
 
 const std::vector<std::string>& picture_stages() {
-  static const std::vector<std::string> names{"inputs", "fields", "chart", "roots", "preguides", "guides", "strands", "all"};
+  static const std::vector<std::string> names{"inputs", "fields", "chart", "roots", "preguides", "guides", "strands",
+                                              "density", "all"};
   return names;
 }
 
@@ -108,17 +110,51 @@ Image chart_picture(const StageValues& v, bool with_roots, int width, int height
   return render_chart(d, width, height);
 }
 
+// The paper's Fig. 5 and 6: segments per cell over the cells, and the density on the centre
+// sagittal plane, of the final fibres.
+Image density_picture(const Scene& scene, const StageValues& v, int width, int height, int threads) {
+  if (!v.fibre_density)
+    throw InputError(scene.file.string(), "declares no density model (effects.density = \"none\"), so there is no "
+                                          "density stage to draw; declare one or pick another stage");
+  std::vector<std::vector<Vec3>> fibres(v.strands->fibres.count());
+  const Curves& c = v.strands->fibres;
+  for (std::size_t i = 0; i < c.count(); ++i) fibres[i].assign(c.points.begin() + c.offsets[i], c.points.begin() + c.offsets[i + 1]);
+  const SegmentHistogram histogram = segment_histogram(v.fibre_density->geometry(), fibres, threads);
+  BarPlot bars;
+  bars.title = "segments per cell (paper Fig. 5)";
+  bars.x_label = "segments per cell";
+  bars.y_label = "cells";
+  bars.values.assign(histogram.cells_with.begin() + std::min<std::size_t>(1, histogram.cells_with.size()), histogram.cells_with.end());
+  bars.x_start = 1.0;
+  const Vec3 up = -scene.units.down;
+  const DensitySlice slice = centre_slice(*v.fibre_density, scene.units.front.cross(up).normalized(), up);
+  HeatMap map;
+  map.title = "density, centre sagittal slice (Fig. 6)";
+  map.x_label = "cm";
+  map.y_label = "up (cm)";
+  map.value_label = "segment length / cell diagonal";
+  map.scale = ColorScale::sequential;
+  map.smooth = false;
+  map.grid.width = slice.width;
+  map.grid.height = slice.height;
+  map.grid.values = slice.values;
+  map.grid.x_max = slice.u_step.norm() * (slice.width - 1);
+  map.grid.y_max = slice.v_step.norm() * (slice.height - 1);
+  return two_panels(render_bar_plot(bars, width / 2, height), render_heat_map(map, width - width / 2, height), width, height);
+}
+
 }  // namespace
 
 Image render_stage(const std::string& stage, const Scene& scene, const Inputs& inputs, const StageValues& values,
                    ViewName view, int width, int height, int threads) {
   check_picture_stage(stage);
+  if (stage == "density") return density_picture(scene, values, width, height, threads);
   if (stage == "all") {
     std::vector<Image> tiles;
     std::vector<std::string> captions;
     const int tile = std::max(200, std::min(width, height) / 2);
     for (const std::string& s : picture_stages()) {
-      if (s == "all") continue;
+      if (s == "all" || (s == "density" && !values.fibre_density)) continue;
       tiles.push_back(render_stage(s, scene, inputs, values, view, tile, tile, threads));
       captions.push_back(s);
     }
