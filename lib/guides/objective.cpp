@@ -93,12 +93,7 @@ class GuideCost {
   template <typename T>
   bool operator()(const T* eta, T* residuals) const {
     const int n = t_.rod.segments + 1;
-    // Per-thread scratch for the rod's trace: the cost is evaluated tens of times per guide, and
-    // allocating three traces each time showed in profiles. Every entry is overwritten below.
-    thread_local std::vector<T> nodes, frames, curvature;
-    nodes.resize(3 * n);
-    frames.resize(9 * n);
-    curvature.resize(3 * n);
+    std::vector<T> nodes(3 * n), frames(9 * n), curvature(3 * n);
     T m1[3];
     integrate_rod<T>(t_.model, t_.rod.integrator, t_.rod.segments, eta, eta + 3, m1,
                      RodTrace<T>{nodes.data(), frames.data(), curvature.data(), nullptr});
