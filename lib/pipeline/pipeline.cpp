@@ -293,6 +293,9 @@ class Runner {
 
 PipelineResult run_pipeline(const Scene& scene, const Inputs& inputs, const RunOptions& options) {
   check_stage_name(options.until);
+  if (options.until == "density" && !density_declared(scene))
+    throw InputError(scene.file.string(), "declares no density model (effects.density = \"none\"), so there is no "
+                                          "density stage to stop after; declare one or stop after strands");
   return Runner(scene, inputs, options).run();
 }
 

@@ -197,3 +197,11 @@ TEST_CASE("command-line misuse exits 2 with a usage line") {
   CHECK(r.out.rfind("hairfit ", 0) == 0);
   CHECK(run_hairfit("--help").out.find("validate SCENE") != std::string::npos);
 }
+
+TEST_CASE("--until density without a density model is refused before anything is written") {
+  const std::string out = "/tmp/hairfit-test-until-" + std::to_string(::getpid());
+  const auto r = run_hairfit("run " + source_path("fixtures/smoke/scene.toml") + " --until density --out " + out);
+  CHECK(r.exit_code == 2);
+  CHECK(r.err.find("declares no density model") != std::string::npos);
+  CHECK_FALSE(std::filesystem::exists(out));
+}
