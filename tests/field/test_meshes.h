@@ -7,38 +7,11 @@
 #include <utility>
 
 #include "core/mesh.h"
+#include "core/shapes.h"
 
 namespace hairfit::test {
 
-// Icosphere of the given subdivision level, outward counter-clockwise.
-inline Mesh icosphere(int level, double radius, const Vec3& centre = Vec3::Zero()) {
-  const double t = (1 + std::sqrt(5.0)) / 2;
-  Mesh m;
-  m.positions = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-                 {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
-  m.triangles = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-                 {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
-                 {3, 8, 9},  {4, 9, 5},  {2, 4, 11},  {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
-  for (Vec3& p : m.positions) p.normalize();
-  for (int l = 0; l < level; ++l) {
-    std::map<std::pair<int, int>, int> mid;
-    auto middle = [&](int a, int b) {
-      const auto key = std::minmax(a, b);
-      const auto it = mid.find(key);
-      if (it != mid.end()) return it->second;
-      m.positions.push_back((m.positions[a] + m.positions[b]).normalized());
-      return mid[key] = int(m.positions.size()) - 1;
-    };
-    std::vector<Vec3i> next;
-    for (const Vec3i& f : m.triangles) {
-      const int a = middle(f[0], f[1]), b = middle(f[1], f[2]), c = middle(f[2], f[0]);
-      next.insert(next.end(), {{f[0], a, c}, {f[1], b, a}, {f[2], c, b}, {a, b, c}});
-    }
-    m.triangles = next;
-  }
-  for (Vec3& p : m.positions) p = centre + radius * p;
-  return m;
-}
+using hairfit::icosphere;
 
 // Axis-aligned cube [-s, s]³, outward counter-clockwise, two triangles per side.
 inline Mesh cube(double s) {
