@@ -12,29 +12,12 @@
 #include "render/chart_plot.h"
 #include "render/contact_sheet.h"
 #include "render/plot.h"
+#include "core/shapes.h"
 #include "render/render_3d.h"
 
 using namespace hairfit;
 
 namespace {
-
-Mesh make_sphere(const Vec3& centre, double radius, int rings, int sectors) {
-  Mesh mesh;
-  for (int i = 0; i <= rings; ++i)
-    for (int j = 0; j < sectors; ++j) {
-      const double theta = M_PI * i / rings, phi = 2 * M_PI * j / sectors;
-      mesh.positions.push_back(centre + radius * Vec3(std::sin(theta) * std::cos(phi), std::cos(theta),
-                                                      std::sin(theta) * std::sin(phi)));
-    }
-  for (int i = 0; i < rings; ++i)
-    for (int j = 0; j < sectors; ++j) {
-      const int a = i * sectors + j, b = i * sectors + (j + 1) % sectors;
-      const int c = a + sectors, d = b + sectors;
-      mesh.triangles.emplace_back(a, c, b);
-      mesh.triangles.emplace_back(b, c, d);
-    }
-  return mesh;
-}
 
 // Strands growing from the upper back of a head-sized sphere (radius 8): out along the normal,
 // then falling, kept outside the head, with a small curl. 16 points each; `ids` gets a patch id.
@@ -87,8 +70,8 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--threads") && i + 1 < argc) threads = std::atoi(argv[++i]);
     else out = argv[i];
   }
-  const Mesh head = make_sphere(Vec3::Zero(), 8.0, 48, 96);
-  Mesh volume = make_sphere(Vec3::Zero(), 1.0, 24, 48);
+  const Mesh head = uv_sphere(Vec3::Zero(), 8.0, 48, 96);
+  Mesh volume = uv_sphere(Vec3::Zero(), 1.0, 24, 48);
   for (Vec3& p : volume.positions) p = Vec3(0, -6, -1.5) + Vec3(14.0 * p.x(), 18.0 * p.y(), 14.5 * p.z());
   std::vector<int> ids;
   const Polylines curves = make_strands(strands, ids);

@@ -35,4 +35,21 @@ Mesh icosphere(int levels, double radius, const Vec3& centre) {
   return m;
 }
 
+Mesh uv_sphere(const Vec3& centre, double radius, int rings, int sectors) {
+  Mesh mesh;
+  for (int i = 0; i <= rings; ++i)
+    for (int j = 0; j < sectors; ++j) {
+      const double theta = M_PI * i / rings, phi = 2 * M_PI * j / sectors;
+      mesh.positions.push_back(centre + radius * Vec3(std::sin(theta) * std::cos(phi), std::cos(theta),
+                                                      std::sin(theta) * std::sin(phi)));
+    }
+  for (int i = 0; i < rings; ++i)
+    for (int j = 0; j < sectors; ++j) {
+      const int a = i * sectors + j, b = i * sectors + (j + 1) % sectors;
+      mesh.triangles.emplace_back(a, a + sectors, b);
+      mesh.triangles.emplace_back(b, a + sectors, b + sectors);
+    }
+  return mesh;
+}
+
 }  // namespace hairfit

@@ -13,28 +13,12 @@
 #include "render/chart_plot.h"
 #include "render/contact_sheet.h"
 #include "render/plot.h"
+#include "core/shapes.h"
 #include "render/render_3d.h"
 
 using namespace hairfit;
 
 namespace {
-
-Mesh make_sphere(const Vec3& centre, double radius, int rings, int sectors) {
-  Mesh mesh;
-  for (int i = 0; i <= rings; ++i)
-    for (int j = 0; j < sectors; ++j) {
-      const double theta = M_PI * i / rings, phi = 2 * M_PI * j / sectors;
-      mesh.positions.push_back(centre + radius * Vec3(std::sin(theta) * std::cos(phi), std::cos(theta),
-                                                      std::sin(theta) * std::sin(phi)));
-    }
-  for (int i = 0; i < rings; ++i)
-    for (int j = 0; j < sectors; ++j) {
-      const int a = i * sectors + j, b = i * sectors + (j + 1) % sectors;
-      mesh.triangles.emplace_back(a, a + sectors, b);
-      mesh.triangles.emplace_back(b, a + sectors, b + sectors);
-    }
-  return mesh;
-}
 
 // Sum over pixels of the red channel in [0, 1].
 double red_sum(const Image& image) {
@@ -148,7 +132,7 @@ TEST_CASE("fit_camera puts the box inside the margins and projects orthographica
 TEST_CASE("a sphere mesh renders where the orthographic camera projects it") {
   const Vec3 centre(1, 2, 3);
   const double radius = 2.0;
-  const Mesh sphere = make_sphere(centre, radius, 64, 128);
+  const Mesh sphere = uv_sphere(centre, radius, 64, 128);
   Drawing3D d;
   d.meshes.push_back({&sphere, MeshStyle::shaded, {1, 1, 1}});
   const Camera c = fit_camera(ViewName::three_quarter, Vec3(0, -1, 0), Vec3(0, 0, 1), centre - Vec3::Constant(3),
@@ -189,7 +173,7 @@ TEST_CASE("a triangle covers its projected area in pixels") {
 }
 
 TEST_CASE("silhouette coverage of a sphere is its projected disk") {
-  const Mesh sphere = make_sphere(Vec3::Zero(), 50.0, 64, 128);
+  const Mesh sphere = uv_sphere(Vec3::Zero(), 50.0, 64, 128);
   MeshLayer layer;
   layer.mesh = &sphere;
   layer.style = MeshStyle::silhouette;
@@ -327,8 +311,8 @@ TEST_CASE("heat map colours follow the data") {
 }
 
 TEST_CASE("same inputs give byte-identical PNGs, on 1 or 2 threads") {
-  const Mesh head = make_sphere(Vec3::Zero(), 8.0, 24, 48);
-  const Mesh shell = make_sphere(Vec3(0, -2, 0), 12.0, 16, 32);
+  const Mesh head = uv_sphere(Vec3::Zero(), 8.0, 24, 48);
+  const Mesh shell = uv_sphere(Vec3(0, -2, 0), 12.0, 16, 32);
   Polylines curves;
   std::vector<int> ids;
   for (int s = 0; s < 400; ++s) {
