@@ -219,8 +219,8 @@ class Runner {
   void strands(StageReport& stage) {
     StageValues& v = result_.values;
     const DistanceField* volume = v.volume_field.get();
-    const DistanceFunction inside_volume = [volume](const Vec3& p) { return volume->value(p); };
-    Strands s = make_strands(v.guides->curves(), pores(), strand_options(scene_, options_.threads), inside_volume);
+    const DistanceFunction volume_distance = [volume](const Vec3& p) { return volume->value(p); };
+    Strands s = make_strands(v.guides->curves(), pores(), strand_options(scene_, options_.threads), volume_distance);
     add_widths(s.fibres, scene_.hair.cross_section);
     v.strands = std::make_shared<const Strands>(std::move(s));
     const Curves& fibres = v.strands->fibres;
