@@ -220,7 +220,8 @@ class Runner {
     StageValues& v = result_.values;
     const DistanceField* volume = v.volume_field.get();
     const DistanceFunction volume_distance = [volume](const Vec3& p) { return volume->value(p); };
-    Strands s = make_strands(v.guides->curves(), pores(), strand_options(scene_, options_.threads), volume_distance);
+    Curves guide_curves = v.guides->curves();
+    Strands s = make_strands(guide_curves, pores(), strand_options(scene_, options_.threads), volume_distance);
     add_widths(s.fibres, scene_.hair.cross_section);
     v.strands = std::make_shared<const Strands>(std::move(s));
     const Curves& fibres = v.strands->fibres;
@@ -232,7 +233,6 @@ class Runner {
     stage.add("points", static_cast<std::int64_t>(fibres.points.size()));
     stage.add("cut", static_cast<std::int64_t>(v.strands->cut_count));
     stage.add("inside_fraction", fibres.points.empty() ? 0.0 : static_cast<double>(inside) / fibres.points.size());
-    Curves guide_curves = v.guides->curves();
     add_widths(guide_curves, scene_.hair.cross_section);
     for (const std::string& format : scene_.output.strands) {
       auto write = [&](const std::string& base, const Curves& curves) {
