@@ -74,6 +74,7 @@ class DensityGrid {
 
  private:
   friend class DensityAccumulator;
+  friend struct StageCodecAccess;  // the stage cache (lib/pipeline/stage_codec.cpp) stores and restores it
   DensityGrid(const GridGeometry& g, std::shared_ptr<const std::vector<double>> v)
       : geometry_(g), values_(std::move(v)) {}
   GridGeometry geometry_;

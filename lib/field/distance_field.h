@@ -69,6 +69,7 @@ class DistanceField {
 
  private:
   friend DistanceField make_distance_field(const Mesh&, const FieldSpec&, int);
+  friend struct StageCodecAccess;  // the stage cache (lib/pipeline/stage_codec.cpp) stores and restores it
   DistanceField() = default;  // built only by make_distance_field
   FieldValueGradient inside_grid(const Vec3& p) const;  // p within the grid box
   double far_sample(int i, int j, int k) const;
