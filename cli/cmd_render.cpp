@@ -4,6 +4,7 @@
 #include "commands.h"
 #include "core/parallel.h"
 #include "pipeline/stage_pictures.h"
+#include "prepare/cut_picture.h"
 
 namespace hairfit::cli {
 
@@ -11,10 +12,17 @@ int command_render(const Arguments& argv) {
   const Args args(argv, {"stage", "view", "size", "out", "threads"}, {});
   if (args.positionals().size() != 1) throw UsageError{"expected exactly one SCENE file"};
   const std::string stage = args.text("stage").value_or("strands");
-  check_picture_stage(stage);  // before any work
+  if (stage != "cut") check_picture_stage(stage);  // before any work
   const ViewName view = parse_view(args.text("view").value_or("front"));
   const auto [width, height] = parse_size(args.text("size").value_or("800x800"));
   const int threads = resolve_thread_count(args.integer("threads", 0));
+  if (stage == "cut") {  // what `hairfit prepare` cut from the scan: no pipeline stage needed
+    const std::string out = args.text("out").value_or("cut-" + view_name(view) + ".png");
+    const Image image = render_cut(args.positionals()[0], view, width, height, threads);
+    write_png(out, image);
+    std::printf("wrote %s (%d×%d)\n", out.c_str(), image.width, image.height);
+    return 0;
+  }
   const Scene scene = parse_scene(args.positionals()[0]);
   const Inputs inputs = load_inputs(scene);
   RunOptions options;

@@ -14,5 +14,6 @@ int command_render(const Arguments& args);
 int command_scene_keys(const Arguments& args);
 int command_rod(const Arguments& args);
 int command_field(const Arguments& args);
+int command_prepare(const Arguments& args);
 
 }  // namespace hairfit::cli

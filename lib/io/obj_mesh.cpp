@@ -96,15 +96,22 @@ LoadedMesh load_obj_mesh(const std::filesystem::path& path, double scale_to_cm) 
 
   const std::vector<tinyobj::real_t>& v = reader.GetAttrib().vertices;
   const int n = static_cast<int>(v.size() / 3);
+  // tinyobjloader keeps colours only when every vertex has them (vertex_color = false: no fallback).
+  const std::vector<tinyobj::real_t>& rgb = reader.GetAttrib().colors;
+  const bool with_colors = n > 0 && rgb.size() == v.size();
   // Weld exact duplicates: scans often repeat vertices along patch seams.
   std::map<std::array<double, 3>, int> first_at;
   std::vector<int> weld(n);
-  std::vector<Vec3> welded;
+  std::vector<Vec3> welded, welded_colors;
   for (int i = 0; i < n; ++i) {
     const std::array<double, 3> p{v[3 * i] * scale_to_cm, v[3 * i + 1] * scale_to_cm, v[3 * i + 2] * scale_to_cm};
     auto [it, inserted] = first_at.emplace(p, static_cast<int>(welded.size()));
-    if (inserted) welded.emplace_back(p[0], p[1], p[2]);
-    else ++result.welded_duplicates;
+    if (inserted) {
+      welded.emplace_back(p[0], p[1], p[2]);
+      if (with_colors) welded_colors.emplace_back(rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2]);
+    } else {
+      ++result.welded_duplicates;  // keeps the first vertex's colour
+    }
     weld[i] = it->second;
   }
 
@@ -137,6 +144,7 @@ LoadedMesh load_obj_mesh(const std::filesystem::path& path, double scale_to_cm) 
     }
     compact[i] = static_cast<int>(result.mesh.positions.size());
     result.mesh.positions.push_back(welded[i]);
+    if (with_colors) result.colors.push_back(welded_colors[i]);
   }
   for (Vec3i& t : triangles) t = Vec3i(compact[t[0]], compact[t[1]], compact[t[2]]);
   result.mesh.triangles = std::move(triangles);
@@ -144,11 +152,17 @@ LoadedMesh load_obj_mesh(const std::filesystem::path& path, double scale_to_cm) 
 }
 
 void write_obj_mesh(const std::filesystem::path& path, const Mesh& mesh,
-                    const std::vector<Vec2>& texture_coordinates) {
+                    const std::vector<Vec2>& texture_coordinates, const std::vector<Vec3>& colors) {
   write_file_atomically(path, [&](std::ostream& out) {
-    char buffer[128];
-    for (const Vec3& p : mesh.positions) {
-      std::snprintf(buffer, sizeof buffer, "v %.9g %.9g %.9g\n", p.x(), p.y(), p.z());
+    char buffer[160];
+    const bool with_colors = colors.size() == mesh.positions.size();
+    for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+      const Vec3& p = mesh.positions[i];
+      if (with_colors)
+        std::snprintf(buffer, sizeof buffer, "v %.9g %.9g %.9g %.4g %.4g %.4g\n", p.x(), p.y(), p.z(), colors[i].x(),
+                      colors[i].y(), colors[i].z());
+      else
+        std::snprintf(buffer, sizeof buffer, "v %.9g %.9g %.9g\n", p.x(), p.y(), p.z());
       out << buffer;
     }
     for (const Vec2& uv : texture_coordinates) {

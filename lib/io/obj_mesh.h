@@ -14,6 +14,9 @@ struct LoadedMesh {
   int welded_duplicates = 0;     // vertices merged with an earlier one at the same position
   int dropped_degenerate = 0;    // triangles removed for zero area (after welding)
   int unused_vertices = 0;       // vertices no triangle refers to (removed)
+  // Per-vertex colours (r g b in [0, 1] or as written) when every `v` line carries them
+  // (`v x y z r g b`, how scanners and painting tools export a mask); empty otherwise.
+  std::vector<Vec3> colors;
 };
 
 // Reads an OBJ file through tinyobjloader, triangulating polygons. Throws InputError naming the
@@ -22,8 +25,9 @@ struct LoadedMesh {
 // Exact duplicate vertices are welded and zero-area triangles dropped; both are counted.
 LoadedMesh load_obj_mesh(const std::filesystem::path& path, double scale_to_cm = 1.0);
 
-// Writes positions, optional per-vertex texture coordinates (`vt`) and triangles.
+// Writes positions, optional per-vertex texture coordinates (`vt`), optional per-vertex colours
+// (`v x y z r g b`, one per position) and triangles.
 void write_obj_mesh(const std::filesystem::path& path, const Mesh& mesh,
-                    const std::vector<Vec2>& texture_coordinates = {});
+                    const std::vector<Vec2>& texture_coordinates = {}, const std::vector<Vec3>& colors = {});
 
 }  // namespace hairfit

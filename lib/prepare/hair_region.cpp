@@ -1,0 +1,328 @@
+#include "prepare/hair_region.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numeric>
+#include <queue>
+#include <unordered_map>
+
+#include "core/error.h"
+
+namespace hairfit {
+
+namespace {
+
+std::string vec_text(const Vec3& v) {
+  char text[96];
+  std::snprintf(text, sizeof text, "(%.4g, %.4g, %.4g)", v.x(), v.y(), v.z());
+  return text;
+}
+
+long long edge_key(int a, int b) { return (static_cast<long long>(std::min(a, b)) << 32) | std::max(a, b); }
+
+// Triangles (indices into `tris`) sharing each undirected edge.
+std::unordered_map<long long, std::vector<int>> edge_triangles(const std::vector<Vec3i>& tris) {
+  std::unordered_map<long long, std::vector<int>> edges;
+  for (int t = 0; t < static_cast<int>(tris.size()); ++t)
+    for (int k = 0; k < 3; ++k) edges[edge_key(tris[t][k], tris[t][(k + 1) % 3])].push_back(t);
+  return edges;
+}
+
+// Connected parts through shared edges: part id per triangle, ids in order of first triangle.
+std::vector<int> edge_parts(const std::vector<Vec3i>& tris, int& count) {
+  const auto edges = edge_triangles(tris);
+  std::vector<int> part(tris.size(), -1);
+  count = 0;
+  for (int seed = 0; seed < static_cast<int>(tris.size()); ++seed) {
+    if (part[seed] >= 0) continue;
+    std::queue<int> queue;
+    queue.push(seed);
+    part[seed] = count;
+    while (!queue.empty()) {
+      const int t = queue.front();
+      queue.pop();
+      for (int k = 0; k < 3; ++k)
+        for (int u : edges.at(edge_key(tris[t][k], tris[t][(k + 1) % 3])))
+          if (part[u] < 0) part[u] = count, queue.push(u);
+    }
+    ++count;
+  }
+  return part;
+}
+
+double area_of(const Mesh& scan, const Vec3i& t) {
+  return 0.5 * (scan.positions[t[1]] - scan.positions[t[0]]).cross(scan.positions[t[2]] - scan.positions[t[0]]).norm();
+}
+
+// Keeps, at every vertex whose triangles form several fans (touching only at the vertex), the fan
+// with the largest area; returns how many triangles it removed.
+int shave_bow_ties(const Mesh& scan, std::vector<int>& kept) {
+  std::vector<Vec3i> tris;
+  for (int t : kept) tris.push_back(scan.triangles[t]);
+  std::unordered_map<int, std::vector<int>> around;  // vertex → local triangles
+  for (int t = 0; t < static_cast<int>(tris.size()); ++t)
+    for (int k = 0; k < 3; ++k) around[tris[t][k]].push_back(t);
+  std::vector<char> drop(tris.size(), 0);
+  std::vector<int> vertices;
+  for (const auto& entry : around) vertices.push_back(entry.first);
+  std::sort(vertices.begin(), vertices.end());  // deterministic order
+  for (int v : vertices) {
+    const std::vector<int>& fan = around[v];
+    // Group the vertex's triangles by shared edges through v.
+    std::vector<int> group(fan.size(), -1);
+    int groups = 0;
+    for (std::size_t s = 0; s < fan.size(); ++s) {
+      if (group[s] >= 0) continue;
+      std::vector<std::size_t> stack{s};
+      group[s] = groups;
+      while (!stack.empty()) {
+        const std::size_t a = stack.back();
+        stack.pop_back();
+        for (std::size_t b = 0; b < fan.size(); ++b) {
+          if (group[b] >= 0) continue;
+          int shared = 0;
+          for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) shared += tris[fan[a]][i] == tris[fan[b]][j];
+          if (shared >= 2) group[b] = groups, stack.push_back(b);
+        }
+      }
+      ++groups;
+    }
+    if (groups < 2) continue;
+    std::vector<double> area(groups, 0.0);
+    for (std::size_t s = 0; s < fan.size(); ++s) area[group[s]] += area_of(scan, tris[fan[s]]);
+    const int best = static_cast<int>(std::max_element(area.begin(), area.end()) - area.begin());
+    for (std::size_t s = 0; s < fan.size(); ++s)
+      if (group[s] != best) drop[fan[s]] = 1;
+  }
+  std::vector<int> next;
+  for (std::size_t t = 0; t < kept.size(); ++t)
+    if (!drop[t]) next.push_back(kept[t]);
+  const int removed = static_cast<int>(kept.size() - next.size());
+  kept = std::move(next);
+  return removed;
+}
+
+double loop_length(const Mesh& mesh, const std::vector<int>& loop) {
+  double length = 0.0;
+  for (std::size_t i = 0; i < loop.size(); ++i)
+    length += (mesh.positions[loop[(i + 1) % loop.size()]] - mesh.positions[loop[i]]).norm();
+  return length;
+}
+
+// Makes neighbouring triangles traverse their shared edge in opposite directions (breadth first
+// from triangle 0); throws if the surface cannot be oriented.
+void orient_consistently(Mesh& mesh, const std::string& file) {
+  const auto edges = edge_triangles(mesh.triangles);
+  std::vector<char> done(mesh.triangles.size(), 0);
+  auto direction = [](const Vec3i& t, int a, int b) {
+    for (int k = 0; k < 3; ++k) {
+      if (t[k] == a && t[(k + 1) % 3] == b) return 1;
+      if (t[k] == b && t[(k + 1) % 3] == a) return -1;
+    }
+    return 0;
+  };
+  std::queue<int> queue;
+  queue.push(0);
+  done[0] = 1;
+  while (!queue.empty()) {
+    const int t = queue.front();
+    queue.pop();
+    for (int k = 0; k < 3; ++k) {
+      const int a = mesh.triangles[t][k], b = mesh.triangles[t][(k + 1) % 3];
+      for (int u : edges.at(edge_key(a, b))) {
+        if (u == t) continue;
+        const bool same = direction(mesh.triangles[u], a, b) == 1;
+        if (!done[u]) {
+          if (same) std::swap(mesh.triangles[u][1], mesh.triangles[u][2]);
+          done[u] = 1;
+          queue.push(u);
+        } else if (same) {
+          throw InputError(file, "the hair region cannot be oriented (it is a Möbius-like surface near " +
+                                     vec_text(mesh.positions[a]) + "); repair the scan");
+        }
+      }
+    }
+  }
+}
+
+}  // namespace
+
+std::string HairSelection::describe() const {
+  char text[256];
+  if (kind == Kind::plane)
+    std::snprintf(text, sizeof text, "plane through %s, hair toward %s", vec_text(point).c_str(), vec_text(normal).c_str());
+  else if (kind == Kind::cap)
+    std::snprintf(text, sizeof text, "cap about %s, axis %s, half-angle %.4g°", vec_text(centre).c_str(),
+                  vec_text(axis).c_str(), half_angle);
+  else
+    std::snprintf(text, sizeof text, "mask colour %s within %.4g", vec_text(color).c_str(), tolerance);
+  return text;
+}
+
+std::vector<char> select_vertices(const Mesh& scan, const std::vector<Vec3>& colors, const HairSelection& s,
+                                  const std::string& file) {
+  const int n = static_cast<int>(scan.positions.size());
+  std::vector<char> picked(n, 0);
+  if (s.kind == HairSelection::Kind::mask && colors.size() != scan.positions.size())
+    throw InputError(file, "has no vertex colours, so --mask has nothing to read; paint the hair and export the "
+                           "colours (OBJ lines `v x y z r g b`), or select the hair with --plane or --cap");
+  const Vec3 normal = s.normal.normalized(), axis = s.axis.normalized();
+  const double cos_half = std::cos(s.half_angle * M_PI / 180.0);
+  for (int i = 0; i < n; ++i) {
+    const Vec3& p = scan.positions[i];
+    if (s.kind == HairSelection::Kind::plane) {
+      picked[i] = (p - s.point).dot(normal) >= 0.0;
+    } else if (s.kind == HairSelection::Kind::cap) {
+      const Vec3 d = p - s.centre;
+      picked[i] = d.norm() > 0.0 && d.dot(axis) >= cos_half * d.norm();
+    } else {
+      picked[i] = (colors[i] - s.color).norm() <= s.tolerance;
+    }
+  }
+  return picked;
+}
+
+Vec3 fit_sphere_centre(const std::vector<Vec3>& points) {
+  Eigen::MatrixXd a(points.size(), 4);
+  Eigen::VectorXd b(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    a.row(i) << 2.0 * points[i].x(), 2.0 * points[i].y(), 2.0 * points[i].z(), 1.0;
+    b[i] = points[i].squaredNorm();
+  }
+  const Eigen::Vector4d x = a.colPivHouseholderQr().solve(b);
+  return x.head<3>();
+}
+
+Hull cut_hull(const Mesh& scan, const std::vector<char>& selected, const HullOptions& options, const std::string& file) {
+  Hull hull;
+  std::vector<int> kept;
+  for (int t = 0; t < static_cast<int>(scan.triangles.size()); ++t) {
+    const Vec3i& f = scan.triangles[t];
+    if (selected[f[0]] && selected[f[1]] && selected[f[2]]) kept.push_back(t);
+  }
+  hull.selected_triangles = static_cast<int>(kept.size());
+  if (kept.empty()) {
+    const long picked = std::count(selected.begin(), selected.end(), 1);
+    throw InputError(file, "the hair selection catches no triangle of the scan (" + std::to_string(picked) + " of " +
+                               std::to_string(selected.size()) +
+                               " vertices picked, none with all three corners); check the selection's "
+                               "coordinates against the scan's (they are in the scan's own units)");
+  }
+  for (int t : kept) hull.selected_area += area_of(scan, scan.triangles[t]);
+
+  // The largest part (by area), shaved of bow-ties; shaving can split it, so repeat until stable.
+  for (int round = 0;; ++round) {
+    std::vector<Vec3i> tris;
+    for (int t : kept) tris.push_back(scan.triangles[t]);
+    int count = 0;
+    const std::vector<int> part = edge_parts(tris, count);
+    if (round == 0) hull.parts = count;
+    std::vector<double> area(count, 0.0);
+    for (std::size_t i = 0; i < kept.size(); ++i) area[part[i]] += area_of(scan, tris[i]);
+    const int best = static_cast<int>(std::max_element(area.begin(), area.end()) - area.begin());
+    if (round == 0 && area[best] < 0.5 * hull.selected_area) {
+      char text[512];
+      std::snprintf(text, sizeof text,
+                    "the hair selection is not one connected region: it falls into %d parts and the largest holds "
+                    "only %.0f%% of the selected area (%.4g of %.4g); select the hair as one piece (a mask painted "
+                    "without gaps, or a plane or cap that cuts the scan once)",
+                    count, 100.0 * area[best] / hull.selected_area, area[best], hull.selected_area);
+      throw InputError(file, text);
+    }
+    std::vector<int> largest;
+    for (std::size_t i = 0; i < kept.size(); ++i)
+      if (part[i] == best) largest.push_back(kept[i]);
+    kept = std::move(largest);
+    const int shaved = shave_bow_ties(scan, kept);
+    hull.shaved_triangles += shaved;
+    if (shaved == 0 || round > 8) break;
+  }
+
+  // The hull's own vertex numbering, in scan order.
+  std::vector<int> local(scan.positions.size(), -1);
+  for (int t : kept)
+    for (int k = 0; k < 3; ++k) local[scan.triangles[t][k]] = 0;
+  for (std::size_t v = 0; v < local.size(); ++v) {
+    if (local[v] < 0) continue;
+    local[v] = static_cast<int>(hull.mesh.positions.size());
+    hull.mesh.positions.push_back(scan.positions[v]);
+    hull.scan_vertex.push_back(static_cast<int>(v));
+  }
+  for (int t : kept) {
+    const Vec3i& f = scan.triangles[t];
+    hull.mesh.triangles.emplace_back(local[f[0]], local[f[1]], local[f[2]]);
+    hull.scan_triangle.push_back(t);
+    hull.kept_area += area_of(scan, f);
+  }
+  MeshTopology topo = analyse_topology(hull.mesh);
+  if (!topo.nonmanifold_vertices.empty())
+    throw InputError(file, "the scan is non-manifold inside the hair region (an edge shared by 3 or more triangles near " +
+                               vec_text(hull.mesh.positions[topo.nonmanifold_vertices[0]]) + "); repair the scan");
+  if (topo.boundary_loops.empty())
+    throw InputError(file, "the hair selection covers a closed surface (the whole scan?), so there is no hairline; "
+                           "select only the hair");
+  orient_consistently(hull.mesh, file);
+  topo = analyse_topology(hull.mesh);
+
+  // The hairline is the longest boundary loop; the others are holes, filled by a fan about their
+  // centroid when short enough.
+  std::vector<double> lengths;
+  for (const auto& loop : topo.boundary_loops) lengths.push_back(loop_length(hull.mesh, loop));
+  const int line = static_cast<int>(std::max_element(lengths.begin(), lengths.end()) - lengths.begin());
+  hull.hairline_length = lengths[line];
+  for (int l = 0; l < static_cast<int>(topo.boundary_loops.size()); ++l) {
+    if (l == line) continue;
+    const std::vector<int>& loop = topo.boundary_loops[l];
+    Vec3 centroid = Vec3::Zero();
+    for (int v : loop) centroid += hull.mesh.positions[v];
+    centroid /= static_cast<double>(loop.size());
+    if (lengths[l] > options.max_hole * hull.hairline_length) {
+      char text[512];
+      std::snprintf(text, sizeof text,
+                    "the hair region has a hole %.4g long around %s (the hairline is %.4g long; holes up to %.0f%% "
+                    "of it are filled); the scan is missing data there or the selection leaves an island out",
+                    lengths[l], vec_text(centroid).c_str(), hull.hairline_length, 100.0 * options.max_hole);
+      throw InputError(file, text);
+    }
+    // Boundary half-edges run a→b in the triangles' direction; the filling runs them b→a.
+    if (loop.size() == 3) {
+      hull.mesh.triangles.emplace_back(loop[2], loop[1], loop[0]);
+      hull.scan_triangle.push_back(-1);
+    } else {
+      const int c = static_cast<int>(hull.mesh.positions.size());
+      hull.mesh.positions.push_back(centroid);
+      hull.scan_vertex.push_back(-1);
+      for (std::size_t i = 0; i < loop.size(); ++i) {
+        hull.mesh.triangles.emplace_back(loop[(i + 1) % loop.size()], loop[i], c);
+        hull.scan_triangle.push_back(-1);
+      }
+    }
+    ++hull.holes_filled;
+  }
+  topo = analyse_topology(hull.mesh);
+  if (!topo.is_disk())
+    throw InputError(file, "the hair region is not a disk-like patch (Euler characteristic " +
+                               std::to_string(topo.euler_characteristic) +
+                               " with one hairline: it has handles, e.g. a strand bridging to the head); cut the "
+                               "bridges from the scan or adjust the selection");
+  hull.hairline = topo.boundary_loops[0];
+
+  // Outward: the hull faces away from the centre of the sphere fitted to it.
+  hull.centre = fit_sphere_centre(hull.mesh.positions);
+  double facing = 0.0;
+  for (int t = 0; t < static_cast<int>(hull.mesh.triangles.size()); ++t) {
+    const Vec3i& f = hull.mesh.triangles[t];
+    const Vec3& a = hull.mesh.positions[f[0]];
+    facing += (hull.mesh.positions[f[1]] - a).cross(hull.mesh.positions[f[2]] - a).dot(a - hull.centre);
+  }
+  if (facing < 0.0) {
+    for (Vec3i& f : hull.mesh.triangles) std::swap(f[1], f[2]);
+    std::reverse(hull.hairline.begin(), hull.hairline.end());
+  }
+  return hull;
+}
+
+}  // namespace hairfit

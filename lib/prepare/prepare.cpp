@@ -1,0 +1,269 @@
+#include "prepare/prepare.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+
+#include "core/error.h"
+#include "io/atomic_file.h"
+#include "io/obj_mesh.h"
+#include "prepare/surface_checks.h"
+#include "prepare/weld.h"
+#include "spec/scene.h"
+
+namespace hairfit {
+
+namespace {
+
+constexpr double kSnapDegrees = 35.0;
+
+std::string vec_text(const Vec3& v) {
+  char text[96];
+  std::snprintf(text, sizeof text, "(%.4g, %.4g, %.4g)", v.x(), v.y(), v.z());
+  return text;
+}
+
+std::string toml_vector(const Vec3& v) {
+  char text[96];
+  auto clean = [](double x) { return std::abs(x) < 1e-12 ? 0.0 : x; };
+  std::snprintf(text, sizeof text, "[%.6g, %.6g, %.6g]", clean(v.x()), clean(v.y()), clean(v.z()));
+  return text;
+}
+
+// The signed coordinate axis nearest to `d` (unit), and the angle to it in degrees.
+std::pair<Vec3, double> nearest_axis(const Vec3& d, const Vec3& orthogonal_to = Vec3::Zero()) {
+  Vec3 best = Vec3::Zero();
+  double best_cos = -2.0;
+  for (int axis = 0; axis < 3; ++axis)
+    for (double sign : {1.0, -1.0}) {
+      const Vec3 e = sign * Vec3::Unit(axis);
+      if (std::abs(e.dot(orthogonal_to)) > 1e-9) continue;
+      if (e.dot(d) > best_cos) best_cos = e.dot(d), best = e;
+    }
+  return {best, std::acos(std::clamp(best_cos, -1.0, 1.0)) * 180.0 / M_PI};
+}
+
+// Scans are exported axis-aligned in practice, while the hair cap leans back by 20–30°: a detected
+// direction within kSnapDegrees of a coordinate axis is taken as that axis.
+Vec3 snapped(const Vec3& d, const Vec3& orthogonal_to, std::string& how, const std::string& what) {
+  const auto [axis, angle] = nearest_axis(d, orthogonal_to);
+  char text[256];
+  if (angle <= kSnapDegrees) {
+    std::snprintf(text, sizeof text, "detected: %s %s, %.0f° from the axis %s, taken as the axis", what.c_str(),
+                  vec_text(d).c_str(), angle, vec_text(axis).c_str());
+    how = text;
+    return axis;
+  }
+  std::snprintf(text, sizeof text, "detected: %s %s (no coordinate axis within %.0f°)", what.c_str(),
+                vec_text(d).c_str(), kSnapDegrees);
+  how = text;
+  return d;
+}
+
+// Up: the hair cap's vector area Σ ½(b − a)×(c − a) (outward triangles) points from the
+// hairline's plane toward the crown — up, leaning back. Front: the opposite of its horizontal
+// part, since hair covers the back of the head more than the forehead.
+void detect_directions(const Hull& hull, const PrepareOptions& o, Prepared& p) {
+  Vec3 vector_area = Vec3::Zero();
+  for (const Vec3i& t : hull.mesh.triangles) {
+    const Vec3& a = hull.mesh.positions[t[0]];
+    vector_area += 0.5 * (hull.mesh.positions[t[1]] - a).cross(hull.mesh.positions[t[2]] - a);
+  }
+  if (o.up) {
+    p.up = o.up->normalized();
+    p.up_how = "declared";
+  } else {
+    p.up = snapped(vector_area.normalized(), Vec3::Zero(), p.up_how, "the hair cap faces");
+  }
+  if (o.front) {
+    p.front = (*o.front - o.front->dot(p.up) * p.up).normalized();
+    p.front_how = "declared";
+    return;
+  }
+  const Vec3 horizontal = -(vector_area - vector_area.dot(p.up) * p.up);
+  if (horizontal.norm() > std::sin(5.0 * M_PI / 180.0) * vector_area.norm()) {
+    p.front = snapped(horizontal.normalized(), p.up, p.front_how, "the hair leans away from");
+    p.front = (p.front - p.front.dot(p.up) * p.up).normalized();
+    return;
+  }
+  // A symmetric cap says nothing about the face: the usual convention of the up axis.
+  const auto [axis, angle] = nearest_axis(p.up);
+  p.front = std::abs(axis.z()) > 0.5 ? Vec3(0, -1, 0) : Vec3(0, 0, 1);
+  p.front = (p.front - p.front.dot(p.up) * p.up).normalized();
+  p.front_how = "assumed (the hair is symmetric front to back; declare --front)";
+  (void)angle;
+}
+
+double scale_for(const Mesh& scan, const Vec3& up, const PrepareOptions& o, const std::string& file) {
+  double lo = INFINITY, hi = -INFINITY;
+  for (const Vec3& p : scan.positions) lo = std::min(lo, p.dot(up)), hi = std::max(hi, p.dot(up));
+  double scale = 1.0;
+  if (o.head_height > 0.0) {
+    scale = o.head_height / (hi - lo);
+  } else {
+    const std::vector<std::string> units{"mm", "cm", "dm", "m", "in"};
+    if (std::find(units.begin(), units.end(), o.units) == units.end())
+      throw InputError("--units", "unknown unit \"" + o.units + "\"; valid: mm, cm, dm, m, in");
+    SceneUnits u;
+    u.length = o.units;
+    scale = u.to_cm();
+  }
+  const double height = (hi - lo) * scale;
+  if (height < 5.0 || height > 150.0) {
+    char text[384];
+    std::snprintf(text, sizeof text,
+                  "the scan is %.4g cm tall along up %s when read in %s, which is no bust or head; declare the "
+                  "scan's unit with --units mm|cm|dm|m|in or its height with --head-height H (cm)",
+                  height, vec_text(up).c_str(), o.head_height > 0.0 ? "the declared height" : o.units.c_str());
+    throw InputError(file, text);
+  }
+  return scale;
+}
+
+PrepareChecks check(const Prepared& p) {
+  PrepareChecks c;
+  const Mesh& hull = p.hull.mesh;
+  const Mesh& scalp = p.scalp.scalp;
+  c.hull_disk = analyse_topology(hull).is_disk();
+  c.scalp_disk = analyse_topology(scalp).is_disk();
+  c.scalp_inward_triangles = static_cast<int>(inward_triangles(scalp, p.hull.centre).size());
+  c.hairline_shared = true;
+  std::vector<char> on_hairline(hull.positions.size(), 0);
+  for (int v : p.hull.hairline) {
+    on_hairline[v] = 1;
+    c.hairline_shared &= scalp.positions[v] == hull.positions[v];
+  }
+  // One mesh of hull, floor and scalp sharing the hairline: any crossing among them shows up as a
+  // self-intersection.
+  Mesh all = p.scalp.volume;
+  std::vector<int> index(scalp.positions.size());
+  for (std::size_t v = 0; v < scalp.positions.size(); ++v) {
+    if (on_hairline[v]) {
+      index[v] = static_cast<int>(v);
+      continue;
+    }
+    index[v] = static_cast<int>(all.positions.size());
+    all.positions.push_back(scalp.positions[v]);
+  }
+  for (const Vec3i& t : scalp.triangles) all.triangles.emplace_back(index[t[0]], index[t[1]], index[t[2]]);
+  c.intersections = static_cast<int>(self_intersections(all).size());
+  const int deepest = static_cast<int>(std::max_element(p.scalp.thickness.begin(), p.scalp.thickness.end()) -
+                                       p.scalp.thickness.begin());
+  c.deepest_winding = winding_number(p.scalp.volume, scalp.positions[deepest]);
+  return c;
+}
+
+}  // namespace
+
+Prepared prepare_scan(const Mesh& raw_scan, const std::vector<Vec3>& colors, const PrepareOptions& o,
+                      const std::string& file) {
+  Prepared p;
+  const auto [lo, hi] = bounding_box(raw_scan);
+  const double tolerance = o.weld_tolerance >= 0.0 ? o.weld_tolerance : 1e-6 * (hi - lo).norm();
+  const Welded welded = weld_vertices(raw_scan, tolerance);
+  p.welded_vertices = welded.merged_vertices;
+  std::vector<Vec3> welded_colors;
+  if (colors.size() == raw_scan.positions.size())
+    for (int old : welded.new_to_old) welded_colors.push_back(colors[old]);
+  const Mesh& scan = welded.mesh;
+
+  p.hull = cut_hull(scan, select_vertices(scan, welded_colors, o.selection, file), o.hull, file);
+  detect_directions(p.hull, o, p);
+  p.scale_to_cm = scale_for(scan, p.up, o, file);
+  for (Vec3& x : p.hull.mesh.positions) x *= p.scale_to_cm;
+  p.hull.centre *= p.scale_to_cm;
+  p.hull.selected_area *= p.scale_to_cm * p.scale_to_cm;
+  p.hull.kept_area *= p.scale_to_cm * p.scale_to_cm;
+  p.hull.hairline_length *= p.scale_to_cm;
+  p.scalp = make_scalp(p.hull, o.scalp, file);
+  p.checks = check(p);
+  const PrepareChecks& c = p.checks;
+  std::string failed;
+  if (!c.hull_disk) failed += " the hull is not a disk;";
+  if (!c.scalp_disk) failed += " the scalp is not a disk;";
+  if (c.scalp_inward_triangles) failed += " " + std::to_string(c.scalp_inward_triangles) + " scalp triangles face inward;";
+  if (c.intersections) failed += " hull, floor and scalp intersect (" + std::to_string(c.intersections) + " pairs);";
+  if (!(c.deepest_winding > 0.5)) failed += " the scalp is not inside the hull;";
+  if (!c.hairline_shared) failed += " the scalp's hairline differs from the hull's;";
+  if (!failed.empty())
+    throw InputError(file, "the scalp derived from this hull fails its checks:" + failed +
+                               " try a smaller --crown-thickness or a longer --ramp, or repair the scan near the hairline");
+  return p;
+}
+
+std::string prepared_scene_text(const Prepared& p, const std::string& scan_name, const PrepareOptions& o) {
+  char text[4096];
+  std::snprintf(
+      text, sizeof text,
+      "# Written by `hairfit prepare` from %s: hair = %s; crown thickness %.4g cm, ramp %.4g cm.\n"
+      "# Keys not written here take their defaults (spec/reference.md); edit freely.\n"
+      "format = \"%s\"\n"
+      "seed = 1\n"
+      "\n"
+      "[units]\n"
+      "length = \"cm\"               # the scan was scaled by %.6g to cm\n"
+      "down = %s    # up %s\n"
+      "front = %s   # %s\n"
+      "\n"
+      "[inputs]\n"
+      "scalp = \"scalp.obj\"\n"
+      "volume = \"volume.obj\"\n"
+      "\n"
+      "[effects]\n"
+      "cutting = true               # a scanned hull is tight: fibres that leave it for long are cut\n",
+      scan_name.c_str(), o.selection.describe().c_str(), o.scalp.crown_thickness, p.scalp.ramp_length, kSceneFormat,
+      p.scale_to_cm, toml_vector(-p.up).c_str(), p.up_how.c_str(), toml_vector(p.front).c_str(), p.front_how.c_str());
+  return text;
+}
+
+void write_prepared(const Prepared& p, const std::filesystem::path& scan, const PrepareOptions& o,
+                    const std::filesystem::path& dir) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
+    throw InputError(dir.string(), "exists and is not a folder; --out names the folder to write the scene into");
+  using Json = nlohmann::ordered_json;
+  const auto vec = [](const Vec3& v) { return Json::array({v.x(), v.y(), v.z()}); };
+  double max_thickness = 0.0;
+  for (double t : p.scalp.thickness) max_thickness = std::max(max_thickness, t);
+  Json record;
+  record["format"] = "hairfit-prepare/1";
+  record["scan"] = fs::absolute(scan).lexically_normal().string();
+  record["scale_to_cm"] = p.scale_to_cm;
+  record["selection"] = o.selection.describe();
+  record["up"] = vec(p.up);
+  record["up_how"] = p.up_how;
+  record["front"] = vec(p.front);
+  record["front_how"] = p.front_how;
+  record["welded_vertices"] = p.welded_vertices;
+  record["hull"] = {{"triangles", p.hull.mesh.triangles.size()},
+                    {"area_cm2", p.hull.kept_area},
+                    {"selected_triangles", p.hull.selected_triangles},
+                    {"selected_parts", p.hull.parts},
+                    {"selected_area_cm2", p.hull.selected_area},
+                    {"shaved_triangles", p.hull.shaved_triangles},
+                    {"holes_filled", p.hull.holes_filled},
+                    {"hairline_cm", p.hull.hairline_length},
+                    {"centre", vec(p.hull.centre)}};
+  record["scalp"] = {{"triangles", p.scalp.scalp.triangles.size()},
+                     {"area_cm2", surface_area(p.scalp.scalp)},
+                     {"crown_thickness_cm", o.scalp.crown_thickness},
+                     {"ramp_cm", p.scalp.ramp_length},
+                     {"max_thickness_cm", max_thickness},
+                     {"envelope_rms_cm", p.scalp.envelope_rms},
+                     {"envelope_outliers", p.scalp.envelope_outliers}};
+  record["checks"] = {{"hull_disk", p.checks.hull_disk},
+                      {"scalp_disk", p.checks.scalp_disk},
+                      {"scalp_inward_triangles", p.checks.scalp_inward_triangles},
+                      {"intersections", p.checks.intersections},
+                      {"deepest_winding", p.checks.deepest_winding},
+                      {"hairline_shared", p.checks.hairline_shared}};
+  const std::string scene = prepared_scene_text(p, scan.filename().string(), o);
+  write_obj_mesh(dir / "volume.obj", p.scalp.volume);
+  write_obj_mesh(dir / "scalp.obj", p.scalp.scalp);
+  write_text_file_atomically(dir / "prepare.json", record.dump(2) + "\n");
+  write_text_file_atomically(dir / "scene.toml", scene);
+}
+
+}  // namespace hairfit

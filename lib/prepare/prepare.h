@@ -1,0 +1,56 @@
+// `hairfit prepare`: from one raw scan of a bust or head to the two meshes and the scene a run
+// needs. Cut the hair hull (hair_region.h), derive the scalp and the closed hair volume
+// (scalp_offset.h), check both, and write DIR/volume.obj, DIR/scalp.obj, DIR/scene.toml and
+// DIR/prepare.json (what was done, for `hairfit render SCENE --stage cut` and for the user).
+#pragma once
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "prepare/hair_region.h"
+#include "prepare/scalp_offset.h"
+
+namespace hairfit {
+
+struct PrepareOptions {
+  HairSelection selection;          // in the scan's own coordinates and units
+  std::string units = "cm";         // the scan's unit: mm, cm, dm, m or in
+  double head_height = 0.0;         // cm; when > 0, scales the scan so its extent along up is this
+  std::optional<Vec3> up, front;    // declared directions; detected when absent
+  double weld_tolerance = -1.0;     // scan units; < 0: 1e-6 × the scan's bounding-box diagonal
+  HullOptions hull;
+  ScalpOptions scalp;               // cm
+};
+
+struct PrepareChecks {
+  bool hull_disk = false, scalp_disk = false;
+  int scalp_inward_triangles = 0;   // triangles facing the head centre (must be 0)
+  int intersections = 0;            // among hull, floor and scalp, triangles sharing no vertex
+  double deepest_winding = 0.0;     // winding number in the volume of the scalp vertex farthest in
+  bool hairline_shared = false;     // scalp and hull hairline vertices identical
+};
+
+struct Prepared {
+  Hull hull;                 // cm
+  ScalpResult scalp;         // cm
+  double scale_to_cm = 1.0;
+  Vec3 up = Vec3::UnitY(), front = Vec3::UnitZ();
+  std::string up_how, front_how;  // "declared", or how they were detected
+  int welded_vertices = 0;
+  PrepareChecks checks;
+};
+
+// Everything but the writing. Throws InputError naming `file` for bad options, a selection that
+// catches nothing or no one connected region, a mask without colours, a hull the scalp cannot be
+// built under, or a failed check.
+Prepared prepare_scan(const Mesh& scan, const std::vector<Vec3>& colors, const PrepareOptions& options,
+                      const std::string& file);
+
+// The scene text: relative paths, cm, down = −up, front, cutting on, everything else default.
+std::string prepared_scene_text(const Prepared& prepared, const std::string& scan_name, const PrepareOptions& options);
+
+// Writes the four files into `dir` (each atomically, all computed first).
+void write_prepared(const Prepared& prepared, const std::filesystem::path& scan, const PrepareOptions& options,
+                    const std::filesystem::path& dir);
+
+}  // namespace hairfit

@@ -1,0 +1,212 @@
+#include "prepare/scalp_offset.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <queue>
+
+#include "core/error.h"
+#include "prepare/surface_checks.h"
+
+namespace hairfit {
+
+namespace {
+
+double smoothstep(double x) {
+  const double t = std::clamp(x, 0.0, 1.0);
+  return t * t * (3.0 - 2.0 * t);
+}
+
+std::vector<std::vector<int>> neighbours(const Mesh& mesh) {
+  std::vector<std::vector<int>> out(mesh.positions.size());
+  for (const Vec3i& t : mesh.triangles)
+    for (int k = 0; k < 3; ++k) {
+      out[t[k]].push_back(t[(k + 1) % 3]);
+      out[t[(k + 1) % 3]].push_back(t[k]);
+    }
+  for (auto& n : out) {
+    std::sort(n.begin(), n.end());
+    n.erase(std::unique(n.begin(), n.end()), n.end());
+  }
+  return out;
+}
+
+// Shortest distance along the mesh's edges from the sources (Dijkstra), cm.
+std::vector<double> edge_distance(const Mesh& mesh, const std::vector<std::vector<int>>& next,
+                                  const std::vector<int>& sources) {
+  std::vector<double> d(mesh.positions.size(), INFINITY);
+  using Item = std::pair<double, int>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+  for (int s : sources) d[s] = 0.0, queue.emplace(0.0, s);
+  while (!queue.empty()) {
+    const auto [dist, v] = queue.top();
+    queue.pop();
+    if (dist > d[v]) continue;
+    for (int u : next[v]) {
+      const double through = dist + (mesh.positions[u] - mesh.positions[v]).norm();
+      if (through < d[u]) d[u] = through, queue.emplace(through, u);
+    }
+  }
+  return d;
+}
+
+// Monomials x^a y^b z^c of a unit vector with a + b + c ≤ 2 and c ≤ 1 (z² = 1 − x² − y² adds
+// nothing on the sphere): a basis of the spherical harmonics up to degree 2.
+Eigen::Matrix<double, 9, 1> envelope_basis(const Vec3& u) {
+  Eigen::Matrix<double, 9, 1> b;
+  b << 1.0, u.x(), u.y(), u.z(), u.x() * u.x(), u.x() * u.y(), u.y() * u.y(), u.x() * u.z(), u.y() * u.z();
+  return b;
+}
+
+double median(std::vector<double> v) {
+  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+  return v[v.size() / 2];
+}
+
+}  // namespace
+
+ScalpResult make_scalp(const Hull& hull, const ScalpOptions& o, const std::string& file) {
+  if (!(o.crown_thickness > 0.0) || !(o.ramp > 0.0) || o.smoothing_passes < 0)
+    throw InputError(file, "the crown thickness and the ramp must be positive lengths and the smoothing passes ≥ 0");
+  const Mesh& mesh = hull.mesh;
+  const Vec3 c = hull.centre;
+  const std::vector<int> facing = inward_triangles(mesh, c);
+  if (!facing.empty()) {
+    const Vec3i& t = mesh.triangles[facing.front()];
+    const Vec3 p = (mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) / 3.0;
+    char text[512];
+    std::snprintf(text, sizeof text,
+                  "the hair hull is not star-shaped about the head centre (%.4g, %.4g, %.4g): %zu of its %zu "
+                  "triangles face toward it, e.g. near (%.4g, %.4g, %.4g); the scalp is built by moving the hull "
+                  "toward that centre, so leave out hair that hangs below or folds over (tighten the selection)",
+                  c.x(), c.y(), c.z(), facing.size(), mesh.triangles.size(), p.x(), p.y(), p.z());
+    throw InputError(file, text);
+  }
+  const int n = static_cast<int>(mesh.positions.size());
+  std::vector<char> on_hairline(n, 0);
+  for (int v : hull.hairline) on_hairline[v] = 1;
+  std::vector<Vec3> u(n);
+  std::vector<double> radius(n), area(n, 0.0);
+  for (int v = 0; v < n; ++v) {
+    radius[v] = (mesh.positions[v] - c).norm();
+    u[v] = (mesh.positions[v] - c) / radius[v];
+  }
+  for (int t = 0; t < static_cast<int>(mesh.triangles.size()); ++t)
+    for (int k = 0; k < 3; ++k) area[mesh.triangles[t][k]] += triangle_area(mesh, t) / 3.0;
+  const auto next = neighbours(mesh);
+
+  ScalpResult r;
+  // The ramp: smoothstep of the distance from the hairline, then a few Jacobi passes so the
+  // polygonal isolines of edge distances do not show.
+  const std::vector<double> g = edge_distance(mesh, next, hull.hairline);
+  const double g_max = *std::max_element(g.begin(), g.end());
+  r.ramp_length = std::min(o.ramp, 0.8 * g_max);
+  std::vector<double> w(n);
+  for (int v = 0; v < n; ++v) w[v] = smoothstep(g[v] / r.ramp_length);
+  auto smooth = [&](std::vector<double>& f, int passes, const std::function<void(int)>& after) {
+    std::vector<double> previous;
+    for (int pass = 0; pass < passes; ++pass) {
+      previous = f;
+      for (int v = 0; v < n; ++v) {
+        if (on_hairline[v] || next[v].empty()) continue;
+        double mean = 0.0;
+        for (int k : next[v]) mean += previous[k];
+        f[v] = 0.5 * previous[v] + 0.5 * mean / next[v].size();
+        after(v);
+      }
+    }
+  };
+  smooth(w, 10, [](int) {});
+
+  // The envelope: iteratively reweighted least squares with Tukey's biweight (c = 4.685 robust
+  // standard deviations, from the median absolute residual), weighted by vertex area.
+  Eigen::MatrixXd basis(n, 9);
+  Eigen::VectorXd target(n);
+  for (int v = 0; v < n; ++v) basis.row(v) = envelope_basis(u[v]).transpose(), target[v] = radius[v];
+  // Only where the ramp is complete: nearer the hairline the hair thins toward the skin, which is
+  // not the envelope (unless the hull is too small to have such a region).
+  std::vector<double> fit_area = area;
+  const long complete = std::count_if(w.begin(), w.end(), [](double x) { return x >= 0.99; });
+  if (complete >= 30)
+    for (int v = 0; v < n; ++v)
+      if (w[v] < 0.99) fit_area[v] = 0.0;
+  Eigen::VectorXd weight = Eigen::Map<Eigen::VectorXd>(fit_area.data(), n);
+  Eigen::Matrix<double, 9, 1> coefficients;
+  std::vector<double> residual(n);
+  for (int iteration = 0; iteration < 12; ++iteration) {
+    const Eigen::MatrixXd weighted = weight.asDiagonal() * basis;
+    Eigen::Matrix<double, 9, 9> normal = basis.transpose() * weighted;
+    normal.diagonal().array() += 1e-9 * normal.trace();
+    coefficients = normal.ldlt().solve(weighted.transpose() * target);
+    std::vector<double> absolute;
+    for (int v = 0; v < n; ++v) {
+      residual[v] = target[v] - basis.row(v).dot(coefficients);
+      if (fit_area[v] > 0.0) absolute.push_back(std::abs(residual[v]));
+    }
+    const double scale = std::max(1e-6, 1.4826 * median(absolute));
+    for (int v = 0; v < n; ++v) {
+      const double z = residual[v] / (4.685 * scale);
+      weight[v] = std::abs(z) < 1.0 ? fit_area[v] * std::pow(1.0 - z * z, 2) : 0.0;
+    }
+  }
+  double sum = 0.0, kept = 0.0;
+  for (int v = 0; v < n; ++v) {
+    if (fit_area[v] == 0.0) continue;
+    if (weight[v] > 0.0) sum += residual[v] * residual[v], ++kept;
+    else ++r.envelope_outliers;
+  }
+  r.envelope_rms = kept > 0 ? std::sqrt(sum / kept) : 0.0;
+
+  const double T = o.crown_thickness;
+  // Where the hull bulges (a bun's steep sides), its vertices seen from the centre bunch up, which
+  // would leave the scalp with slivers; relax their directions over the sphere, in proportion to w
+  // so the hairline and its neighbourhood stay put.
+  std::vector<Vec3> direction = u;
+  for (int pass = 0; pass < o.smoothing_passes; ++pass) {
+    const std::vector<Vec3> previous = direction;
+    for (int v = 0; v < n; ++v) {
+      if (on_hairline[v] || next[v].empty()) continue;
+      Vec3 mean = Vec3::Zero();
+      for (int k : next[v]) mean += previous[k];
+      mean /= static_cast<double>(next[v].size());
+      direction[v] = (previous[v] + 0.5 * w[v] * (mean - previous[v])).normalized();
+    }
+  }
+  std::vector<double> rho(n);
+  for (int v = 0; v < n; ++v)
+    rho[v] = (1.0 - w[v]) * radius[v] + w[v] * (envelope_basis(direction[v]).dot(coefficients) - T);
+  auto clamp = [&](int v) {
+    const double highest = radius[v] - 0.5 * w[v] * T;
+    rho[v] = std::clamp(rho[v], std::min(0.3 * radius[v], highest), highest);
+  };
+  for (int v = 0; v < n; ++v)
+    if (!on_hairline[v]) clamp(v);
+  smooth(rho, o.smoothing_passes, clamp);
+
+  r.scalp = mesh;
+  r.thickness.assign(n, 0.0);
+  r.ramp = w;
+  for (int v = 0; v < n; ++v) {
+    if (on_hairline[v]) continue;  // exactly the hull's hairline
+    r.scalp.positions[v] = c + rho[v] * direction[v];
+    r.thickness[v] = radius[v] - rho[v];
+  }
+  // The closed volume: the hull, then the floor's own vertices (the hairline is shared).
+  r.volume = mesh;
+  std::vector<int> floor_vertex(n);
+  for (int v = 0; v < n; ++v) {
+    if (on_hairline[v]) {
+      floor_vertex[v] = v;
+      continue;
+    }
+    floor_vertex[v] = static_cast<int>(r.volume.positions.size());
+    r.volume.positions.push_back(c + std::max(0.2 * radius[v], rho[v] - w[v] * T) * direction[v]);
+  }
+  for (const Vec3i& t : mesh.triangles)
+    r.volume.triangles.emplace_back(floor_vertex[t[0]], floor_vertex[t[2]], floor_vertex[t[1]]);
+  return r;
+}
+
+}  // namespace hairfit

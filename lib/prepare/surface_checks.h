@@ -1,0 +1,29 @@
+// Geometric checks of the surfaces `hairfit prepare` makes: they are verified, not assumed.
+#pragma once
+#include <utility>
+#include <vector>
+
+#include "core/mesh.h"
+
+namespace hairfit {
+
+// Whether two triangles share at least one point (closed triangles; coplanar overlaps included).
+// Möller's interval test, with a 2D test for the coplanar case.
+bool triangles_intersect(const Vec3& a0, const Vec3& a1, const Vec3& a2, const Vec3& b0, const Vec3& b1, const Vec3& b2);
+
+// Pairs (i < j) of triangles of `mesh` that share no vertex and yet intersect: the
+// self-intersections. Stops after `max_pairs`. A uniform grid over the triangles' bounding boxes
+// finds the candidates; each pair is tested once, in the cell holding the low corner of the
+// overlap of their boxes, so the answer is exact and deterministic.
+std::vector<std::pair<int, int>> self_intersections(const Mesh& mesh, int max_pairs = 16);
+
+// Mean curvature |H| (1/cm) at each vertex from the cotangent Laplacian over the barycentric
+// area: |Σⱼ (cot αᵢⱼ + cot βᵢⱼ)(xᵢ − xⱼ)| / (4 Aᵢ). Boundary vertices get 0 (undefined there).
+std::vector<double> mean_curvature(const Mesh& mesh);
+
+// Triangles whose orientation, seen from `centre`, is not strictly counter-clockwise outward
+// (signed volume of the tetrahedron (centre, a, b, c) ≤ 0): zero for a surface that is star-shaped
+// about the centre with outward normals.
+std::vector<int> inward_triangles(const Mesh& mesh, const Vec3& centre);
+
+}  // namespace hairfit

@@ -1,0 +1,142 @@
+// `hairfit prepare` as a user runs it: a scan file in, a scene that validates and runs out; bad
+// input refused with a clear message and nothing written.
+#include <doctest/doctest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "../support/run_hairfit.h"
+#include "io/obj_mesh.h"
+#include "prepare/bust.h"
+
+using namespace hairfit;
+using hairfit::testing::read_all;
+using hairfit::testing::run_hairfit;
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path fresh_dir(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("hairfit-prepare-" + std::to_string(::getpid()) + "-" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+// The bust written as a scan: positions × scale (e.g. 10 for millimetres), optionally turned by
+// `turn`, with or without colours.
+fs::path write_bust(const fs::path& dir, double scale, const Mat3& turn = Mat3::Identity(), bool colours = true) {
+  BustScan scan = make_bust(BustShape{});
+  for (Vec3& p : scan.mesh.positions) p = turn * (scale * p);
+  const fs::path file = dir / "bust.obj";
+  write_obj_mesh(file, scan.mesh, {}, colours ? scan.colors : std::vector<Vec3>{});
+  return file;
+}
+
+const std::string kHairMask = "--mask 0.3,0.18,0.1";
+
+}  // namespace
+
+TEST_CASE("a scan in millimetres with a painted mask becomes a scene that validates and runs") {
+  const fs::path dir = fresh_dir("run");
+  const fs::path scan = write_bust(dir, 10.0);
+  const fs::path out = dir / "scene";
+  const auto r = run_hairfit("prepare " + scan.string() + " --out " + out.string() + " " + kHairMask + " --units mm");
+  INFO(r.out << r.err);
+  REQUIRE(r.exit_code == 0);
+  for (const char* file : {"volume.obj", "scalp.obj", "scene.toml", "prepare.json"}) CHECK(fs::exists(out / file));
+  const std::string scene = read_all((out / "scene.toml").string());
+  CHECK(scene.find("length = \"cm\"") != std::string::npos);
+  CHECK(scene.find("down = [0, -1, 0]") != std::string::npos);   // up +y detected (cap leans back 25°)
+  CHECK(scene.find("front = [0, 0, 1]") != std::string::npos);   // the face is where the hair is not
+  // Scaled to cm: the hull's highest point is the bust's crown, about 11 cm above the centre.
+  const LoadedMesh volume = load_obj_mesh(out / "volume.obj");
+  CHECK(bounding_box(volume.mesh).second.y() == doctest::Approx(BustShape{}.radius(Vec3::UnitY())).epsilon(0.05));
+
+  const auto valid = run_hairfit("validate " + (out / "scene.toml").string());
+  INFO(valid.out << valid.err);
+  CHECK(valid.exit_code == 0);
+
+  // The scene as written asks for 3000 guides at 200 hairs/cm² (the defaults); to keep the test
+  // short it runs a copy with smaller counts appended (tables the written scene does not use).
+  std::ofstream(out / "small.toml") << scene
+                                    << "\n[hair]\ndensity = 3\n[fields]\nvoxel = 0.3\n[roots]\nguides = 60\n"
+                                       "preguide_spacing = 2.0\n[rod]\nsegments = 24\n[guides]\nsamples = 8\n"
+                                       "[strands]\npoints = 12\n[output]\nstrands = []\nrenders = []\n";
+  const auto run = run_hairfit("run " + (out / "small.toml").string() + " --out " + (dir / "run").string() + " --threads 2");
+  INFO(run.out << run.err);
+  REQUIRE(run.exit_code == 0);
+  const auto report = nlohmann::json::parse(read_all((dir / "run" / "report.json").string()));
+  const double inside = report["stages"]["strands"]["inside_fraction"].get<double>();
+  MESSAGE("strands inside after cutting: " << inside << ", cut fibres " << report["stages"]["strands"]["cut"]);
+  CHECK(inside >= 0.99);
+
+  const auto picture = run_hairfit("render " + (out / "scene.toml").string() + " --stage cut --view side --size 480x240 --out " +
+                                   (dir / "cut.png").string());
+  INFO(picture.out << picture.err);
+  CHECK(picture.exit_code == 0);
+  CHECK(fs::file_size(dir / "cut.png") > 1000);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("up and front are detected on a z-up scan, and a declared head height sets the scale") {
+  const fs::path dir = fresh_dir("zup");
+  Mat3 turn;  // +y → +z, +z (the face) → −y: a z-up export
+  turn << 1, 0, 0, 0, 0, -1, 0, 1, 0;
+  const fs::path scan = write_bust(dir, 0.01, turn);  // in metres
+  const auto r = run_hairfit("prepare " + scan.string() + " --out " + (dir / "scene").string() + " " + kHairMask +
+                             " --head-height 40");
+  INFO(r.out << r.err);
+  REQUIRE(r.exit_code == 0);
+  const std::string scene = read_all((dir / "scene" / "scene.toml").string());
+  CHECK(scene.find("down = [0, 0, -1]") != std::string::npos);
+  CHECK(scene.find("front = [0, -1, 0]") != std::string::npos);
+  const LoadedMesh scan_mesh = load_obj_mesh(scan);
+  const auto [lo, hi] = bounding_box(scan_mesh.mesh);
+  const auto record = nlohmann::json::parse(read_all((dir / "scene" / "prepare.json").string()));
+  CHECK(record["scale_to_cm"].get<double>() == doctest::Approx(40.0 / (hi.z() - lo.z())));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("bad input: a clear message, exit code 2 and nothing written") {
+  const fs::path dir = fresh_dir("bad");
+  const fs::path coloured = write_bust(dir, 1.0);
+  const fs::path out = dir / "out";
+  auto refused = [&](const std::string& arguments, const std::string& expected) {
+    const auto r = run_hairfit("prepare " + arguments + " --out " + out.string());
+    INFO(arguments << "\n" << r.err);
+    CHECK(r.exit_code == 2);
+    CHECK(r.err.find(expected) != std::string::npos);
+    CHECK_FALSE(fs::exists(out));
+  };
+  SUBCASE("a selection that catches nothing") {
+    refused(coloured.string() + " --plane 0,100,0,0,1,0", "catches no triangle");
+  }
+  SUBCASE("no connected hair region: a mask painted in scattered specks") {
+    BustScan scan = make_bust(BustShape{});
+    // A 3D checkerboard of 1.5 cm cells: hair colour on alternate cells only.
+    for (std::size_t v = 0; v < scan.colors.size(); ++v) {
+      const Vec3 c = (scan.mesh.positions[v] / 1.5).array().floor();
+      const bool odd = (static_cast<long>(c.x() + c.y() + c.z()) & 1) != 0;
+      scan.colors[v] = odd ? Vec3(0.3, 0.18, 0.1) : Vec3(0.92, 0.76, 0.66);
+    }
+    write_obj_mesh(dir / "specks.obj", scan.mesh, {}, scan.colors);
+    refused((dir / "specks.obj").string() + " " + kHairMask, "not one connected region");
+  }
+  SUBCASE("a mask on a scan without colours") {
+    const fs::path plain = dir / "plain";
+    fs::create_directories(plain);
+    refused(write_bust(plain, 1.0, Mat3::Identity(), false).string() + " " + kHairMask, "has no vertex colours");
+  }
+  SUBCASE("a selection that takes the whole scan") {
+    refused(coloured.string() + " --plane 0,-1000,0,0,1,0", "closed surface");
+  }
+  SUBCASE("a scan in the wrong unit") {
+    refused(coloured.string() + " " + kHairMask + " --units m", "--units");
+  }
+  SUBCASE("no selection at all") {
+    refused(coloured.string(), "exactly one of --plane");
+  }
+  fs::remove_all(dir);
+}
