@@ -8,7 +8,7 @@
 namespace hairfit::cli {
 
 int command_run(const Arguments& argv) {
-  const Args args(argv, {"out", "until", "threads"}, {});
+  const Args args(argv, {"out", "until", "threads", "cache"}, {"no-cache", "quiet"});
   if (args.positionals().size() != 1) throw UsageError{"expected exactly one SCENE file"};
   const int threads = args.integer("threads", 0);
   if (threads < 0) throw UsageError{"--threads must be ≥ 0 (0 = all cores)"};
@@ -20,6 +20,11 @@ int command_run(const Arguments& argv) {
   options.until = args.text("until").value_or("");
   options.threads = resolve_thread_count(threads);
   check_stage_name(options.until);
+  if (args.has("no-cache") && args.has("cache")) throw UsageError{"--cache and --no-cache contradict each other"};
+  if (!args.has("no-cache"))
+    options.cache_dir = args.text("cache") ? std::filesystem::path(*args.text("cache")) : default_cache_dir(scene);
+  ProgressReporter progress(progress_style_for(stderr, args.has("quiet")));
+  options.progress = &progress;
   const PipelineResult result = run_pipeline(scene, inputs, options);
   const RunReport& report = result.report;
   std::printf("wrote %s\n", (options.out_dir / "report.json").string().c_str());

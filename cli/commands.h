@@ -10,6 +10,7 @@ using Arguments = std::vector<std::string>;
 
 int command_validate(const Arguments& args);
 int command_run(const Arguments& args);
+int command_check(const Arguments& args);
 int command_render(const Arguments& args);
 int command_scene_keys(const Arguments& args);
 int command_rod(const Arguments& args);

@@ -20,8 +20,10 @@ struct Command {
 const Command kCommands[] = {
     {"validate", "validate SCENE            check a scene and its inputs; nothing is computed",
      hairfit::cli::command_validate},
-    {"run", "run SCENE [--out DIR] [--until STAGE] [--threads N]   run the pipeline, write outputs and report.json",
+    {"run", "run SCENE [--out DIR] [--until STAGE] [--threads N] [--cache DIR | --no-cache] [--quiet]   run the pipeline, write outputs and report.json",
      hairfit::cli::command_run},
+    {"check", "check SCENE [--golden DIR] [--update] [--threads N] [--quiet]   compare every stage with golden results (exit 1 if one differs)",
+     hairfit::cli::command_check},
     {"render", "render SCENE [--stage STAGE] [--view VIEW] [--size WxH] [--out PNG] [--threads N]   picture of a stage",
      hairfit::cli::command_render},
     {"scene-keys", "scene-keys                print the table of scene keys (spec/reference.md embeds it)",

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <sstream>
 
@@ -19,10 +20,18 @@ Range closed(double lo, double hi) { return {lo, hi, false, false}; }
 Range above(double lo, double hi = kInf) { return {lo, hi, true, false}; }  // (lo, hi]
 Range any() { return {}; }
 
+// The shortest text of at least 10 significant digits that reads back as exactly x, so `show`
+// gives the value itself (the stage cache keys on it) and the documented defaults stay short.
 std::string number_text(double x) {
   char buffer[64];
-  if (x == std::floor(x) && std::fabs(x) < 1e16) std::snprintf(buffer, sizeof buffer, "%.0f", x);
-  else std::snprintf(buffer, sizeof buffer, "%.10g", x);
+  if (x == std::floor(x) && std::fabs(x) < 1e16) {
+    std::snprintf(buffer, sizeof buffer, "%.0f", x);
+    return buffer;
+  }
+  for (int digits = 10; digits <= 17; ++digits) {
+    std::snprintf(buffer, sizeof buffer, "%.*g", digits, x);
+    if (std::strtod(buffer, nullptr) == x) break;
+  }
   return buffer;
 }
 

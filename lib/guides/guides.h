@@ -42,6 +42,7 @@ struct GuideOptions {
   Vec3 down{0, -1, 0};
   Vec3 front{0, 0, 1};
   int threads = 1;
+  ProgressCallback progress;  // guides finished so far (never changes results)
 };
 
 struct Guide {

@@ -217,7 +217,11 @@ PreGuide solve_preguide(const RootSet& roots, int i, const Boundary& boundary, c
 PreGuides make_preguides(const RootSet& roots, const Boundary& boundary, const PreguideOptions& options) {
   PreGuides result;
   result.items.resize(roots.size());
-  parallel_for(roots.size(), options.threads, [&](int i) { result.items[i] = solve_preguide(roots, i, boundary, options); });
+  ProgressCounter progress(options.progress);
+  parallel_for(roots.size(), options.threads, [&](int i) {
+    result.items[i] = solve_preguide(roots, i, boundary, options);
+    progress.item_done();
+  });
   return result;
 }
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/digest.h"
+#include "core/progress.h"
 #include "guides/boundary.h"
 #include "guides/hair_rod.h"
 #include "scalp/roots.h"
@@ -22,6 +23,7 @@ struct PreguideOptions {
   Vec3 down{0, -1, 0};
   Vec3 front{0, 0, 1};
   int threads = 1;
+  ProgressCallback progress;  // pre-guides finished so far (never changes results)
 };
 
 // A solved rod shape as the guide objective compares it: per node, in world axes.

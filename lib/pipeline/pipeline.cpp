@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <optional>
 
 #include "density/accumulator.h"
 #include "density/statistics.h"
@@ -9,7 +11,10 @@
 #include "io/atomic_file.h"
 #include "io/curve_files.h"
 #include "field/field_nrrd.h"
+#include "pipeline/stage_cache.h"
+#include "pipeline/stage_codec.h"
 #include "pipeline/stage_options.h"
+#include "pipeline/stage_plan.h"
 #include "scalp/scalp_outputs.h"
 
 namespace hairfit {
@@ -51,6 +56,11 @@ class Runner {
     result_.report.seed = scene.seed;
     result_.report.threads = options.threads;
     result_.report.effects = scene.effects.names();
+    if (!options.cache_dir.empty()) {
+      cache_.emplace(options.cache_dir);
+      keys_ = stage_keys(scene, inputs);
+    }
+    for (const StageDeclaration& d : stage_declarations(scene)) cached_[d.name] = d.cached;
   }
 
   PipelineResult run() {
@@ -70,6 +80,33 @@ class Runner {
     StageReport stage;
     stage.name = name;
     const StageMeter meter;
+    if (progress()) progress()->stage_begins(name, loop_items(name));
+    const bool cacheable = cache_ && cached_.at(name);
+    if (!(cacheable && load_cached(stage))) {
+      compute(stage);
+      if (cacheable) store(stage);
+    }
+    write_outputs(name);
+    stage.seconds = meter.seconds();
+    stage.peak_memory_bytes = meter.peak_memory_bytes();
+    if (progress()) progress()->stage_ends(name, stage.status, stage.seconds);
+    result_.report.stages.push_back(std::move(stage));
+  }
+
+  ProgressReporter* progress() const { return options_.progress; }
+  ProgressCallback loop_progress() const { return progress() ? progress()->callback() : ProgressCallback(); }
+
+  // The length of the stage's loop, for the progress bar (0: none worth showing).
+  std::size_t loop_items(const std::string& name) const {
+    const StageValues& v = result_.values;
+    if (name == "preguides") return v.preguide_roots->roots.size();
+    if (name == "guides") return v.clusters->size();
+    if (name == "strands") return v.roots->pores.size();
+    return 0;
+  }
+
+  void compute(StageReport& stage) {
+    const std::string& name = stage.name;
     if (name == "fields") fields(stage);
     else if (name == "chart") chart(stage);
     else if (name == "roots") roots(stage);
@@ -77,14 +114,125 @@ class Runner {
     else if (name == "guides") guides(stage);
     else if (name == "strands") strands(stage);
     else if (name == "density") density(stage);
-    stage.seconds = meter.seconds();
-    stage.peak_memory_bytes = meter.peak_memory_bytes();
-    result_.report.stages.push_back(std::move(stage));
+  }
+
+  // A cache entry's payload: the stage's digest and figures, then its values.
+  void store(const StageReport& stage) {
+    const StageValues& v = result_.values;
+    ByteWriter out;
+    out.put(stage.digest);
+    out.put<std::uint64_t>(stage.figures.size());
+    for (const auto& [key, value] : stage.figures) {
+      out.put(key);
+      out.put<std::uint8_t>(static_cast<std::uint8_t>(value.index()));
+      std::visit([&out](const auto& x) { out.put(x); }, value);
+    }
+    const std::string& name = stage.name;
+    if (name == "fields") {
+      encode(out, *v.scalp_field);
+      encode(out, *v.volume_field);
+    } else if (name == "chart") {
+      encode(out, *v.chart);
+    } else if (name == "roots") {
+      encode(out, *v.roots);
+      encode(out, *v.clusters);
+      encode(out, *v.preguide_roots);
+    } else if (name == "preguides") {
+      encode(out, *v.preguides);
+    } else if (name == "guides") {
+      encode(out, *v.guides);
+      out.put<std::uint8_t>(v.guide_density != nullptr);
+      if (v.guide_density) encode(out, *v.guide_density);
+    } else if (name == "strands") {
+      encode(out, *v.strands);
+    } else if (name == "density") {
+      encode(out, *v.fibre_density);
+    }
+    try {
+      cache_->store(name, keys_.at(name), out.take());
+    } catch (const std::exception& e) {  // a cache that cannot be written costs speed, not the run
+      if (progress()) progress()->note(std::string("warning: could not cache ") + name + ": " + e.what());
+    }
+  }
+
+  // Loads the stage's value, digest and figures from its cache entry. Nothing is changed unless
+  // the whole entry decodes; a rejected entry is reported and the stage recomputed.
+  bool load_cached(StageReport& stage) {
+    const std::string& name = stage.name;
+    std::string problem;
+    const std::optional<std::string> payload = cache_->load(name, keys_.at(name), problem);
+    if (!payload) {
+      if (!problem.empty() && progress()) progress()->note("cache: " + problem + "; recomputing " + name);
+      return false;
+    }
+    try {
+      ByteReader in(*payload);
+      StageReport loaded = stage;
+      in.get(loaded.digest);
+      const auto figures = in.get<std::uint64_t>();
+      if (figures > 1000) throw CodecError("impossible figure count");
+      for (std::uint64_t i = 0; i < figures; ++i) {
+        std::string key;
+        in.get(key);
+        switch (in.get<std::uint8_t>()) {
+          case 0: loaded.add(key, in.get<bool>()); break;
+          case 1: loaded.add(key, in.get<std::int64_t>()); break;
+          case 2: loaded.add(key, in.get<double>()); break;
+          case 3: {
+            std::string text;
+            in.get(text);
+            loaded.add(key, text);
+            break;
+          }
+          default: throw CodecError("unknown figure type");
+        }
+      }
+      StageValues v = result_.values;
+      if (name == "fields") {
+        v.scalp_field = std::make_shared<const DistanceField>(decode_distance_field(in));
+        v.volume_field = std::make_shared<const DistanceField>(decode_distance_field(in));
+      } else if (name == "chart") {
+        v.chart = std::make_shared<const ScalpChart>(decode_scalp_chart(in));
+      } else if (name == "roots") {
+        v.roots = std::make_shared<const Roots>(decode_roots(in));
+        v.clusters = std::make_shared<const Clusters>(decode_clusters(in));
+        v.preguide_roots = std::make_shared<const PreguideRoots>(decode_preguide_roots(in));
+      } else if (name == "preguides") {
+        v.preguides = std::make_shared<const PreGuides>(decode_preguides(in));
+      } else if (name == "guides") {
+        v.guides = std::make_shared<const Guides>(decode_guides(in));
+        if (in.get<std::uint8_t>()) v.guide_density = std::make_shared<const DensityGrid>(decode_density_grid(in));
+      } else if (name == "strands") {
+        v.strands = std::make_shared<const Strands>(decode_strands(in));
+      } else if (name == "density") {
+        v.fibre_density = std::make_shared<const DensityGrid>(decode_density_grid(in));
+      }
+      in.expect_end();
+      loaded.status = "cached";
+      stage = std::move(loaded);
+      result_.values = std::move(v);
+      return true;
+    } catch (const CodecError& e) {
+      if (progress())
+        progress()->note("cache: " + cache_->entry_path(name, keys_.at(name)).string() + ": " + e.what() +
+                         "; recomputing " + name);
+      return false;
+    }
+  }
+
+  void write_outputs(const std::string& name) {
+    if (!options_.write_outputs) return;
+    if (name == "fields") write_fields();
+    else if (name == "chart") write_chart();
+    else if (name == "roots") write_roots();
+    else if (name == "preguides") write_preguides();
+    else if (name == "guides") write_guides();
+    else if (name == "strands") write_strands();
+    else if (name == "density") write_density();
   }
 
   template <class Write>
   void output(const std::string& relative, Write write) {
-    if (!options_.write_outputs) return;
     const fs::path path = options_.out_dir / relative;
     write(path);
     result_.report.outputs.push_back({relative, static_cast<std::uint64_t>(fs::file_size(path))});
@@ -109,6 +257,10 @@ class Runner {
                                  std::to_string(v.volume_field->dims().y()) + "x" + std::to_string(v.volume_field->dims().z()));
     stage.add("band_voxels", static_cast<std::int64_t>(v.scalp_field->band_voxels() + v.volume_field->band_voxels()));
     stage.add("memory_bytes", static_cast<std::int64_t>(v.scalp_field->memory_bytes() + v.volume_field->memory_bytes()));
+  }
+
+  void write_fields() {
+    const StageValues& v = result_.values;
     output("fields/scalp.nrrd", [&](const fs::path& p) { write_nrrd(p, field_to_nrrd(*v.scalp_field)); });
     output("fields/volume.nrrd", [&](const fs::path& p) { write_nrrd(p, field_to_nrrd(*v.volume_field)); });
   }
@@ -122,8 +274,9 @@ class Runner {
     stage.add("flipped_triangles", static_cast<std::int64_t>(v.chart->flipped_triangles));
     stage.add("hairline_vertices", static_cast<std::int64_t>(v.chart->boundary.size()));
     stage.add("solver", v.chart->solver);
-    output("chart.obj", [&](const fs::path& p) { write_chart_obj(p, *v.chart); });
   }
+
+  void write_chart() { output("chart.obj", [&](const fs::path& p) { write_chart_obj(p, *result_.values.chart); }); }
 
   ScalpMaps maps() const {
     return ScalpMaps{inputs_.density_map ? &*inputs_.density_map : nullptr, inputs_.tilt_map ? &*inputs_.tilt_map : nullptr,
@@ -145,6 +298,10 @@ class Runner {
     stage.add("preguide_roots", static_cast<std::int64_t>(f.preguide_roots));
     stage.add("min_spacing_cm", f.min_spacing);
     stage.add("mean_spacing_cm", f.mean_spacing);
+  }
+
+  void write_roots() {
+    const StageValues& v = result_.values;
     output("roots.ply", [&](const fs::path& p) { write_roots_ply(p, *v.roots, *v.clusters); });
   }
 
@@ -152,8 +309,9 @@ class Runner {
 
   void preguides(StageReport& stage) {
     StageValues& v = result_.values;
-    v.preguides = std::make_shared<const PreGuides>(
-        make_preguides(v.preguide_roots->roots, boundary(), preguide_options(scene_, options_.threads)));
+    PreguideOptions o = preguide_options(scene_, options_.threads);
+    o.progress = loop_progress();
+    v.preguides = std::make_shared<const PreGuides>(make_preguides(v.preguide_roots->roots, boundary(), o));
     stage.digest = digest(*v.preguides).hex();
     int reached = 0;
     double solves = 0;
@@ -165,8 +323,12 @@ class Runner {
     stage.add("reached_depth", static_cast<std::int64_t>(reached));
     stage.add("flagged", static_cast<std::int64_t>(v.preguides->size() - reached));
     stage.add("mean_newton_steps", v.preguides->size() ? solves / v.preguides->size() : 0.0);
+  }
+
+  void write_preguides() {
+    const PreGuides& preguides = *result_.values.preguides;
     Curves curves;
-    for (int i = 0; i < v.preguides->size(); ++i) curves.add(v.preguides->items[i].shape.nodes, i);
+    for (int i = 0; i < preguides.size(); ++i) curves.add(preguides.items[i].shape.nodes, i);
     output("preguides.obj", [&](const fs::path& p) { write_obj_curves(p, curves); });
   }
 
@@ -182,7 +344,8 @@ class Runner {
 
   void guides(StageReport& stage) {
     StageValues& v = result_.values;
-    const GuideOptions o = guide_options(scene_, options_.threads);
+    GuideOptions o = guide_options(scene_, options_.threads);
+    o.progress = loop_progress();
     Digest density_digest;
     if (density_declared(scene_)) {
       const GuideDensityOptions d =
@@ -212,16 +375,21 @@ class Runner {
     stage.add("outside_volume_fraction", f.outside_volume_fraction);
     stage.add("mean_direction_mismatch", f.mean_direction_mismatch);
     stage.add("start", scene_.guides.start);
-    output("guides.obj", [&](const fs::path& p) { write_obj_curves(p, v.guides->curves()); });
-    output("guides.csv", [&](const fs::path& p) { write_guides_csv(p, *v.guides); });
+  }
+
+  void write_guides() {
+    const Guides& guides = *result_.values.guides;
+    output("guides.obj", [&](const fs::path& p) { write_obj_curves(p, guides.curves()); });
+    output("guides.csv", [&](const fs::path& p) { write_guides_csv(p, guides); });
   }
 
   void strands(StageReport& stage) {
     StageValues& v = result_.values;
     const DistanceField* volume = v.volume_field.get();
     const DistanceFunction volume_distance = [volume](const Vec3& p) { return volume->value(p); };
-    Curves guide_curves = v.guides->curves();
-    Strands s = make_strands(guide_curves, pores(), strand_options(scene_, options_.threads), volume_distance);
+    StrandOptions o = strand_options(scene_, options_.threads);
+    o.progress = loop_progress();
+    Strands s = make_strands(v.guides->curves(), pores(), o, volume_distance);
     add_widths(s.fibres, scene_.hair.cross_section);
     v.strands = std::make_shared<const Strands>(std::move(s));
     const Curves& fibres = v.strands->fibres;
@@ -231,8 +399,13 @@ class Runner {
     for (const Vec3& p : fibres.points) inside += b.acceptable(p);
     stage.add("fibres", static_cast<std::int64_t>(fibres.count()));
     stage.add("points", static_cast<std::int64_t>(fibres.points.size()));
-    stage.add("cut", static_cast<std::int64_t>(v.strands->cut_count));
+    if (scene_.effects.cutting) stage.add("cut", static_cast<std::int64_t>(v.strands->cut_count));
     stage.add("inside_fraction", fibres.points.empty() ? 0.0 : static_cast<double>(inside) / fibres.points.size());
+  }
+
+  void write_strands() {
+    const Curves& fibres = result_.values.strands->fibres;
+    Curves guide_curves = result_.values.guides->curves();
     add_widths(guide_curves, scene_.hair.cross_section);
     for (const std::string& format : scene_.output.strands) {
       auto write = [&](const std::string& base, const Curves& curves) {
@@ -254,16 +427,12 @@ class Runner {
   void density(StageReport& stage) {
     StageValues& v = result_.values;
     const GridGeometry grid = density_geometry(scene_, inputs_.volume.mesh);
-    const Curves& curves = v.strands->fibres;
-    std::vector<std::vector<Vec3>> fibres(curves.count());
-    for (std::size_t c = 0; c < curves.count(); ++c)
-      fibres[c].assign(curves.points.begin() + curves.offsets[c], curves.points.begin() + curves.offsets[c + 1]);
+    const std::vector<std::vector<Vec3>> fibres = fibre_lists();
     DensityAccumulator accumulator(grid);
     accumulator.add_fibres(fibres, options_.threads);
     v.fibre_density = std::make_shared<const DensityGrid>(std::move(accumulator).freeze());
     const Boundary b = boundary();
     const DensityStatistics s = density_statistics(*v.fibre_density, [&b](const Vec3& p) { return b.acceptable(p); });
-    const SegmentHistogram histogram = segment_histogram(grid, fibres, options_.threads);
     const std::vector<double>& values = v.fibre_density->values();
     stage.digest = Digest().add_bytes(values.data(), values.size() * sizeof(double)).hex();
     stage.add("model", scene_.effects.density == DensityModel::binary ? std::string("binary") : std::string("continuous"));
@@ -274,18 +443,38 @@ class Runner {
     stage.add("mean_density", s.mean);
     stage.add("coefficient_of_variation", s.coefficient_of_variation);
     stage.add("empty_share", s.empty_share);
-    stage.add("max_segments_per_cell", static_cast<std::int64_t>(histogram.cells_with.empty() ? 0 : histogram.cells_with.size() - 1));
-    output("density/histogram.csv", [&](const fs::path& p) { write_text_file_atomically(p, histogram_csv(histogram)); });
+    histogram_ = segment_histogram(grid, fibres, options_.threads);
+    stage.add("max_segments_per_cell",
+              static_cast<std::int64_t>(histogram_->cells_with.empty() ? 0 : histogram_->cells_with.size() - 1));
+  }
+
+  std::vector<std::vector<Vec3>> fibre_lists() const {
+    const Curves& curves = result_.values.strands->fibres;
+    std::vector<std::vector<Vec3>> fibres(curves.count());
+    for (std::size_t c = 0; c < curves.count(); ++c)
+      fibres[c].assign(curves.points.begin() + curves.offsets[c], curves.points.begin() + curves.offsets[c + 1]);
+    return fibres;
+  }
+
+  void write_density() {
+    if (!histogram_)  // a cached stage: recomputed from the fibres rather than stored
+      histogram_ = segment_histogram(density_geometry(scene_, inputs_.volume.mesh), fibre_lists(), options_.threads);
+    output("density/histogram.csv", [&](const fs::path& p) { write_text_file_atomically(p, histogram_csv(*histogram_)); });
     // Centre sagittal slice (Fig. 6): normal = the head's left–right axis = front × up.
     const Vec3 up = -scene_.units.down;
     const Vec3 left_right = scene_.units.front.cross(up);
-    output("density/sagittal.nrrd",
-           [&](const fs::path& p) { write_nrrd(p, slice_to_nrrd(centre_slice(*v.fibre_density, left_right, up))); });
+    output("density/sagittal.nrrd", [&](const fs::path& p) {
+      write_nrrd(p, slice_to_nrrd(centre_slice(*result_.values.fibre_density, left_right, up)));
+    });
   }
 
   const Scene& scene_;
   const Inputs& inputs_;
   const RunOptions& options_;
+  std::optional<StageCache> cache_;
+  std::map<std::string, std::string> keys_;
+  std::map<std::string, bool> cached_;
+  std::optional<SegmentHistogram> histogram_;  // the density stage's, for its file
   PipelineResult result_;
 };
 
@@ -298,5 +487,7 @@ PipelineResult run_pipeline(const Scene& scene, const Inputs& inputs, const RunO
                                           "density stage to stop after; declare one or stop after strands");
   return Runner(scene, inputs, options).run();
 }
+
+std::filesystem::path default_cache_dir(const Scene& scene) { return scene.file.parent_path() / ".hairfit-cache"; }
 
 }  // namespace hairfit

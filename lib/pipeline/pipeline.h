@@ -13,6 +13,7 @@
 #include "field/distance_field.h"
 #include "guides/guides.h"
 #include "pipeline/inputs.h"
+#include "pipeline/progress.h"
 #include "pipeline/report.h"
 #include "scalp/roots.h"
 #include "spec/scene.h"
@@ -25,6 +26,9 @@ struct RunOptions {
   std::string until;              // last stage to run ("" = all)
   int threads = 1;                // already resolved (≥ 1)
   bool write_outputs = true;      // false: compute only (render)
+  // Where stage values are cached (pipeline/stage_cache.h); empty: every stage is computed.
+  std::filesystem::path cache_dir;
+  ProgressReporter* progress = nullptr;  // stage starts, ends and loop progress; null: silent
 };
 
 // Every stage's value; a stage not run (beyond --until) stays empty.
@@ -50,11 +54,16 @@ const std::vector<std::string>& stage_names();
 void check_stage_name(const std::string& stage, const std::string& option = "--until");
 
 // Runs the stages up to options.until, writes their outputs and report.json into out_dir (unless
-// write_outputs is false), and returns the values and the report.
+// write_outputs is false), and returns the values and the report. With a cache_dir, a stage whose
+// key (pipeline/stage_plan.h) has a valid entry is loaded instead of computed (status "cached");
+// values, digests, figures and output files are byte-identical either way.
 struct PipelineResult {
   StageValues values;
   RunReport report;
 };
 PipelineResult run_pipeline(const Scene& scene, const Inputs& inputs, const RunOptions& options);
+
+// Where `hairfit run` caches stage values unless told otherwise: `.hairfit-cache` beside the scene.
+std::filesystem::path default_cache_dir(const Scene& scene);
 
 }  // namespace hairfit

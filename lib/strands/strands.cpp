@@ -121,6 +121,7 @@ Strands make_strands(const Curves& guides, const Pores& pores, const StrandOptio
   const int count = static_cast<int>(pores.positions.size());
   std::vector<std::vector<Vec3>> fibres(count);
   std::vector<char> cut(count, 0);
+  ProgressCounter progress(options.progress);
   parallel_for(count, options.threads, [&](int i) {
     std::vector<Vec3> fibre = fibre_along(tracks[pores.guide[i]], pores.positions[i], pores.lengths[i],
                                           extent[pores.guide[i]], options);
@@ -130,6 +131,7 @@ Strands make_strands(const Curves& guides, const Pores& pores, const StrandOptio
       fibre = std::move(r.points);
     }
     fibres[i] = std::move(fibre);
+    progress.item_done();
   });
 
   Strands strands;

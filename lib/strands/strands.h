@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/curves.h"
+#include "core/progress.h"
 #include "strands/cutting.h"
 
 namespace hairfit {
@@ -17,6 +18,7 @@ struct StrandOptions {
   bool cutting = false;
   double cut_threshold = 1.0;  // cm outside the volume before a cut
   int threads = 1;
+  ProgressCallback progress;  // fibres finished so far (never changes results)
 };
 
 // The pores to grow fibres from: position on the scalp (cm), own length (cm), guide index.
