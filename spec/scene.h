@@ -98,7 +98,7 @@ struct SceneGuides {
   double tolerance = 1e-6;         // relative cost decrease at which a guide is converged
   std::string boundary = "smooth";  // smooth (C¹) | paper (eq. 9 exactly)
   double outside_penalty = 3.0;    // c_d, cm: extra cost outside the acceptable region (eq. 9)
-  double boundary_width = 0.25;    // cm inside the surface over which the smooth form ramps c_d up
+  double boundary_width = 1.0;     // cm inside the surface over which the smooth form ramps c_d up
   SceneWeights weights;
 };
 

@@ -6,12 +6,42 @@
 #include <stdexcept>
 
 #include "core/parallel.h"
+#include "core/progress.h"
 #include "density/accumulator.h"
 #include "guides/objective.h"
 
 namespace hairfit {
 
 namespace {
+
+// The `count` candidates nearest to p (ties: lower index first), nearest first.
+template <typename PositionOf>
+std::vector<int> nearest(std::vector<int> candidates, const PositionOf& position_of, const Vec3& p, int count) {
+  count = std::min<int>(count, candidates.size());
+  std::partial_sort(candidates.begin(), candidates.begin() + count, candidates.end(), [&](int a, int c) {
+    const double da = (position_of(a) - p).squaredNorm(), dc = (position_of(c) - p).squaredNorm();
+    return da < dc || (da == dc && a < c);
+  });
+  candidates.resize(count);
+  return candidates;
+}
+
+// Weights of followed neighbours at these distances, nearest first: inverse distance, softened
+// so that a neighbour at the very root does not take all the weight; they sum to 1.
+std::vector<double> follow_weights(std::vector<double> distances) {
+  if (distances.empty()) return distances;
+  const double soften = 0.25 * distances.back() + 1e-6;
+  double total = 0.0;
+  for (double& d : distances) total += d = 1.0 / (d + soften);
+  for (double& w : distances) w /= total;
+  return distances;
+}
+
+std::vector<int> all_indices(int count) {
+  std::vector<int> all(count);
+  std::iota(all.begin(), all.end(), 0);
+  return all;
+}
 
 // The neighbours' quantities at the guide's sample nodes (same normalised arc lengths, since
 // every rod has the same number of segments).
@@ -32,20 +62,11 @@ GuideTargets make_targets(const RootSet& bases, int b, const PreGuides& preguide
 
   // The nearest pre-guides by root distance, weighted by inverse distance (softened so a
   // pre-guide at the very root does not take all the weight).
-  std::vector<int> order(preguides.size());
-  std::iota(order.begin(), order.end(), 0);
-  const int count = std::min<int>(o.neighbours, preguides.size());
-  auto distance = [&](int j) { return (preguides.items[j].root - t.root).norm(); };
-  std::partial_sort(order.begin(), order.begin() + count, order.end(), [&](int a, int c) {
-    const double da = distance(a), dc = distance(c);
-    return da < dc || (da == dc && a < c);
-  });
-  chosen.assign(order.begin(), order.begin() + count);
-  const double soften = count > 0 ? 0.25 * distance(chosen.back()) + 1e-6 : 1.0;
+  chosen = nearest(all_indices(preguides.size()), [&](int j) { return preguides.items[j].root; }, t.root, o.neighbours);
+  const int count = static_cast<int>(chosen.size());
   weights.clear();
-  for (int j : chosen) weights.push_back(1.0 / (distance(j) + soften));
-  const double total = std::accumulate(weights.begin(), weights.end(), 0.0);
-  for (double& w : weights) w /= total;
+  for (int j : chosen) weights.push_back((preguides.items[j].root - t.root).norm());
+  weights = follow_weights(weights);
   for (int i = 0; i < count; ++i) {
     GuideTargets::Neighbour nb;
     nb.weight = weights[i];
@@ -64,8 +85,11 @@ GuideTargets make_targets(const RootSet& bases, int b, const PreGuides& preguide
   return t;
 }
 
+// `seed_start`: the loads to start from (world axes, dimensionless); null = as options.warm_start
+// says (the followed pre-guides' loads, weighted, or straight).
 Guide solve_guide(const RootSet& bases, int b, const PreGuides& preguides, const Boundary& boundary, const GuideOptions& o,
-                  const DensityGrid* density = nullptr, const DensityTermOptions& term = {}) {
+                  const DensityGrid* density = nullptr, const DensityTermOptions& term = {},
+                  const double* seed_start = nullptr) {
   Guide g;
   g.root = bases.positions[b];
   g.normal = bases.normals[b];
@@ -77,7 +101,9 @@ Guide solve_guide(const RootSet& bases, int b, const PreGuides& preguides, const
 
   // Start: straight (the paper) or the neighbours' dimensionless loads, weighted (warm start).
   double start[6] = {0, 0, 0, 0, 0, 0};
-  if (o.warm_start)
+  if (seed_start)
+    std::copy(seed_start, seed_start + 6, start);
+  else if (o.warm_start)
     for (std::size_t i = 0; i < g.neighbours.size(); ++i) {
       const PreGuide& p = preguides.items[g.neighbours[i]];
       for (int a = 0; a < 3; ++a) {
@@ -122,9 +148,45 @@ Curves Guides::curves() const {
 
 Guides make_guides(const RootSet& bases, const PreGuides& preguides, const Boundary& boundary, const GuideOptions& options) {
   Guides guides;
-  guides.items.resize(bases.size());
-  parallel_for(bases.size(), options.threads,
-               [&](int b) { guides.items[b] = solve_guide(bases, b, preguides, boundary, options); });
+  const int count = bases.size();
+  guides.items.resize(count);
+  ProgressCounter progress(options.progress);
+  if (!options.warm_start || preguides.size() == 0) {
+    parallel_for(count, options.threads, [&](int b) {
+      guides.items[b] = solve_guide(bases, b, preguides, boundary, options);
+      progress.item_done();
+    });
+    return guides;
+  }
+  // Warm start in two rounds. First the seeds, the guide nearest each pre-guide, from the
+  // pre-guides' loads; then every other guide from its nearest seeds' optimised loads, which lie
+  // closer to its own optimum than the pre-guides' loads (on the spheroid fixture 8% fewer cost
+  // evaluations and a slightly lower mean cost). Both rounds are fixed by the geometry, so the
+  // results do not depend on the thread count.
+  auto base_at = [&](int b) { return bases.positions[b]; };
+  std::vector<char> is_seed(count, 0);
+  for (const PreGuide& p : preguides.items) is_seed[nearest(all_indices(count), base_at, p.root, 1)[0]] = 1;
+  std::vector<int> seeds, rest;
+  for (int b = 0; b < count; ++b) (is_seed[b] ? seeds : rest).push_back(b);
+  parallel_for(seeds.size(), options.threads, [&](int i) {
+    guides.items[seeds[i]] = solve_guide(bases, seeds[i], preguides, boundary, options);
+    progress.item_done();
+  });
+  parallel_for(rest.size(), options.threads, [&](int i) {
+    const int b = rest[i];
+    const std::vector<int> from = nearest(seeds, base_at, bases.positions[b], options.neighbours);
+    std::vector<double> weights;
+    for (int j : from) weights.push_back((bases.positions[j] - bases.positions[b]).norm());
+    weights = follow_weights(weights);
+    double start[6] = {0, 0, 0, 0, 0, 0};
+    for (std::size_t i = 0; i < from.size(); ++i)
+      for (int a = 0; a < 3; ++a) {
+        start[a] += weights[i] * guides.items[from[i]].force[a];
+        start[3 + a] += weights[i] * guides.items[from[i]].root_moment[a];
+      }
+    guides.items[b] = solve_guide(bases, b, preguides, boundary, options, nullptr, {}, start);
+    progress.item_done();
+  });
   return guides;
 }
 

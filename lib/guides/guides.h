@@ -36,7 +36,7 @@ struct GuideOptions {
   double tolerance = 1e-6;     // Ceres function tolerance (relative cost decrease)
   BoundaryForm boundary = BoundaryForm::smooth;
   double outside_penalty = 3.0;   // c_d, cm
-  double boundary_width = 0.25;   // cm
+  double boundary_width = 1.0;    // cm
   GuideWeights weights;
   bool warm_start = true;      // start from the neighbours' loads (else straight, the paper)
   Vec3 down{0, -1, 0};
