@@ -80,9 +80,9 @@ class Runner {
     StageReport stage;
     stage.name = name;
     const StageMeter meter;
-    if (progress()) progress()->stage_begins(name, loop_items(name));
     const bool cacheable = cache_ && cached_.at(name);
     if (!(cacheable && load_cached(stage))) {
+      if (progress()) progress()->stage_begins(name, loop_items(name));
       compute(stage);
       if (cacheable) store(stage);
     }

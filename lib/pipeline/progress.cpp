@@ -72,6 +72,7 @@ void ProgressReporter::stage_ends(const std::string& stage, const std::string& s
   items_ = 0;  // late callbacks draw nothing
   if (style_ == ProgressStyle::quiet) return;
   if (bar_drawn_) std::fprintf(stream_, "\r\x1b[K");
+  bar_drawn_ = false;
   std::fprintf(stream_, "%s: %s in %.2f s\n", stage.c_str(), status.c_str(), seconds);
   std::fflush(stream_);
 }

@@ -20,7 +20,7 @@ struct StageDeclaration {
   std::vector<std::string> reads;     // scene key names or section prefixes (spec/scene_keys.h)
   std::vector<std::string> files;     // loaded inputs: scalp, volume, density map, tilt map, length map
   std::vector<std::string> consumes;  // earlier stages
-  bool cached = true;                 // whether its value is worth storing (see stage_declarations)
+  bool cached = true;                 // whether its value is worth storing (stage_plan.cpp says why not)
 };
 
 // The scene's stages in order, each with what it reads. Effects that are off are not read (their

@@ -193,7 +193,8 @@ TEST_CASE("a run hits the cache where the keys say so, and a cached run equals a
   CHECK(statuses(warm) == "fields=computed chart=computed roots=computed preguides=computed guides=computed strands=computed ");
   const auto r = run_hairfit("run " + scene + " --cache " + cache + " --threads 1 --out " + again);
   REQUIRE(r.exit_code == 0);
-  CHECK(statuses(again) == "fields=cached chart=cached roots=cached preguides=cached guides=cached strands=cached ");
+  // The strands are rebuilt from the cached guides (stage_plan.cpp says why).
+  CHECK(statuses(again) == "fields=cached chart=cached roots=cached preguides=cached guides=cached strands=computed ");
   CHECK(r.err.find("guides: cached") != std::string::npos);  // plain progress lines: stderr is no terminal
   // Every output file and every digest and figure of the report, cached against cold.
   for (const fs::directory_entry& e : fs::recursive_directory_iterator(cold)) {
