@@ -394,13 +394,21 @@ class Runner {
     v.strands = std::make_shared<const Strands>(std::move(s));
     const Curves& fibres = v.strands->fibres;
     stage.digest = Digest().add(fibres.points).hex();
-    long long inside = 0;
+    long long inside = 0, in_head = 0, out_volume = 0;
     const Boundary b = boundary();
-    for (const Vec3& p : fibres.points) inside += b.acceptable(p);
+    for (const Vec3& p : fibres.points) {
+      const bool head = b.beyond_scalp(p) > 0.0, out = b.beyond_volume(p) > 0.0;
+      in_head += head;
+      out_volume += out;
+      inside += !head && !out;
+    }
+    const double points = std::max<double>(1.0, fibres.points.size());
     stage.add("fibres", static_cast<std::int64_t>(fibres.count()));
     stage.add("points", static_cast<std::int64_t>(fibres.points.size()));
     if (scene_.effects.cutting) stage.add("cut", static_cast<std::int64_t>(v.strands->cut_count));
-    stage.add("inside_fraction", fibres.points.empty() ? 0.0 : static_cast<double>(inside) / fibres.points.size());
+    stage.add("inside_fraction", inside / points);
+    stage.add("inside_head_fraction", in_head / points);  // the two ways of not being inside
+    stage.add("outside_volume_fraction", out_volume / points);
   }
 
   void write_strands() {
