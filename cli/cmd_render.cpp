@@ -2,6 +2,7 @@
 
 #include "args.h"
 #include "commands.h"
+#include "core/interrupt.h"
 #include "core/parallel.h"
 #include "pipeline/stage_pictures.h"
 #include "prepare/cut_picture.h"
@@ -23,6 +24,7 @@ int command_render(const Arguments& argv) {
     std::printf("wrote %s (%d×%d)\n", out.c_str(), image.width, image.height);
     return 0;
   }
+  install_interrupt_handlers();  // Ctrl-C stops at the next safe point (core/interrupt.h)
   const Scene scene = parse_scene(args.positionals()[0]);
   const Inputs inputs = load_inputs(scene);
   RunOptions options;

@@ -2,6 +2,7 @@
 
 #include "args.h"
 #include "commands.h"
+#include "core/interrupt.h"
 #include "core/parallel.h"
 #include "pipeline/stage_pictures.h"
 
@@ -13,6 +14,7 @@ int command_run(const Arguments& argv) {
   const int threads = args.integer("threads", 0);
   if (threads < 0) throw UsageError{"--threads must be ≥ 0 (0 = all cores)"};
 
+  install_interrupt_handlers();  // Ctrl-C stops at the next safe point (core/interrupt.h)
   const Scene scene = parse_scene(args.positionals()[0]);
   const Inputs inputs = load_inputs(scene);  // all input is checked before anything is written
   RunOptions options;

@@ -8,6 +8,7 @@
 #include "args.h"
 #include "commands.h"
 #include "core/error.h"
+#include "core/interrupt.h"
 
 namespace {
 
@@ -58,6 +59,10 @@ int main(int argc, char** argv) {
     const hairfit::cli::Arguments args(argv + 2, argv + argc);
     try {
       return c.run(args);
+    } catch (const hairfit::Interrupted& e) {
+      std::fprintf(stderr, "hairfit %s: %s; the files written before it are complete and intact, nothing "
+                           "half-written was left\n", c.name, e.what());
+      return e.exit_code();
     } catch (const hairfit::InputError& e) {
       std::fprintf(stderr, "%s\n", e.what());
       return 2;

@@ -7,6 +7,8 @@
 #include <thread>
 #include <vector>
 
+#include "core/interrupt.h"
+
 namespace hairfit {
 
 int resolve_thread_count(int requested) {
@@ -16,8 +18,12 @@ int resolve_thread_count(int requested) {
 
 void parallel_for(int count, int threads, const std::function<void(int)>& body) {
   threads = std::max(1, std::min(threads, count));
+  // A signal stops the loop between items (SIGINT, SIGTERM: core/interrupt.h).
   if (threads == 1) {
-    for (int i = 0; i < count; ++i) body(i);
+    for (int i = 0; i < count; ++i) {
+      throw_if_interrupted();
+      body(i);
+    }
     return;
   }
   // Dynamic scheduling of small chunks balances uneven items (guides converge at different
@@ -35,6 +41,7 @@ void parallel_for(int count, int threads, const std::function<void(int)>& body) 
       if (begin >= count) return;
       const int end = std::min(count, begin + chunk);
       for (int i = begin; i < end; ++i) {
+        if (interrupted()) return;
         try {
           body(i);
         } catch (...) {
@@ -51,6 +58,7 @@ void parallel_for(int count, int threads, const std::function<void(int)>& body) 
   for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
   worker();
   for (std::thread& t : pool) t.join();
+  throw_if_interrupted();
   if (error) std::rethrow_exception(error);
 }
 

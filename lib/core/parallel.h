@@ -7,6 +7,7 @@ namespace hairfit {
 
 // Calls body(i) for every i in [0, count) on up to `threads` threads (1 = the calling thread only).
 // If items throw, the exception of the lowest failing index is rethrown after all have run.
+// After SIGINT or SIGTERM no new item starts and Interrupted is thrown (core/interrupt.h).
 void parallel_for(int count, int threads, const std::function<void(int)>& body);
 
 // The number of threads to use when the user asked for `requested` (0 = all hardware threads).

@@ -5,6 +5,8 @@
 #include <system_error>
 #include <unistd.h>
 
+#include "core/interrupt.h"
+
 namespace hairfit {
 
 void write_file_atomically(const std::filesystem::path& path,
@@ -21,6 +23,7 @@ void write_file_atomically(const std::filesystem::path& path,
       out.flush();
       if (!out) throw std::runtime_error("writing " + path.string() + " failed (disk full?)");
     }
+    throw_if_interrupted();  // a file written while the signal arrived is dropped, not renamed
     fs::rename(temporary, path);
   } catch (...) {
     std::error_code ignored;

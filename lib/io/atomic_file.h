@@ -9,7 +9,8 @@
 namespace hairfit {
 
 // Runs write(stream) on a temporary file, then renames it to `path` (creating parent folders).
-// If write throws or the stream fails, the temporary file is removed and `path` is untouched.
+// If write throws, the stream fails or a SIGINT/SIGTERM arrived (core/interrupt.h), the temporary
+// file is removed and `path` is untouched.
 void write_file_atomically(const std::filesystem::path& path,
                            const std::function<void(std::ostream&)>& write);
 
