@@ -75,7 +75,7 @@ FieldGridPlan plan_field_grid(const Mesh& mesh, const FieldSpec& spec) {
   return plan_with_voxel(checked_box(mesh, spec.name), spec, spec.voxel, mesh.triangles.size());
 }
 
-DistanceField make_distance_field(const Mesh& mesh, const FieldSpec& spec, int threads) {
+void require_field_fits(const Mesh& mesh, const FieldSpec& spec) {
   const FieldGridPlan plan = plan_field_grid(mesh, spec);
   const double limit = spec.max_memory_gib * 1024.0 * 1024.0 * 1024.0;
   if (plan.bytes > limit) {
@@ -92,6 +92,11 @@ DistanceField make_distance_field(const Mesh& mesh, const FieldSpec& spec, int t
                          format("%g", spec.max_memory_gib) + " GiB; use a voxel of at least " +
                          format("%.3g", voxel) + " cm, or raise max_memory");
   }
+}
+
+DistanceField make_distance_field(const Mesh& mesh, const FieldSpec& spec, int threads) {
+  require_field_fits(mesh, spec);
+  const FieldGridPlan plan = plan_field_grid(mesh, spec);
   threads = resolve_thread_count(threads);
   const field::MeshFeatures features = field::extract_features(mesh, spec.name);
   field::GridGeometry grid{plan.origin, spec.voxel, plan.dims};
@@ -200,6 +205,12 @@ FieldValueGradient DistanceField::inside_grid(const Vec3& p) const {
 }
 
 FieldValueGradient DistanceField::value_and_gradient(const Vec3& p) const {
+  // A non-finite point (from a rod the integrator could not follow) has no distance: NaN, not
+  // an index computed from NaN.
+  if (!p.allFinite()) {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    return {nan, Vec3::Constant(nan)};
+  }
   const Vec3 hi = origin_ + h_ * (dims_ - Vec3i::Ones()).cast<double>();
   const Vec3 q = p.cwiseMax(origin_).cwiseMin(hi);
   FieldValueGradient out = inside_grid(q);

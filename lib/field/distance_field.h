@@ -105,4 +105,9 @@ struct FieldGridPlan {
 };
 FieldGridPlan plan_field_grid(const Mesh& mesh, const FieldSpec& spec);
 
+// Throws the InputError make_distance_field would throw for a grid larger than
+// spec.max_memory_gib (or a bad spec or mesh), without building anything: how inputs are checked
+// before a run writes its first file.
+void require_field_fits(const Mesh& mesh, const FieldSpec& spec);
+
 }  // namespace hairfit

@@ -27,12 +27,27 @@ GreyMap load_grey_map(const std::filesystem::path& path) {
   if (bytes.size() < 8 || bytes.compare(0, 8, signature, 8) != 0)
     throw InputError(file, "is not a PNG file; maps must be grey-value PNG images (8 or 16 bit)");
 
+  // stb_image calls a 0-pixel header an "unknown image type"; say what it is.
+  auto header_number = [&](std::size_t at) {
+    return static_cast<unsigned long>(static_cast<unsigned char>(bytes[at])) << 24 | static_cast<unsigned char>(bytes[at + 1]) << 16 |
+           static_cast<unsigned char>(bytes[at + 2]) << 8 | static_cast<unsigned char>(bytes[at + 3]);
+  };
+  if (bytes.size() >= 24 && bytes.compare(12, 4, "IHDR") == 0 && (header_number(16) == 0 || header_number(20) == 0))
+    throw InputError(file, "has no pixels (its header says " + std::to_string(header_number(16)) + "×" +
+                               std::to_string(header_number(20)) + "); maps need at least 1×1 pixel");
   const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
   const int size = static_cast<int>(bytes.size());
   int width = 0, height = 0, channels = 0;
   if (!stbi_info_from_memory(data, size, &width, &height, &channels))
     throw InputError(file, std::string("is a corrupt PNG (") + stbi_failure_reason() + "); re-export it as a grey PNG");
   if (width <= 0 || height <= 0) throw InputError(file, "has no pixels; maps need at least 1×1 pixel");
+  // The header alone decides the allocation, so a few corrupt bytes must not ask for terabytes.
+  constexpr int kMaxSide = 16384;
+  constexpr long long kMaxPixels = 1LL << 26;
+  if (width > kMaxSide || height > kMaxSide || static_cast<long long>(width) * height > kMaxPixels)
+    throw InputError(file, "is " + std::to_string(width) + "×" + std::to_string(height) + " pixels; maps may have at most " +
+                               std::to_string(kMaxSide) + " pixels per side and " + std::to_string(kMaxPixels) +
+                               " pixels in all: downscale it (a scalp map needs far fewer)");
 
   GreyMap map;
   map.width = width;

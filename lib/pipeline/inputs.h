@@ -24,8 +24,10 @@ struct InputsSummary {
 };
 
 // Loads every input the scene names. Throws InputError (naming the file, and the scene line for
-// missing files) for unreadable data, a scalp that is not a topological disk, or a volume that does
-// not enclose the scalp.
+// missing files) for unreadable data, coordinates beyond 10 km, a scalp the chart cannot take (not
+// a topological disk, inconsistently oriented, edge-on from above), a volume that does not enclose
+// the scalp or faces inward, and distance-field or density grids larger than fields.max_memory:
+// every input error a run could meet, so a run refuses bad input before it writes anything.
 Inputs load_inputs(const Scene& scene);
 
 InputsSummary summarise_inputs(const Inputs& inputs);

@@ -73,16 +73,36 @@ Vec3 barycentric_2d(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& p) 
 
 }  // namespace
 
-ScalpChart make_scalp_chart(const Mesh& scalp, const Vec3& front_in, const Vec3& down_in,
-                            const std::string& file) {
+int check_scalp_for_chart(const Mesh& scalp, const Vec3& front, const Vec3& down, const std::string& file) {
   const MeshTopology topo = analyse_topology(scalp);
-  require_disk(scalp, topo, file);
-  if (!topo.orientation_consistent)
+  // Boundary loops are traced along the triangles' turning, so an inconsistently oriented scalp
+  // shows spurious holes: name the orientation first.
+  if (topo.nonmanifold_vertices.empty() && !topo.orientation_consistent)
     throw InputError(file, "the scalp's triangles are not consistently oriented (some neighbours turn the other "
                            "way); re-orient the faces so all normals point the same way");
-  if (front_in.norm() == 0.0 || down_in.norm() == 0.0 || front_in.cross(down_in).norm() < 1e-6 * front_in.norm() * down_in.norm())
+  require_disk(scalp, topo, file);
+  if (front.norm() == 0.0 || down.norm() == 0.0 || front.cross(down).norm() < 1e-6 * front.norm() * down.norm())
     throw InputError(file, "units.front and units.down must be non-zero and not parallel");
+  // The vector area ½∮p×dp of the hairline (Stokes) tells which way the triangles turn as seen
+  // from above, independent of the mesh's interior.
+  Vec3 vector_area = Vec3::Zero();
+  double area = 0.0;
+  for (int t = 0; t < static_cast<int>(scalp.triangles.size()); ++t) {
+    const Vec3i& f = scalp.triangles[t];
+    vector_area += 0.5 * (scalp.positions[f[1]] - scalp.positions[f[0]]).cross(scalp.positions[f[2]] - scalp.positions[f[0]]);
+    area += triangle_area(scalp, t);
+  }
+  const double facing = -vector_area.dot(down.normalized());
+  if (!(std::abs(facing) > 1e-3 * area))
+    throw InputError(file, "the scalp's hairline is edge-on when seen from above (along units.down), so the chart "
+                           "cannot tell left from right; check units.down");
+  return facing > 0 ? 1 : -1;
+}
 
+ScalpChart make_scalp_chart(const Mesh& scalp, const Vec3& front_in, const Vec3& down_in,
+                            const std::string& file) {
+  const int outward = check_scalp_for_chart(scalp, front_in, down_in, file);
+  const MeshTopology topo = analyse_topology(scalp);
   ScalpChart ch;
   ch.mesh = scalp;
   ch.front = front_in.normalized();
@@ -91,20 +111,8 @@ ScalpChart make_scalp_chart(const Mesh& scalp, const Vec3& front_in, const Vec3&
   const Mesh& mesh = ch.mesh;
   const int nv = static_cast<int>(mesh.positions.size());
   const int nf = static_cast<int>(mesh.triangles.size());
-
-  // The vector area ½∮p×dp of the hairline (Stokes) tells which way the triangles turn as seen
-  // from above, independent of the mesh's interior.
-  Vec3 vector_area = Vec3::Zero();
-  for (int t = 0; t < nf; ++t) {
-    const Vec3i& f = mesh.triangles[t];
-    vector_area += 0.5 * (mesh.positions[f[1]] - mesh.positions[f[0]]).cross(mesh.positions[f[2]] - mesh.positions[f[0]]);
-    ch.area += triangle_area(mesh, t);
-  }
-  const double facing = vector_area.dot(up);
-  if (!(std::abs(facing) > 1e-3 * ch.area))
-    throw InputError(file, "the scalp's hairline is edge-on when seen from above (along units.down), so the chart "
-                           "cannot tell left from right; check units.down");
-  ch.outward = facing > 0 ? 1 : -1;
+  for (int t = 0; t < nf; ++t) ch.area += triangle_area(mesh, t);
+  ch.outward = outward;
   ch.boundary = oriented_boundary(mesh, topo.boundary_loops.front(), ch.outward, ch.front);
 
   // Boundary: chord length on the unit circle, counter-clockwise from the front vertex at +90°.

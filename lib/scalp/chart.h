@@ -63,6 +63,11 @@ struct ScalpChart {
 ScalpChart make_scalp_chart(const Mesh& scalp, const Vec3& front, const Vec3& down,
                             const std::string& file_for_errors);
 
+// The checks make_scalp_chart makes before any work (disk, consistent orientation, front and down,
+// hairline not edge-on), on their own, so inputs can be refused before a run writes anything.
+// Returns the sign (+1 or −1) that turns the triangles' normals outward, i.e. upward.
+int check_scalp_for_chart(const Mesh& scalp, const Vec3& front, const Vec3& down, const std::string& file_for_errors);
+
 // Image coordinates (u, v) ∈ [0, 1]² of a chart point (see the convention above).
 inline Vec2 chart_to_image(const Vec2& chart) { return Vec2((chart.x() + 1.0) / 2.0, (1.0 - chart.y()) / 2.0); }
 
