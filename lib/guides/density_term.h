@@ -30,7 +30,7 @@ struct GuideDensityOptions {
   GridGeometry grid;  // make_density_geometry
   int batch = 64;     // guides per batch
   // What a final guide deposits. CDM: the fibres the strand stage will grow from its cluster's
-  // pores (make_fibre with the same wisp extent, before cutting); a pore list with no pores for a
+  // pores (make_fibre with the same wisp extent, before cutting and before being moved out of the head); a pore list with no pores for a
   // guide deposits the guide polyline once instead. BOM: a tube along the guide, radius
   // strands.root_radius → strands.tip_radius (cm).
   Pores pores;

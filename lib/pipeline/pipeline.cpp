@@ -48,6 +48,22 @@ void add_widths(Curves& curves, double cross_section) {
   }
 }
 
+// Moves a point behind the scalp (Φ_S < 0) onto it by Newton steps along the field's gradient,
+// to a clearance of 10 µm so that it counts as outside the head.
+HeadExit scalp_exit(const DistanceField& scalp) {
+  return [&scalp](const Vec3& p) {
+    constexpr double kClearance = 1e-3;  // cm
+    Vec3 q = p;
+    for (int step = 0; step < 4; ++step) {
+      const FieldValueGradient vg = scalp.value_and_gradient(q);
+      const double g2 = vg.gradient.squaredNorm();
+      if (vg.value >= 0.0 || !(g2 > 1e-12)) break;
+      q -= (vg.value - kClearance) / g2 * vg.gradient;
+    }
+    return q;
+  };
+}
+
 class Runner {
  public:
   Runner(const Scene& scene, const Inputs& inputs, const RunOptions& options)
@@ -389,7 +405,7 @@ class Runner {
     const DistanceFunction volume_distance = [volume](const Vec3& p) { return volume->value(p); };
     StrandOptions o = strand_options(scene_, options_.threads);
     o.progress = loop_progress();
-    Strands s = make_strands(v.guides->curves(), pores(), o, volume_distance);
+    Strands s = make_strands(v.guides->curves(), pores(), o, volume_distance, scalp_exit(*v.scalp_field));
     add_widths(s.fibres, scene_.hair.cross_section);
     v.strands = std::make_shared<const Strands>(std::move(s));
     const Curves& fibres = v.strands->fibres;

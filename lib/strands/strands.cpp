@@ -47,8 +47,10 @@ double polyline_length(const std::vector<Vec3>& p) {
   return length;
 }
 
+// The fibre of exactly `length` along the track; with `out_of_head`, every point but the root is
+// passed through it inside the length solve, so the moved fibre still has exactly its length.
 std::vector<Vec3> fibre_along(const GuideTrack& track, const Vec3& pore, double length, double wisp_extent,
-                              const StrandOptions& o) {
+                              const StrandOptions& o, const HeadExit* out_of_head = nullptr) {
   Vec3 g0, t0, d1, d2;
   track.at(0.0, g0, t0, d1, d2);
   const Vec3 delta = pore - g0;
@@ -62,6 +64,8 @@ std::vector<Vec3> fibre_along(const GuideTrack& track, const Vec3& pore, double 
   // gives exactly `length` by the Illinois variant of regula falsi on a bracket.
   auto excess = [&](double reach) {
     sweep(track, f, t0, reach, o, points);
+    if (out_of_head)
+      for (std::size_t i = 1; i < points.size(); ++i) points[i] = (*out_of_head)(points[i]);
     return polyline_length(points) - length;
   };
   double lo = 0.0, f_lo = excess(lo);
@@ -95,14 +99,26 @@ std::vector<Vec3> fibre_along(const GuideTrack& track, const Vec3& pore, double 
   return points;
 }
 
+// fibre_along, with the points behind the scalp moved out when `out_of_head` is given. Most
+// fibres never enter the head; only those that do pay for field lookups inside the length solve.
+std::vector<Vec3> fibre_kept_out(const GuideTrack& track, const Vec3& pore, double length, double wisp_extent,
+                                 const StrandOptions& o, const HeadExit& out_of_head) {
+  std::vector<Vec3> fibre = fibre_along(track, pore, length, wisp_extent, o);
+  if (out_of_head)
+    for (std::size_t i = 1; i < fibre.size(); ++i)
+      if (out_of_head(fibre[i]) != fibre[i]) return fibre_along(track, pore, length, wisp_extent, o, &out_of_head);
+  return fibre;
+}
+
 }  // namespace
 
 std::vector<Vec3> make_fibre(const std::vector<Vec3>& guide, const Vec3& pore, double length, double wisp_extent,
-                             const StrandOptions& options) {
-  return fibre_along(GuideTrack(guide), pore, length, wisp_extent, options);
+                             const StrandOptions& options, const HeadExit& out_of_head) {
+  return fibre_kept_out(GuideTrack(guide), pore, length, wisp_extent, options, out_of_head);
 }
 
-Strands make_strands(const Curves& guides, const Pores& pores, const StrandOptions& options, const DistanceFunction& volume) {
+Strands make_strands(const Curves& guides, const Pores& pores, const StrandOptions& options, const DistanceFunction& volume,
+                     const HeadExit& out_of_head) {
   const int guide_count = static_cast<int>(guides.count());
   std::vector<GuideTrack> tracks;
   tracks.reserve(guide_count);
@@ -123,8 +139,8 @@ Strands make_strands(const Curves& guides, const Pores& pores, const StrandOptio
   std::vector<char> cut(count, 0);
   ProgressCounter progress(options.progress);
   parallel_for(count, options.threads, [&](int i) {
-    std::vector<Vec3> fibre = fibre_along(tracks[pores.guide[i]], pores.positions[i], pores.lengths[i],
-                                          extent[pores.guide[i]], options);
+    std::vector<Vec3> fibre = fibre_kept_out(tracks[pores.guide[i]], pores.positions[i], pores.lengths[i],
+                                             extent[pores.guide[i]], options, out_of_head);
     if (options.cutting && volume) {
       CutResult r = cut_at_exit(fibre, volume, options.cut_threshold);
       cut[i] = r.cut;

@@ -34,15 +34,21 @@ struct Strands {
   int cut_count = 0;
 };
 
+// Returns a point behind the scalp moved back out of the head, and any other point unchanged
+// (scalp_exit in lib/pipeline builds it from the scalp's distance field).
+using HeadExit = std::function<Vec3(const Vec3&)>;
+
 // `guides` holds one polyline per guide (index = guide id), root first; `volume` is the signed
 // distance to the hair-volume boundary (needed only when options.cutting). Each fibre starts
 // exactly at its pore and, unless cut, has exactly its length; a fibre longer than its guide
-// continues along the guide's last tangent. Deterministic for any thread count.
+// continues along the guide's last tangent. With `out_of_head`, a fibre that would pass behind
+// the scalp (a wisp wider than the guide's clearance, or a guide that dips in) has those points
+// moved out of the head, still with exactly its length. Deterministic for any thread count.
 Strands make_strands(const Curves& guides, const Pores& pores, const StrandOptions& options,
-                     const DistanceFunction& volume = nullptr);
+                     const DistanceFunction& volume = nullptr, const HeadExit& out_of_head = nullptr);
 
 // One fibre (exposed for tests): the wisp frame is rotation-minimising along the guide.
 std::vector<Vec3> make_fibre(const std::vector<Vec3>& guide, const Vec3& pore, double length, double wisp_extent,
-                             const StrandOptions& options);
+                             const StrandOptions& options, const HeadExit& out_of_head = nullptr);
 
 }  // namespace hairfit

@@ -174,3 +174,33 @@ TEST_CASE("make_strands: one fibre per pore, cutting counted, identical for any 
     }
   }
 }
+
+TEST_CASE("a fibre that would pass behind the scalp is moved out of the head, keeping its root and length") {
+  // The scalp is the plane y = 0 with the head below it, and the exit is the exact projection
+  // onto it. The guide hugs the scalp, so a wisp winding about it sends its fibres below.
+  std::vector<Vec3> guide;
+  for (int i = 0; i <= 40; ++i) guide.emplace_back(0.25 * i, 0.05 * std::sin(M_PI * i / 40.0), 0.0);
+  const HeadExit project = [](const Vec3& p) { return p.y() < 0.0 ? Vec3(p.x(), 0.0, p.z()) : p; };
+  StrandOptions o;
+  o.points = 24;
+  o.root_radius = 0.5;
+  o.tip_radius = 1.0;
+  o.turns = 0.75;
+  Random r(5, RandomStage::test, 0);
+  int moved = 0;
+  for (int k = 0; k < 50; ++k) {
+    const Vec3 pore(0.0, 0.0, r.uniform(-0.5, 0.5));  // in the wisp's root disk, on the scalp
+    const double length = r.uniform(4.0, 14.0);    // shorter and longer than the guide (10 cm)
+    const std::vector<Vec3> loose = make_fibre(guide, pore, length, 0.5, o);
+    const std::vector<Vec3> kept = make_fibre(guide, pore, length, 0.5, o, project);
+    bool dips = false;
+    for (const Vec3& p : loose) dips = dips || p.y() < 0.0;
+    moved += dips;
+    REQUIRE(kept.size() == loose.size());
+    CHECK(kept[0] == pore);  // the root stays exactly at its pore
+    for (const Vec3& p : kept) CHECK(p.y() >= 0.0);
+    CHECK(std::fabs(polyline_length(kept) - length) <= 1e-6 * length);
+    if (!dips) CHECK(kept == loose);  // nothing to move: the same fibre, bit for bit
+  }
+  CHECK(moved > 10);  // the case exercises the exit, not only the fast path
+}
