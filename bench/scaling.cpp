@@ -1,0 +1,175 @@
+// How time and memory grow with the work (issue 11): `hairfit run` of variants of a base scene
+// (default fixtures/paper-scale: CDM on), fibres 10 000 → 150 000 at the base's guides, and guides
+// 500 → 6000 at the base's fibres. Each variant is written into a scratch folder with absolute
+// paths; fibres are set through hair.density, which the roots stage multiplies by the scalp's
+// area and the density map: the base's roots figure `expected_roots` per unit of hair.density
+// gives the density for any fibre count.
+//   bench_scaling [--runs N] [--threads T] [--hairfit PATH] [--scratch DIR] [--out DIR] [--scene BASE]
+// Writes DIR/scaling.csv and DIR/scaling.png (default bench/results) and prints a Markdown table.
+// Each point is the median of N runs (default 1). The machine is shared: CPU time is the steadier
+// figure; wall time depends on the others' load.
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "cli_runs.h"
+#include "io/atomic_file.h"
+#include "render/contact_sheet.h"
+#include "render/plot.h"
+
+using namespace hairfit;
+using namespace hairfit::bench;
+
+namespace {
+
+struct Point {
+  std::string series;  // "fibres" or "guides"
+  double fibres = 0, guides = 0;
+  double wall = 0, cpu = 0, peak_mib = 0;
+  double guides_s = 0, strands_s = 0, density_s = 0, evaluations = 0;
+  std::string load;
+};
+
+Point measure(const std::string& hairfit, const fs::path& scene, const fs::path& out, int runs, int threads) {
+  std::vector<double> wall, cpu, guides_s, strands_s, density_s;
+  Point p;
+  p.load = load_average();
+  double peak = 0;
+  for (int r = 0; r < runs; ++r) {
+    const RunRecord rec = run_hairfit(hairfit, scene, out, threads);
+    wall.push_back(rec.usage.wall);
+    cpu.push_back(rec.usage.cpu());
+    peak = std::max(peak, mib(rec.usage.max_rss_bytes));
+    guides_s.push_back(rec.stage("guides")->seconds);
+    strands_s.push_back(rec.stage("strands")->seconds);
+    density_s.push_back(rec.stage("density") ? rec.stage("density")->seconds : 0.0);
+    p.fibres = rec.figure("strands", "fibres");
+    p.guides = rec.figure("guides", "guides");
+    p.evaluations = rec.figure("guides", "mean_evaluations");
+  }
+  p.wall = median(wall);
+  p.cpu = median(cpu);
+  p.peak_mib = peak;
+  p.guides_s = median(guides_s);
+  p.strands_s = median(strands_s);
+  p.density_s = median(density_s);
+  return p;
+}
+
+// Time (CPU and wall) and peak memory against the count that varies, with the line through the
+// origin and the largest point: on it, growth is linear.
+std::vector<Image> panels(const std::vector<Point>& points, const std::string& series, const std::string& label) {
+  auto column = [&](double Point::*field) {
+    std::vector<double> v;
+    for (const Point& p : points)
+      if (p.series == series) v.push_back(p.*field);
+    return v;
+  };
+  const std::vector<double> x = column(series == "fibres" ? &Point::fibres : &Point::guides);
+  auto linear = [&](const std::vector<double>& y) {
+    Series s{"linear through the largest point", {0.0, x.back()}, {0.0, y.back()}, 7, false, true};
+    return s;
+  };
+  LinePlot time;
+  time.title = "Time against " + label;
+  time.x_label = label;
+  time.y_label = "seconds";
+  time.series = {{"process CPU (user + system)", x, column(&Point::cpu), 0},
+                 {"process wall (loaded machine)", x, column(&Point::wall), 1},
+                 {"guides stage wall", x, column(&Point::guides_s), 2},
+                 {"strands stage wall", x, column(&Point::strands_s), 3},
+                 linear(column(&Point::cpu))};
+  LinePlot memory;
+  memory.title = "Peak memory against " + label;
+  memory.x_label = label;
+  memory.y_label = "MiB (peak resident)";
+  memory.series = {{"process peak", x, column(&Point::peak_mib), 4}, linear(column(&Point::peak_mib))};
+  return {render_line_plot(time, 720, 460), render_line_plot(memory, 720, 460)};
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int runs = 1, threads = 2;
+  std::string hairfit = HAIRFIT_BINARY;
+  fs::path scratch = fs::temp_directory_path() / "hairfit-bench-scaling";
+  fs::path out = fs::path(HAIRFIT_SOURCE_DIR) / "bench/results";
+  fs::path base = fs::path(HAIRFIT_SOURCE_DIR) / "fixtures/paper-scale/scene.toml";
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    const bool has_value = i + 1 < argc;
+    if (a == "--runs" && has_value) runs = std::atoi(argv[++i]);
+    else if (a == "--threads" && has_value) threads = std::atoi(argv[++i]);
+    else if (a == "--hairfit" && has_value) hairfit = argv[++i];
+    else if (a == "--scratch" && has_value) scratch = argv[++i];
+    else if (a == "--out" && has_value) out = argv[++i];
+    else if (a == "--scene" && has_value) base = argv[++i];
+    else {
+      std::fprintf(stderr, "usage: bench_scaling [--runs N] [--threads T] [--hairfit PATH] [--scratch DIR] [--out DIR] "
+                           "[--scene BASE]\n");
+      return 2;
+    }
+  }
+  try {
+    // The base scene's own figures: its guides, and roots per unit of hair.density.
+    std::printf("# Scaling\n\nhairfit: %s\nsource at: %s\nbase: %s, %d run(s) per point, --threads %d\n\n",
+                hairfit.c_str(), source_commit().c_str(), base.string().c_str(), runs, threads);
+    const RunRecord probe = [&] {
+      const fs::path dir = scratch / "probe";
+      write_scene_variant(base, {}, dir / "scene.toml");
+      fs::remove_all(dir / "out");
+      fs::create_directories(dir / "out");
+      RunRecord r;
+      r.usage = run_process({hairfit, "run", (dir / "scene.toml").string(), "--out", (dir / "out").string(), "--until",
+                             "roots", "--no-cache", "--quiet"},
+                            dir / "out/run.log");
+      if (r.usage.exit_code != 0) throw std::runtime_error("probe run failed; see " + (dir / "out/run.log").string());
+      r.stages = read_report(dir / "out/report.json");
+      return r;
+    }();
+    const double base_guides = probe.figure("roots", "guides");
+    const double base_fibres = probe.figure("roots", "roots");
+    const double roots_per_density = probe.figure("roots", "expected_roots") / toml::parse_file(base.string())
+                                                                                   .at_path("hair.density")
+                                                                                   .value_or(200.0);
+    std::vector<std::pair<std::string, Overrides>> variants;
+    for (double fibres : {10000.0, 25000.0, 50000.0, 90000.0, 120000.0, 150000.0})
+      variants.push_back({"fibres", {{"hair.density", fibres / roots_per_density}, {"roots.guides", std::int64_t(base_guides)}}});
+    for (std::int64_t guides : {500, 1000, 2000, 3000, 4500, 6000})
+      variants.push_back({"guides", {{"hair.density", base_fibres / roots_per_density}, {"roots.guides", guides}}});
+
+    std::vector<Point> points;
+    std::string csv = "series,fibres,guides,wall_s,cpu_s,peak_mib,guides_stage_s,strands_stage_s,density_stage_s,"
+                      "mean_evaluations,load_average\n";
+    std::printf("| varied | fibres | guides | CPU s | wall s (loaded) | peak MiB | guides s | strands s | density s | "
+                "evaluations/guide | load |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
+    for (std::size_t v = 0; v < variants.size(); ++v) {
+      const fs::path dir = scratch / ("point" + std::to_string(v));
+      write_scene_variant(base, variants[v].second, dir / "scene.toml");
+      Point p = measure(hairfit, dir / "scene.toml", dir / "out", runs, threads);
+      p.series = variants[v].first;
+      std::printf("| %s | %.0f | %.0f | %.2f | %.2f | %.0f | %.2f | %.2f | %.2f | %.1f | %s |\n", p.series.c_str(),
+                  p.fibres, p.guides, p.cpu, p.wall, p.peak_mib, p.guides_s, p.strands_s, p.density_s, p.evaluations,
+                  p.load.c_str());
+      std::fflush(stdout);
+      char line[512];
+      std::snprintf(line, sizeof line, "%s,%.0f,%.0f,%.3f,%.3f,%.1f,%.3f,%.3f,%.3f,%.2f,%s\n", p.series.c_str(), p.fibres,
+                    p.guides, p.wall, p.cpu, p.peak_mib, p.guides_s, p.strands_s, p.density_s, p.evaluations,
+                    p.load.c_str());
+      csv += line;
+      points.push_back(p);
+    }
+    write_text_file_atomically(out / "scaling.csv", csv);
+    std::vector<Image> images = panels(points, "fibres", "fibres (" + std::to_string(int(base_guides)) + " guides)");
+    for (Image& i : panels(points, "guides", "guides (" + std::to_string(int(base_fibres)) + " fibres)"))
+      images.push_back(std::move(i));
+    write_png(out / "scaling.png", contact_sheet(images, {}, 2, {1.0f, 1.0f, 1.0f}));
+    std::printf("\nwrote %s and %s\n", (out / "scaling.csv").string().c_str(), (out / "scaling.png").string().c_str());
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "bench_scaling: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}
