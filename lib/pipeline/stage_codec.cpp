@@ -2,7 +2,7 @@
 
 namespace hairfit {
 
-// A new member in one of these types must be added to its encode and decode below (and
+// A new member in one of these types must be added to its member list below (and
 // kStageCodecVersion bumped); these sizes make the compiler say so instead of the cache silently
 // dropping the member. Update the number once the codec handles it.
 static_assert(sizeof(ScalpChart) == 320, "ScalpChart changed: update stage_codec.cpp");
@@ -70,66 +70,190 @@ struct StageCodecAccess {
 
 namespace {
 
-void put(ByteWriter& out, const Mesh& m) {
-  out.put(m.positions);
-  out.put(m.triangles);
-}
-void get(ByteReader& in, Mesh& m) {
-  in.get(m.positions);
-  in.get(m.triangles);
-}
-
-void put(ByteWriter& out, const RootSet& r) {
-  out.put<std::uint64_t>(r.where.size());
-  for (const SurfacePoint& p : r.where) {
-    out.put(p.triangle);
-    out.put(p.barycentric);
+// One list of members per type serves both directions, so encoding and decoding cannot drift
+// apart: `io` is an Encoder (writes each member) or a Decoder (reads it back in place).
+struct Encoder {
+  ByteWriter& out;
+  template <class T>
+  void operator()(const T& x) { out.put(x); }
+  template <class T>
+  void items(std::vector<T>& xs) {
+    out.put<std::uint64_t>(xs.size());
+    for (T& x : xs) members(*this, x);
   }
-  out.put(r.positions);
-  out.put(r.normals);
-  out.put(r.directions);
-  out.put(r.lengths);
-  out.put(r.chart);
-  out.put(r.heights);
-}
-void get(ByteReader& in, RootSet& r) {
-  const auto n = in.get<std::uint64_t>();
-  if (n > (1u << 30)) throw CodecError("root set holds an impossible length");
-  r.where.resize(n);
-  for (SurfacePoint& p : r.where) {
-    in.get(p.triangle);
-    in.get(p.barycentric);
+};
+
+struct Decoder {
+  ByteReader& in;
+  template <class T>
+  void operator()(T& x) { in.get(x); }
+  template <class T>
+  void items(std::vector<T>& xs) {
+    const auto n = in.get<std::uint64_t>();
+    if (n > in.remaining()) throw CodecError("cache payload holds an impossible length");  // each item takes bytes
+    xs.resize(n);
+    for (T& x : xs) members(*this, x);
   }
-  in.get(r.positions);
-  in.get(r.normals);
-  in.get(r.directions);
-  in.get(r.lengths);
-  in.get(r.chart);
-  in.get(r.heights);
+};
+
+template <class IO>
+void members(IO& io, SurfacePoint& p) {
+  io(p.triangle);
+  io(p.barycentric);
 }
 
-void put(ByteWriter& out, const FibreShape& s) {
-  out.put(s.nodes);
-  out.put(s.tangents);
-  out.put(s.darboux);
-}
-void get(ByteReader& in, FibreShape& s) {
-  in.get(s.nodes);
-  in.get(s.tangents);
-  in.get(s.darboux);
+template <class IO>
+void members(IO& io, Mesh& m) {
+  io(m.positions);
+  io(m.triangles);
 }
 
-void put(ByteWriter& out, const Curves& c) {
-  out.put(c.points);
-  out.put(c.offsets);
-  out.put(c.guide);
-  out.put(c.widths);
+template <class IO>
+void members(IO& io, RootSet& r) {
+  io.items(r.where);
+  io(r.positions);
+  io(r.normals);
+  io(r.directions);
+  io(r.lengths);
+  io(r.chart);
+  io(r.heights);
 }
-void get(ByteReader& in, Curves& c) {
-  in.get(c.points);
-  in.get(c.offsets);
-  in.get(c.guide);
-  in.get(c.widths);
+
+template <class IO>
+void members(IO& io, FibreShape& s) {
+  io(s.nodes);
+  io(s.tangents);
+  io(s.darboux);
+}
+
+template <class IO>
+void members(IO& io, Curves& c) {
+  io(c.points);
+  io(c.offsets);
+  io(c.guide);
+  io(c.widths);
+}
+
+template <class IO>
+void members(IO& io, ScalpChart& c) {
+  members(io, c.mesh);
+  io(c.chart);
+  io(c.vertex_normals);
+  io(c.boundary);
+  io(c.boundary_triangles);
+  io(c.outward);
+  io(c.front);
+  io(c.down);
+  io(c.area);
+  io(c.height_low);
+  io(c.height_high);
+  io(c.flipped_triangles);
+  io(c.grid.cells);
+  io(c.grid.cell_start);
+  io(c.grid.cell_triangles);
+  io(c.solver);
+}
+
+template <class IO>
+void members(IO& io, Roots& r) {
+  members(io, r.pores);
+  io(r.expected_count);
+  io(r.hair_area);
+  io(r.candidates);
+}
+
+template <class IO>
+void members(IO& io, Clusters& c) {
+  members(io, c.bases);
+  io(c.centre_pore);
+  io(c.radius);
+  io(c.pore_cluster);
+  io(c.members);
+  io(c.candidate_clusters);
+}
+
+template <class IO>
+void members(IO& io, PreguideRoots& r) {
+  members(io, r.roots);
+  io(r.spacing);
+}
+
+template <class IO>
+void members(IO& io, PreGuide& g) {
+  io(g.root);
+  io(g.normal);
+  io(g.direction);
+  io(g.length);
+  io(g.height);
+  io(g.force);
+  io(g.root_moment);
+  members(io, g.shape);
+  io(g.thickness);
+  io(g.target_depth);
+  io(g.depth);
+  io(g.reached);
+  io(g.solves);
+}
+
+template <class IO>
+void members(IO& io, PreGuides& p) {
+  io.items(p.items);
+}
+
+template <class IO>
+void members(IO& io, Guide& g) {
+  io(g.root);
+  io(g.normal);
+  io(g.direction);
+  io(g.length);
+  io(g.force);
+  io(g.root_moment);
+  io(g.terminal_torque);
+  io(g.force_scale);
+  io(g.moment_scale);
+  members(io, g.shape);
+  io(g.neighbours);
+  io(g.neighbour_weights);
+  io(g.iterations);
+  io(g.evaluations);
+  io(g.converged);
+  io(g.termination);
+  io(g.initial_cost);
+  io(g.cost);
+  io(g.f1);
+  io(g.f2);
+  io(g.f3);
+  io(g.f4);
+}
+
+template <class IO>
+void members(IO& io, Guides& g) {
+  io.items(g.items);
+}
+
+template <class IO>
+void members(IO& io, Strands& s) {
+  members(io, s.fibres);
+  io(s.cut);
+  io(s.cut_count);
+}
+
+// The encoders only read the value; the member lists take it by non-const reference to serve both.
+template <class T>
+void encode_members(ByteWriter& out, const T& value) {
+  Encoder io{out};
+  members(io, const_cast<T&>(value));
+}
+
+template <class T>
+T decode_members(ByteReader& in) {
+  T value;
+  Decoder io{in};
+  members(io, value);
+  return value;
+}
+
+void check_curves(const Curves& c) {
   if (c.offsets.empty() || c.offsets.back() != c.points.size() || c.guide.size() != c.offsets.size() - 1)
     throw CodecError("curve offsets do not match their points");
 }
@@ -141,200 +265,23 @@ DistanceField decode_distance_field(ByteReader& in) { return StageCodecAccess::d
 void encode(ByteWriter& out, const DensityGrid& grid) { StageCodecAccess::encode(out, grid); }
 DensityGrid decode_density_grid(ByteReader& in) { return StageCodecAccess::decode_grid(in); }
 
-void encode(ByteWriter& out, const ScalpChart& c) {
-  put(out, c.mesh);
-  out.put(c.chart);
-  out.put(c.vertex_normals);
-  out.put(c.boundary);
-  out.put(c.boundary_triangles);
-  out.put(c.outward);
-  out.put(c.front);
-  out.put(c.down);
-  out.put(c.area);
-  out.put(c.height_low);
-  out.put(c.height_high);
-  out.put(c.flipped_triangles);
-  out.put(c.grid.cells);
-  out.put(c.grid.cell_start);
-  out.put(c.grid.cell_triangles);
-  out.put(c.solver);
-}
-ScalpChart decode_scalp_chart(ByteReader& in) {
-  ScalpChart c;
-  get(in, c.mesh);
-  in.get(c.chart);
-  in.get(c.vertex_normals);
-  in.get(c.boundary);
-  in.get(c.boundary_triangles);
-  in.get(c.outward);
-  in.get(c.front);
-  in.get(c.down);
-  in.get(c.area);
-  in.get(c.height_low);
-  in.get(c.height_high);
-  in.get(c.flipped_triangles);
-  in.get(c.grid.cells);
-  in.get(c.grid.cell_start);
-  in.get(c.grid.cell_triangles);
-  in.get(c.solver);
-  return c;
-}
+void encode(ByteWriter& out, const ScalpChart& chart) { encode_members(out, chart); }
+void encode(ByteWriter& out, const Roots& roots) { encode_members(out, roots); }
+void encode(ByteWriter& out, const Clusters& clusters) { encode_members(out, clusters); }
+void encode(ByteWriter& out, const PreguideRoots& roots) { encode_members(out, roots); }
+void encode(ByteWriter& out, const PreGuides& preguides) { encode_members(out, preguides); }
+void encode(ByteWriter& out, const Guides& guides) { encode_members(out, guides); }
+void encode(ByteWriter& out, const Strands& strands) { encode_members(out, strands); }
 
-void encode(ByteWriter& out, const Roots& r) {
-  put(out, r.pores);
-  out.put(r.expected_count);
-  out.put(r.hair_area);
-  out.put(r.candidates);
-}
-Roots decode_roots(ByteReader& in) {
-  Roots r;
-  get(in, r.pores);
-  in.get(r.expected_count);
-  in.get(r.hair_area);
-  in.get(r.candidates);
-  return r;
-}
-
-void encode(ByteWriter& out, const Clusters& c) {
-  put(out, c.bases);
-  out.put(c.centre_pore);
-  out.put(c.radius);
-  out.put(c.pore_cluster);
-  out.put(c.members);
-  out.put(c.candidate_clusters);
-}
-Clusters decode_clusters(ByteReader& in) {
-  Clusters c;
-  get(in, c.bases);
-  in.get(c.centre_pore);
-  in.get(c.radius);
-  in.get(c.pore_cluster);
-  in.get(c.members);
-  in.get(c.candidate_clusters);
-  return c;
-}
-
-void encode(ByteWriter& out, const PreguideRoots& r) {
-  put(out, r.roots);
-  out.put(r.spacing);
-}
-PreguideRoots decode_preguide_roots(ByteReader& in) {
-  PreguideRoots r;
-  get(in, r.roots);
-  in.get(r.spacing);
-  return r;
-}
-
-void encode(ByteWriter& out, const PreGuides& p) {
-  out.put<std::uint64_t>(p.items.size());
-  for (const PreGuide& g : p.items) {
-    out.put(g.root);
-    out.put(g.normal);
-    out.put(g.direction);
-    out.put(g.length);
-    out.put(g.height);
-    out.put(g.force);
-    out.put(g.root_moment);
-    put(out, g.shape);
-    out.put(g.thickness);
-    out.put(g.target_depth);
-    out.put(g.depth);
-    out.put(g.reached);
-    out.put(g.solves);
-  }
-}
-PreGuides decode_preguides(ByteReader& in) {
-  PreGuides p;
-  const auto n = in.get<std::uint64_t>();
-  if (n > (1u << 30)) throw CodecError("pre-guides hold an impossible length");
-  p.items.resize(n);
-  for (PreGuide& g : p.items) {
-    in.get(g.root);
-    in.get(g.normal);
-    in.get(g.direction);
-    in.get(g.length);
-    in.get(g.height);
-    in.get(g.force);
-    in.get(g.root_moment);
-    get(in, g.shape);
-    in.get(g.thickness);
-    in.get(g.target_depth);
-    in.get(g.depth);
-    in.get(g.reached);
-    in.get(g.solves);
-  }
-  return p;
-}
-
-void encode(ByteWriter& out, const Guides& guides) {
-  out.put<std::uint64_t>(guides.items.size());
-  for (const Guide& g : guides.items) {
-    out.put(g.root);
-    out.put(g.normal);
-    out.put(g.direction);
-    out.put(g.length);
-    out.put(g.force);
-    out.put(g.root_moment);
-    out.put(g.terminal_torque);
-    out.put(g.force_scale);
-    out.put(g.moment_scale);
-    put(out, g.shape);
-    out.put(g.neighbours);
-    out.put(g.neighbour_weights);
-    out.put(g.iterations);
-    out.put(g.evaluations);
-    out.put(g.converged);
-    out.put(g.termination);
-    out.put(g.initial_cost);
-    out.put(g.cost);
-    out.put(g.f1);
-    out.put(g.f2);
-    out.put(g.f3);
-    out.put(g.f4);
-  }
-}
-Guides decode_guides(ByteReader& in) {
-  Guides guides;
-  const auto n = in.get<std::uint64_t>();
-  if (n > (1u << 30)) throw CodecError("guides hold an impossible length");
-  guides.items.resize(n);
-  for (Guide& g : guides.items) {
-    in.get(g.root);
-    in.get(g.normal);
-    in.get(g.direction);
-    in.get(g.length);
-    in.get(g.force);
-    in.get(g.root_moment);
-    in.get(g.terminal_torque);
-    in.get(g.force_scale);
-    in.get(g.moment_scale);
-    get(in, g.shape);
-    in.get(g.neighbours);
-    in.get(g.neighbour_weights);
-    in.get(g.iterations);
-    in.get(g.evaluations);
-    in.get(g.converged);
-    in.get(g.termination);
-    in.get(g.initial_cost);
-    in.get(g.cost);
-    in.get(g.f1);
-    in.get(g.f2);
-    in.get(g.f3);
-    in.get(g.f4);
-  }
-  return guides;
-}
-
-void encode(ByteWriter& out, const Strands& s) {
-  put(out, s.fibres);
-  out.put(s.cut);
-  out.put(s.cut_count);
-}
+ScalpChart decode_scalp_chart(ByteReader& in) { return decode_members<ScalpChart>(in); }
+Roots decode_roots(ByteReader& in) { return decode_members<Roots>(in); }
+Clusters decode_clusters(ByteReader& in) { return decode_members<Clusters>(in); }
+PreguideRoots decode_preguide_roots(ByteReader& in) { return decode_members<PreguideRoots>(in); }
+PreGuides decode_preguides(ByteReader& in) { return decode_members<PreGuides>(in); }
+Guides decode_guides(ByteReader& in) { return decode_members<Guides>(in); }
 Strands decode_strands(ByteReader& in) {
-  Strands s;
-  get(in, s.fibres);
-  in.get(s.cut);
-  in.get(s.cut_count);
+  Strands s = decode_members<Strands>(in);
+  check_curves(s.fibres);
   return s;
 }
 
