@@ -7,9 +7,9 @@
 namespace hairfit::cli {
 
 int command_scene_keys(const Arguments& argv) {
-  const Args args(argv, {}, {});
+  const Args args(argv, {}, {"presets"});
   if (!args.positionals().empty()) throw UsageError{"takes no arguments"};
-  std::fputs(scene_keys_markdown().c_str(), stdout);
+  std::fputs((args.has("presets") ? scene_presets_markdown() : scene_keys_markdown()).c_str(), stdout);
   return 0;
 }
 

@@ -27,7 +27,7 @@ const Command kCommands[] = {
      hairfit::cli::command_check},
     {"render", "render SCENE [--stage STAGE] [--view VIEW] [--size WxH] [--out PNG] [--threads N]   picture of a stage",
      hairfit::cli::command_render},
-    {"scene-keys", "scene-keys                print the table of scene keys (spec/reference.md embeds it)",
+    {"scene-keys", "scene-keys [--presets]    print the table of scene keys, or of accuracy presets (spec/reference.md embeds both)",
      hairfit::cli::command_scene_keys},
     {"rod", "rod [--length L] [--force x,y,z] [--torque x,y,z] [--solver ...] [--segments N]   solve one rod, print JSON (--help)",
      hairfit::cli::command_rod},

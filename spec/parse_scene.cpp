@@ -105,6 +105,7 @@ class SceneParser {
       if (k.required && !scene_.locations.count(k.name))
         error({0, 0}, "required key " + k.name + " is missing" +
                           (k.name == "format" ? " (add format = \"" + std::string(kSceneFormat) + "\" at the top)" : ""));
+    if (diagnostics_.empty()) apply_preset();
     if (diagnostics_.empty()) check_consistency();
     if (!diagnostics_.empty()) throw InputError(diagnostics_);
     if (scene_.output.dir.empty()) scene_.output.dir = file_.parent_path() / "out";
@@ -167,6 +168,14 @@ class SceneParser {
     if (!candidates.empty()) message += "\"?)";
     else message += "; spec/reference.md lists every key";
     return message;
+  }
+
+  // The preset's values for every knob the file does not set itself (an explicit key wins).
+  void apply_preset() {
+    for (const ScenePreset& p : scene_presets())
+      if (p.name == scene_.preset)
+        for (const auto& [key, value] : p.values)
+          if (!scene_.locations.count(key)) find_key(key)->store(scene_, {value}, {});
   }
 
   const SceneKey* find_key(const std::string& name) const {

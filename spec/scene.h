@@ -129,6 +129,7 @@ struct Scene {
   std::filesystem::path file;  // the scene file itself (absolute)
   std::string format = kSceneFormat;
   std::int64_t seed = 1;
+  std::string preset = "default";  // accuracy preset (scene_presets): preview | default | final
   SceneUnits units;
   SceneInputs inputs;
   SceneEffects effects;
@@ -149,6 +150,15 @@ struct Scene {
   // A diagnostic at a key's location (or at the file when the key took its default).
   Diagnostic at(const std::string& key, const std::string& message) const;
 };
+
+// An accuracy preset: values for the accuracy knobs that a scene naming it takes for every knob
+// it does not set itself (README "What accuracy costs" measures them).
+struct ScenePreset {
+  std::string name;
+  std::string doc;
+  std::vector<std::pair<std::string, double>> values;  // dotted key → value
+};
+const std::vector<ScenePreset>& scene_presets();
 
 // Parses and validates a scene file. Throws InputError carrying every problem found (unknown keys
 // with suggestions, wrong types, out-of-range values, missing files, weights not summing to 1).

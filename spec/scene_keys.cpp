@@ -158,6 +158,8 @@ std::vector<SceneKey> build_keys() {
   }
   keys.push_back(integer("seed", REF(seed), "", closed(0, 9007199254740991.0), "roots, clusters, strands",
                          "Seed of every random choice; same scene and seed give byte-identical results."));
+  keys.push_back(text("preset", REF(preset), {"preview", "default", "final"}, "rod, fields, guides, density",
+                      "Accuracy preset: values for the accuracy knobs the scene does not set itself (table below)."));
 
   keys.push_back(text("units.length", REF(units.length), {"mm", "cm", "dm", "m", "in"}, "inputs",
                       "Length unit of the mesh coordinates; everything is converted to cm on loading."));
@@ -324,6 +326,30 @@ std::string SceneKey::range_text() const {
   if (lo == -kInf && hi == kInf) return "";
   return std::string(lo_open ? "(" : "[") + number_text(lo) + ", " + (hi == kInf ? "∞" : number_text(hi)) +
          (hi_open || hi == kInf ? ")" : "]");
+}
+
+const std::vector<ScenePreset>& scene_presets() {
+  static const std::vector<ScenePreset> presets{
+      {"preview", "a quick look while iterating on a scene",
+       {{"rod.segments", 32}, {"fields.voxel", 0.5}, {"guides.samples", 8}, {"guides.tolerance", 1e-4},
+        {"guides.max_iterations", 30}, {"density.voxel", 0.5}}},
+      {"default", "the documented defaults", {}},
+      {"final", "the hair to keep",
+       {{"rod.segments", 128}, {"fields.voxel", 0.125}, {"guides.samples", 32}, {"guides.tolerance", 1e-8},
+        {"guides.max_iterations", 300}, {"density.voxel", 0.125}}},
+  };
+  return presets;
+}
+
+std::string scene_presets_markdown() {
+  std::ostringstream out;
+  out << "| preset | for | values |\n| --- | --- | --- |\n";
+  for (const ScenePreset& p : scene_presets()) {
+    std::string values;
+    for (const auto& [key, value] : p.values) values += (values.empty() ? "" : ", ") + ("`" + key + " = " + number_text(value) + "`");
+    out << "| `" << p.name << "` | " << p.doc << " | " << (values.empty() ? "the defaults above" : values) << " |\n";
+  }
+  return out.str();
 }
 
 const std::vector<SceneKey>& scene_keys() {

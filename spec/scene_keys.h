@@ -47,4 +47,7 @@ const std::vector<SceneKey>& scene_keys();
 // The Markdown table of all keys (name, type, unit, default, range, feeds, meaning).
 std::string scene_keys_markdown();
 
+// The Markdown table of the accuracy presets and the values each sets.
+std::string scene_presets_markdown();
+
 }  // namespace hairfit

@@ -205,3 +205,38 @@ TEST_CASE("--until density without a density model is refused before anything is
   CHECK(r.err.find("declares no density model") != std::string::npos);
   CHECK_FALSE(std::filesystem::exists(out));
 }
+
+TEST_CASE("an accuracy preset sets the knobs the scene leaves alone, and an explicit key wins") {
+  const Scene plain = parse("");
+  CHECK(plain.preset == "default");
+  const Scene preview = parse("preset = \"preview\"\n[guides]\nsamples = 12\n");
+  const Scene finest = parse("preset = \"final\"\n");
+  for (const ScenePreset& p : scene_presets()) {
+    CAPTURE(p.name);
+    const Scene s = parse("preset = \"" + p.name + "\"\n");
+    for (const auto& [key, value] : p.values) {
+      CAPTURE(key);
+      const SceneKey* k = nullptr;
+      for (const SceneKey& candidate : scene_keys())
+        if (candidate.name == key) k = &candidate;
+      REQUIRE(k != nullptr);        // every preset value names a real key
+      CHECK(k->in_range(value));    // and lies in its range
+      CHECK(std::stod(k->show(s)) == value);
+    }
+  }
+  CHECK(preview.guides.samples == 12);  // set in the file: the preset does not touch it
+  CHECK(preview.rod.segments == 32);
+  CHECK(finest.rod.segments == 128);
+  CHECK(plain.rod.segments == Scene().rod.segments);
+  CHECK(first_error("preset = \"fastest\"\n").find("preset") != std::string::npos);
+}
+
+TEST_CASE("the reference page's preset table is the one the parser applies") {
+  const std::string page = read_all(source_path("spec/reference.md"));
+  const std::string open = "<!-- presets:begin -->\n";
+  const std::size_t begin = page.find(open), end = page.find("<!-- presets:end -->");
+  REQUIRE(begin != std::string::npos);
+  REQUIRE(end != std::string::npos);
+  // Regenerate with `hairfit scene-keys --presets`.
+  CHECK(page.substr(begin + open.size(), end - begin - open.size()) == scene_presets_markdown());
+}
