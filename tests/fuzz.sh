@@ -15,8 +15,11 @@ shift || true
 targets=${*:-scene obj png}
 build=${HAIRFIT_FUZZ_BUILD:-$root/build-fuzz}
 
-cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++-14 \
-  -DHAIRFIT_FUZZ=ON -DBUILD_TESTING=OFF >/dev/null || exit 1
+# The compiler is given only at the first configure: naming it again makes CMake wipe the cache.
+if [ ! -f "$build/CMakeCache.txt" ]; then
+  cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++-14 \
+    -DHAIRFIT_FUZZ=ON -DBUILD_TESTING=OFF >/dev/null || exit 1
+fi
 for t in $targets; do cmake --build "$build" -j2 --target "fuzz_$t" || exit 1; done
 
 seeds() {  # the committed inputs each target starts from
