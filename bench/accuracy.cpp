@@ -13,7 +13,8 @@
 // are all in the run's exact band and which lie in the reference's exact band; both fields).
 // Time: the pipeline's stage seconds (wall, loaded machine) and the process CPU time (user +
 // system) of each run, all stages, outputs not written. Runs in-process through run_pipeline().
-//   bench_accuracy [--guides N] [--threads T] [--out DIR] [--quick]
+//   bench_accuracy [--guides N] [--threads T] [--out DIR] [--quick] [--replot]
+// (--quick: fewer values per knob; --replot: redraw accuracy.png from accuracy.csv only).
 // Writes DIR/accuracy.csv, accuracy.md and accuracy.png (default bench/results).
 #include <sys/resource.h>
 
@@ -21,7 +22,10 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
 #include <functional>
+#include <map>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -88,8 +92,11 @@ Vec3 at_fraction(const std::vector<Vec3>& nodes, double t) {
 }
 
 struct ShapeError {
-  double mean = 0.0, max = 0.0;  // cm, over guides of the per-guide largest node distance
-  double root_offset = 0.0;      // cm: largest root distance (0 when the guides correspond)
+  // Over guides, of the per-guide largest node distance, cm. The median and 90th percentile say
+  // what most guides do; the mean and max are pulled up by guides that settle in another local
+  // minimum of their objective than the reference's.
+  double median = 0.0, p90 = 0.0, mean = 0.0, max = 0.0;
+  double root_offset = 0.0;  // cm: largest root distance (0 when the guides correspond)
 };
 
 ShapeError shape_error(const Guides& run, const Guides& reference) {
@@ -97,6 +104,7 @@ ShapeError shape_error(const Guides& run, const Guides& reference) {
     throw std::runtime_error("guide counts differ: " + std::to_string(run.size()) + " vs " +
                              std::to_string(reference.size()));
   ShapeError e;
+  std::vector<double> per_guide;
   for (int g = 0; g < run.size(); ++g) {
     const std::vector<Vec3>& a = run.items[g].shape.nodes;
     const std::vector<Vec3>& b = reference.items[g].shape.nodes;
@@ -106,9 +114,15 @@ ShapeError shape_error(const Guides& run, const Guides& reference) {
       worst = std::max(worst, (a[i] - at_fraction(b, double(i) / (a.size() - 1))).norm());
     for (std::size_t i = 0; i < b.size(); ++i)
       worst = std::max(worst, (b[i] - at_fraction(a, double(i) / (b.size() - 1))).norm());
+    per_guide.push_back(worst);
     e.mean += worst / run.size();
     e.max = std::max(e.max, worst);
     e.root_offset = std::max(e.root_offset, (run.items[g].root - reference.items[g].root).norm());
+  }
+  std::sort(per_guide.begin(), per_guide.end());
+  if (!per_guide.empty()) {
+    e.median = per_guide[per_guide.size() / 2];
+    e.p90 = per_guide[per_guide.size() * 9 / 10];
   }
   return e;
 }
@@ -162,13 +176,14 @@ struct Setting {
   std::string value;  // as written in the scene
   std::function<void(Scene&)> apply;
   bool is_default = false;
+  bool density_model = false;  // run with the continuous density model (else none)
 };
 
 struct Row {
   Setting setting;
   double seconds = 0, guides_seconds = 0, cpu = 0, user = 0;
   ShapeError shape;
-  double inside = 0, inside_own = 0, strands_inside = 0, iterations = 0, evaluations = 0, failures = 0;
+  double inside = 0, strands_inside = 0, iterations = 0, evaluations = 0, failures = 0;
   FieldError field;
 };
 
@@ -177,6 +192,8 @@ std::string number(double v) {
   std::snprintf(text, sizeof text, "%g", v);
   return text;
 }
+
+const char* const kCdm = "density.voxel (CDM)";
 
 std::vector<Setting> settings(bool quick) {
   std::vector<Setting> s;
@@ -197,20 +214,21 @@ std::vector<Setting> settings(bool quick) {
     s.push_back({"guides.tolerance", number(v), [=](Scene& sc) { sc.guides.tolerance = v; }});
   for (int v : quick ? std::vector<int>{10, 200} : std::vector<int>{10, 25, 50, 200})
     s.push_back({"guides.max_iterations", std::to_string(v), [=](Scene& sc) { sc.guides.max_iterations = v; }});
+  s.push_back({"default (CDM)", "defaults", [](Scene&) {}, true, true});
   for (double v : {0.125, 0.5, 1.0})
-    s.push_back({"density.voxel", number(v), [=](Scene& sc) { sc.density.voxel = v; }});
+    s.push_back({kCdm, number(v), [=](Scene& sc) { sc.density.voxel = v; }, false, true});
   return s;
 }
 
-// The value of the knob a series varies, in the default scene (so the default run sits on every
-// series at its place).
+// The value of the knob a series varies in the default scene, "" when the default run is not on
+// the series (rk2), so the default run sits on every other series at its place.
 std::string default_value(const std::string& knob, const Scene& s) {
   if (knob == "rod rk2" || knob == "rod rk4") return s.rod.integrator == knob.substr(4) ? std::to_string(s.rod.segments) : "";
   if (knob == "fields.voxel") return number(s.fields.voxel);
   if (knob == "guides.samples") return std::to_string(s.guides.samples);
   if (knob == "guides.tolerance") return number(s.guides.tolerance);
   if (knob == "guides.max_iterations") return std::to_string(s.guides.max_iterations);
-  if (knob == "density.voxel") return number(s.density.voxel);
+  if (knob == kCdm) return number(s.density.voxel);
   return "";
 }
 
@@ -221,11 +239,94 @@ double fineness(const std::string& knob, const std::string& value) {
   return knob.find("voxel") != std::string::npos || knob.find("tolerance") != std::string::npos ? -v : v;
 }
 
+Scene reference_of(Scene s) {
+  s.rod.integrator = "rk4";
+  s.rod.segments = 256;
+  s.fields.voxel = 0.0625;
+  s.fields.band = 16;  // 1 cm of exact distances, as the default 4 × 0.25 cm
+  s.guides.samples = 64;
+  s.guides.tolerance = 1e-10;
+  s.guides.max_iterations = 500;
+  s.density.voxel = 0.125;
+  return s;
+}
+
+void with_cdm(Scene& s) {
+  s.effects.density = DensityModel::continuous;
+  s.guides.weights = {0.35, 0.2, 0.35, 0.1};  // as bench/results/density_guides.md
+}
+
+// Pareto plot: one series per knob through its values, coarse to fine, with the default run on
+// each series. Without the density model only: with it, every guide's shape depends on all
+// earlier batches, and the errors measure that sensitivity more than the knob (see the table).
+void write_pareto_plot(const std::vector<Row>& rows, const Scene& scene, const path& file) {
+  std::vector<std::string> knobs;
+  for (const Row& r : rows)
+    if (!r.setting.is_default && !r.setting.density_model &&
+        std::find(knobs.begin(), knobs.end(), r.setting.knob) == knobs.end())
+      knobs.push_back(r.setting.knob);
+  std::vector<Image> images;
+  for (const bool median : {true, false}) {
+    LinePlot plot;
+    plot.title = std::string(median ? "Median" : "90th percentile") + " guide error, no density model";
+    plot.x_label = "CPU seconds, whole pipeline (user + system)";
+    plot.y_label = std::string(median ? "median" : "90th percentile") + " guide error vs reference, cm";
+    plot.log_y = true;
+    double highest = 0.0;
+    for (std::size_t k = 0; k < knobs.size(); ++k) {
+      std::vector<std::pair<double, const Row*>> points;  // coarse to fine
+      for (const Row& r : rows) {
+        if (r.setting.density_model) continue;
+        const std::string value = r.setting.is_default ? default_value(knobs[k], scene) : r.setting.value;
+        if (r.setting.knob == knobs[k] || (r.setting.is_default && !value.empty()))
+          points.push_back({fineness(knobs[k], value), &r});
+      }
+      std::sort(points.begin(), points.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+      Series series{knobs[k], {}, {}, int(k)};
+      for (const auto& [fine, r] : points) {
+        series.x.push_back(r->cpu);
+        series.y.push_back(median ? r->shape.median : r->shape.p90);
+        highest = std::max(highest, series.y.back());
+      }
+      plot.series.push_back(series);
+    }
+    // An invisible point a decade and a half above the data keeps the legend (top right) clear of it.
+    plot.series.push_back({"", {plot.series.front().x.front()}, {highest * 30.0}, 0, false, false});
+    images.push_back(render_line_plot(plot, 760, 540));
+  }
+  write_png(file, side_by_side(images));
+}
+
+// The rows of an earlier accuracy.csv (enough of them for the plot), for --replot.
+std::vector<Row> read_rows(const path& csv) {
+  std::ifstream in(csv);
+  if (!in) throw std::runtime_error("cannot read " + csv.string());
+  std::string line;
+  std::getline(in, line);  // header
+  std::vector<Row> rows;
+  while (std::getline(in, line)) {
+    std::vector<std::string> f;
+    std::stringstream fields(line);
+    for (std::string cell; std::getline(fields, cell, ',');) f.push_back(cell);
+    if (f.size() < 20) throw std::runtime_error(csv.string() + ": short line: " + line);
+    Row r;
+    r.setting.knob = f[0];
+    r.setting.value = f[1];
+    r.setting.density_model = f[2] == "continuous";
+    r.setting.is_default = f[3] == "1";
+    r.cpu = std::stod(f[6]);
+    r.shape.median = std::stod(f[8]);
+    r.shape.p90 = std::stod(f[9]);
+    rows.push_back(r);
+  }
+  return rows;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   int guides = 600, threads = 2;
-  bool quick = false;
+  bool quick = false, replot = false;
   path out = path(HAIRFIT_SOURCE_DIR) / "bench/results";
   const path base = path(HAIRFIT_SOURCE_DIR) / "fixtures/spheroid/scene.toml";
   for (int i = 1; i < argc; ++i) {
@@ -235,35 +336,44 @@ int main(int argc, char** argv) {
     else if (a == "--threads" && has_value) threads = std::atoi(argv[++i]);
     else if (a == "--out" && has_value) out = argv[++i];
     else if (a == "--quick") quick = true;
+    else if (a == "--replot") replot = true;
     else {
-      std::fprintf(stderr, "usage: bench_accuracy [--guides N] [--threads T] [--out DIR] [--quick]\n");
+      std::fprintf(stderr, "usage: bench_accuracy [--guides N] [--threads T] [--out DIR] [--quick] [--replot]\n");
       return 2;
     }
   }
   try {
     Scene scene = parse_scene(base);
     scene.roots.guides = guides;
-    scene.effects.density = DensityModel::continuous;
-    scene.guides.weights = {0.35, 0.2, 0.35, 0.1};  // as bench/results/density_guides.md
-    Scene reference_scene = scene;
-    reference_scene.rod.integrator = "rk4";
-    reference_scene.rod.segments = 256;
-    reference_scene.fields.voxel = 0.0625;
-    reference_scene.fields.band = 16;  // 1 cm of exact distances, as the default 4 × 0.25 cm
-    reference_scene.guides.samples = 64;
-    reference_scene.guides.tolerance = 1e-10;
-    reference_scene.guides.max_iterations = 500;
-    reference_scene.density.voxel = 0.125;
+    if (replot) {  // only redraw DIR/accuracy.png from DIR/accuracy.csv
+      write_pareto_plot(read_rows(out / "accuracy.csv"), scene, out / "accuracy.png");
+      return 0;
+    }
+    Scene cdm_scene = scene;
+    with_cdm(cdm_scene);
 
-    std::fprintf(stderr, "reference run (load %s)...\n", bench::load_average().c_str());
-    const Run reference = run(reference_scene, threads);
-    std::fprintf(stderr, "  %.1f s, %.1f s CPU\n", reference.total_seconds(), reference.cpu);
-    const Boundary judge{reference.result.values.scalp_field.get(), reference.result.values.volume_field.get()};
+    // One reference per density model, computed when a setting first needs it.
+    std::map<bool, Run> references;
+    auto reference = [&](bool density_model) -> const Run& {
+      auto found = references.find(density_model);
+      if (found != references.end()) return found->second;
+      std::fprintf(stderr, "reference run%s (load %s)...\n", density_model ? " with CDM" : "",
+                   bench::load_average().c_str());
+      const Run& r = references.emplace(density_model, run(reference_of(density_model ? cdm_scene : scene), threads))
+                         .first->second;
+      std::fprintf(stderr, "  %.1f s, %.1f s CPU\n", r.total_seconds(), r.cpu);
+      return r;
+    };
+    auto judge = [&](bool density_model) {
+      const StageValues& v = reference(density_model).result.values;
+      return Boundary{v.scalp_field.get(), v.volume_field.get()};
+    };
 
     std::vector<Row> rows;
     for (const Setting& setting : settings(quick)) {
-      Scene s = scene;
+      Scene s = setting.density_model ? cdm_scene : scene;
       setting.apply(s);
+      const Run& ref = reference(setting.density_model);
       const Run r = run(s, threads);
       Row row;
       row.setting = setting;
@@ -271,96 +381,79 @@ int main(int argc, char** argv) {
       row.guides_seconds = r.stage_seconds("guides");
       row.cpu = r.cpu;
       row.user = r.user;
-      row.shape = shape_error(*r.result.values.guides, *reference.result.values.guides);
+      row.shape = shape_error(*r.result.values.guides, *ref.result.values.guides);
       if (row.shape.root_offset > 1e-9)
         throw std::runtime_error(setting.knob + " = " + setting.value + " moved the guide roots by " +
                                  number(row.shape.root_offset) + " cm: guides do not correspond");
-      row.inside = inside_fraction(*r.result.values.guides, judge);
-      row.inside_own = r.figure("guides", "inside_fraction");
+      row.inside = inside_fraction(*r.result.values.guides, judge(setting.density_model));
       row.strands_inside = r.figure("strands", "inside_fraction");
       row.iterations = r.figure("guides", "mean_iterations");
       row.evaluations = r.figure("guides", "mean_evaluations");
       row.failures = r.figure("guides", "failures");
-      row.field = field_error(r.result.values, reference.result.values);
-      std::fprintf(stderr, "  %-22s %-8s %6.1f s %6.1f s CPU  error mean %.4f max %.3f cm  inside %.4f  field %.4f cm (load %s)\n",
-                   setting.knob.c_str(), setting.value.c_str(), row.seconds, row.cpu, row.shape.mean, row.shape.max,
-                   row.inside, row.field.mean, bench::load_average().c_str());
+      row.field = field_error(r.result.values, ref.result.values);
+      std::fprintf(stderr, "  %-22s %-8s %6.1f s %6.1f s CPU  error median %.4f mean %.4f max %.3f cm  inside %.4f  "
+                           "field %.4f cm (load %s)\n",
+                   setting.knob.c_str(), setting.value.c_str(), row.seconds, row.cpu, row.shape.median, row.shape.mean,
+                   row.shape.max, row.inside, row.field.mean, bench::load_average().c_str());
       rows.push_back(row);
     }
 
-    // A setting is on the Pareto front when no other is at once cheaper (CPU) and more accurate
-    // (mean guide error).
+    // A setting is on the Pareto front when no other of the same density model is at once
+    // cheaper (CPU) and more accurate (median guide error).
     auto dominated = [&](const Row& r) {
       for (const Row& o : rows)
-        if (o.cpu < r.cpu && o.shape.mean < r.shape.mean) return true;
+        if (o.setting.density_model == r.setting.density_model && o.cpu < r.cpu && o.shape.median < r.shape.median)
+          return true;
       return false;
     };
-    std::string csv = "knob,value,default,total_s,guides_s,cpu_s,user_s,guide_error_mean_cm,guide_error_max_cm,"
-                      "inside_fraction_ref_fields,inside_fraction_own_fields,strands_inside_fraction,mean_iterations,"
-                      "mean_evaluations,failures,field_error_mean_cm,field_error_max_cm,pareto\n";
+    std::string csv = "knob,value,density_model,default,total_s,guides_s,cpu_s,user_s,guide_error_median_cm,"
+                      "guide_error_p90_cm,guide_error_mean_cm,guide_error_max_cm,inside_fraction,"
+                      "strands_inside_fraction,mean_iterations,mean_evaluations,failures,field_error_mean_cm,"
+                      "field_error_max_cm,pareto\n";
     std::string md = "# What accuracy costs\n\n";
-    md += "Spheroid fixture (`fixtures/spheroid/scene.toml`) with " + std::to_string(guides) +
-          " guides (roots.guides), the continuous density model on (weights 0.35/0.2/0.35/0.1), every other key at "
-          "its default; one knob changed per row. `--threads " + std::to_string(threads) + "`, source at " +
-          bench::source_commit() + ".\n\n";
+    md += "`build-bench/bench/bench_accuracy --guides " + std::to_string(guides) + " --threads " +
+          std::to_string(threads) + "`, source at " + bench::source_commit() +
+          ". Spheroid fixture (`fixtures/spheroid/scene.toml`) with " + std::to_string(guides) +
+          " guides (roots.guides), every other key as shipped, one knob changed per row. The density.voxel rows "
+          "(and their default) run with the continuous density model on (weights 0.35/0.2/0.35/0.1) and are "
+          "measured against a reference with it; the others without a density model.\n\n";
     md += "Reference: rk4 with 256 segments, fields.voxel 0.0625 (band 16 voxels = 1 cm), guides.samples 64, "
-          "tolerance 1e-10, max_iterations 500, density.voxel 0.125: " + number(reference.total_seconds()) +
-          " s wall, " + number(reference.cpu) + " s CPU; inside fraction " +
-          number(inside_fraction(*reference.result.values.guides, judge)) + ".\n\n";
-    md += "Guide error: per guide the largest distance between corresponding nodes (same normalised arc length) of "
-          "the run's and the reference's guide, mean and max over guides, cm. Inside: share of guide nodes in the "
-          "acceptable region judged by the reference's fields. Field error: |run − reference| at the run grid's "
-          "cell centres within the exact band of both, both fields. Time: the sum of the stage times (wall clock; "
-          "the 2-core machine was loaded by others' builds, so it varies) and the process CPU time (user + "
-          "system, steadier). ★: on the Pareto front of CPU time against mean guide error.\n\n";
-    md += "| knob | value | wall s | CPU s | guide error mean / max cm | inside | field error mean / max cm | "
-          "LM iterations | not converged | |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---|\n";
+          "tolerance 1e-10, max_iterations 500, density.voxel 0.125.";
+    for (const auto& [model, r] : references) {
+      const Boundary b{r.result.values.scalp_field.get(), r.result.values.volume_field.get()};
+      md += std::string(model ? " With CDM: " : " Without: ") + number(r.total_seconds()) + " s wall, " +
+            number(r.cpu) + " s CPU, inside fraction " + number(inside_fraction(*r.result.values.guides, b)) +
+            ", not converged " + number(r.figure("guides", "failures")) + ".";
+    }
+    md += "\n\nGuide error: per guide the largest distance between corresponding nodes (same normalised arc length) "
+          "of the run's and the reference's guide, cm; median, 90th percentile and max over guides. Inside: share "
+          "of guide nodes in the acceptable region judged by the reference's fields. Field error: |run − "
+          "reference| at the run grid's cell centres within the exact band of both, both fields, mean / max cm. "
+          "Time: the sum of the stage times (wall clock; the 2-core machine was loaded by others' builds, so it "
+          "varies) and the process CPU time (user + system, steadier). ★: on the Pareto front of CPU time against "
+          "median guide error (within the same density model).\n\n";
+    md += "| knob | value | wall s (loaded) | CPU s | guide error median / p90 / max cm | inside | field error mean / "
+          "max cm | LM iterations | not converged | |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---|\n";
     for (const Row& r : rows) {
       const bool front = !dominated(r);
       char line[1024];
-      std::snprintf(line, sizeof line, "%s,%s,%d,%.3f,%.3f,%.3f,%.3f,%.6g,%.6g,%.6f,%.6f,%.6f,%.3f,%.3f,%.0f,%.6g,%.6g,%d\n",
-                    r.setting.knob.c_str(), r.setting.value.c_str(), int(r.setting.is_default), r.seconds,
-                    r.guides_seconds, r.cpu, r.user, r.shape.mean, r.shape.max, r.inside, r.inside_own,
-                    r.strands_inside, r.iterations, r.evaluations, r.failures, r.field.mean, r.field.max, int(front));
+      std::snprintf(line, sizeof line,
+                    "%s,%s,%s,%d,%.3f,%.3f,%.3f,%.3f,%.6g,%.6g,%.6g,%.6g,%.6f,%.6f,%.3f,%.3f,%.0f,%.6g,%.6g,%d\n",
+                    r.setting.knob.c_str(), r.setting.value.c_str(), r.setting.density_model ? "continuous" : "none",
+                    int(r.setting.is_default), r.seconds, r.guides_seconds, r.cpu, r.user, r.shape.median, r.shape.p90,
+                    r.shape.mean, r.shape.max, r.inside, r.strands_inside, r.iterations, r.evaluations, r.failures,
+                    r.field.mean, r.field.max, int(front));
       csv += line;
-      std::snprintf(line, sizeof line, "| %s | %s | %.1f | %.1f | %.4f / %.3f | %.4f | %.4f / %.3f | %.1f | %.0f | %s |\n",
-                    r.setting.knob.c_str(), r.setting.value.c_str(), r.seconds, r.cpu, r.shape.mean, r.shape.max,
-                    r.inside, r.field.mean, r.field.max, r.iterations, r.failures, front ? "★" : "");
+      std::snprintf(line, sizeof line,
+                    "| %s | %s | %.1f | %.1f | %.4f / %.3f / %.2f | %.4f | %.4f / %.3f | %.1f | %.0f | %s |\n",
+                    r.setting.knob.c_str(), r.setting.value.c_str(), r.seconds, r.cpu, r.shape.median, r.shape.p90,
+                    r.shape.max, r.inside, r.field.mean, r.field.max, r.iterations, r.failures, front ? "★" : "");
       md += line;
     }
     write_text_file_atomically(out / "accuracy.csv", csv);
     write_text_file_atomically(out / "accuracy.md", md);
 
-    // Pareto plot: one series per knob through its values (the default run on each), coarse to fine.
-    std::vector<std::string> knobs;
-    for (const Row& r : rows)
-      if (!r.setting.is_default && std::find(knobs.begin(), knobs.end(), r.setting.knob) == knobs.end())
-        knobs.push_back(r.setting.knob);
-    std::vector<Image> images;
-    for (const bool mean : {true, false}) {
-      LinePlot plot;
-      plot.title = std::string(mean ? "Mean" : "Max") + " guide error against CPU time, one knob at a time";
-      plot.x_label = "CPU seconds, whole pipeline (user + system)";
-      plot.y_label = std::string(mean ? "mean" : "max") + " guide error against the reference, cm";
-      plot.log_x = plot.log_y = true;
-      for (std::size_t k = 0; k < knobs.size(); ++k) {
-        std::vector<std::pair<double, const Row*>> points;  // coarse to fine
-        for (const Row& r : rows) {
-          const std::string value = r.setting.is_default ? default_value(knobs[k], scene) : r.setting.value;
-          if (r.setting.knob == knobs[k] || (r.setting.is_default && !value.empty()))
-            points.push_back({fineness(knobs[k], value), &r});
-        }
-        std::sort(points.begin(), points.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-        Series s{knobs[k], {}, {}, int(k)};
-        for (const auto& [cpu, r] : points) {
-          s.x.push_back(cpu);
-          s.y.push_back(mean ? r->shape.mean : r->shape.max);
-        }
-        plot.series.push_back(s);
-      }
-      images.push_back(render_line_plot(plot, 760, 520));
-    }
-    write_png(out / "accuracy.png", side_by_side(images));
+    write_pareto_plot(rows, scene, out / "accuracy.png");
     std::printf("%s\nwrote %s, accuracy.md, accuracy.png\n", md.c_str(), (out / "accuracy.csv").string().c_str());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "bench_accuracy: %s\n", e.what());

@@ -43,6 +43,7 @@ inline ProcessUsage run_process(const std::vector<std::string>& argv, const fs::
   std::vector<char*> args;
   for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
   args.push_back(nullptr);
+  std::fflush(nullptr);  // else the child's freopen writes our buffered output a second time
   const auto t0 = std::chrono::steady_clock::now();
   const pid_t pid = fork();
   if (pid < 0) throw std::runtime_error("fork failed");

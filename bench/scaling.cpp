@@ -4,13 +4,15 @@
 // paths; fibres are set through hair.density, which the roots stage multiplies by the scalp's
 // area and the density map: the base's roots figure `expected_roots` per unit of hair.density
 // gives the density for any fibre count.
-//   bench_scaling [--runs N] [--threads T] [--hairfit PATH] [--scratch DIR] [--out DIR] [--scene BASE]
+//   bench_scaling [--runs N] [--threads T] [--hairfit PATH] [--scratch DIR] [--out DIR] [--scene BASE] [--replot]
 // Writes DIR/scaling.csv and DIR/scaling.png (default bench/results) and prints a Markdown table.
 // Each point is the median of N runs (default 1). The machine is shared: CPU time is the steadier
 // figure; wall time depends on the others' load.
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -58,41 +60,100 @@ Point measure(const std::string& hairfit, const fs::path& scene, const fs::path&
   return p;
 }
 
-// Time (CPU and wall) and peak memory against the count that varies, with the line through the
-// origin and the largest point: on it, growth is linear.
+// The least-squares line a + b·x through the points: on it, growth is linear.
+Series fitted_line(const std::vector<double>& x, const std::vector<double>& y) {
+  const double n = x.size();
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    sx += x[i];
+    sy += y[i];
+    sxx += x[i] * x[i];
+    sxy += x[i] * y[i];
+  }
+  const double b = (n * sxy - sx * sy) / (n * sxx - sx * sx), a = (sy - b * sx) / n;
+  const double lo = *std::min_element(x.begin(), x.end()), hi = *std::max_element(x.begin(), x.end());
+  return {"least-squares line", {lo, hi}, {a + b * lo, a + b * hi}, 7, false, true};
+}
+
+// Time (CPU and wall) and peak memory against the count that varies (fibres in thousands).
 std::vector<Image> panels(const std::vector<Point>& points, const std::string& series, const std::string& label) {
-  auto column = [&](double Point::*field) {
+  auto column = [&](double Point::*field, double scale = 1.0) {
     std::vector<double> v;
     for (const Point& p : points)
-      if (p.series == series) v.push_back(p.*field);
+      if (p.series == series) v.push_back(p.*field * scale);
     return v;
   };
-  const std::vector<double> x = column(series == "fibres" ? &Point::fibres : &Point::guides);
-  auto linear = [&](const std::vector<double>& y) {
-    Series s{"linear through the largest point", {0.0, x.back()}, {0.0, y.back()}, 7, false, true};
-    return s;
-  };
+  const std::vector<double> x = series == "fibres" ? column(&Point::fibres, 1e-3) : column(&Point::guides);
+  const std::vector<double> cpu = column(&Point::cpu), wall = column(&Point::wall);
   LinePlot time;
   time.title = "Time against " + label;
   time.x_label = label;
   time.y_label = "seconds";
-  time.series = {{"process CPU (user + system)", x, column(&Point::cpu), 0},
-                 {"process wall (loaded machine)", x, column(&Point::wall), 1},
+  time.series = {{"process CPU (user + system)", x, cpu, 0},
+                 {"process wall (loaded machine)", x, wall, 1},
                  {"guides stage wall", x, column(&Point::guides_s), 2},
                  {"strands stage wall", x, column(&Point::strands_s), 3},
-                 linear(column(&Point::cpu))};
+                 fitted_line(x, cpu),
+                 // invisible: room above the data for the legend (top right)
+                 {"", {x.front()}, {1.6 * *std::max_element(wall.begin(), wall.end())}, 0, false, false}};
   LinePlot memory;
   memory.title = "Peak memory against " + label;
   memory.x_label = label;
   memory.y_label = "MiB (peak resident)";
-  memory.series = {{"process peak", x, column(&Point::peak_mib), 4}, linear(column(&Point::peak_mib))};
+  const std::vector<double> peak = column(&Point::peak_mib);
+  memory.series = {{"process peak", x, peak, 4},
+                   fitted_line(x, peak),
+                   {"", {x.front()}, {1.4 * *std::max_element(peak.begin(), peak.end())}, 0, false, false},
+                   {"", {x.front()}, {0.0}, 0, false, false}};
   return {render_line_plot(time, 720, 460), render_line_plot(memory, 720, 460)};
+}
+
+// The points of an earlier scaling.csv, for --replot.
+std::vector<Point> read_points(const fs::path& csv) {
+  std::ifstream in(csv);
+  if (!in) throw std::runtime_error("cannot read " + csv.string());
+  std::string line;
+  std::getline(in, line);  // header
+  std::vector<Point> points;
+  while (std::getline(in, line)) {
+    std::vector<std::string> f;
+    std::stringstream cells(line);
+    for (std::string cell; std::getline(cells, cell, ',');) f.push_back(cell);
+    if (f.size() < 11) throw std::runtime_error(csv.string() + ": short line: " + line);
+    Point p;
+    p.series = f[0];
+    p.fibres = std::stod(f[1]);
+    p.guides = std::stod(f[2]);
+    p.wall = std::stod(f[3]);
+    p.cpu = std::stod(f[4]);
+    p.peak_mib = std::stod(f[5]);
+    p.guides_s = std::stod(f[6]);
+    p.strands_s = std::stod(f[7]);
+    p.density_s = std::stod(f[8]);
+    p.evaluations = std::stod(f[9]);
+    p.load = f[10];
+    points.push_back(p);
+  }
+  return points;
+}
+
+void write_plot(const std::vector<Point>& points, const fs::path& file) {
+  auto count = [&](const std::string& series, double Point::*other) {
+    for (const Point& p : points)
+      if (p.series == series) return std::to_string(static_cast<long>(p.*other));
+    return std::string("?");
+  };
+  std::vector<Image> images = panels(points, "fibres", "thousand fibres (" + count("fibres", &Point::guides) + " guides)");
+  for (Image& i : panels(points, "guides", "guides (" + count("guides", &Point::fibres) + " fibres)"))
+    images.push_back(std::move(i));
+  write_png(file, contact_sheet(images, {}, 2, {1.0f, 1.0f, 1.0f}));
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
   int runs = 1, threads = 2;
+  bool replot = false;
   std::string hairfit = HAIRFIT_BINARY;
   fs::path scratch = fs::temp_directory_path() / "hairfit-bench-scaling";
   fs::path out = fs::path(HAIRFIT_SOURCE_DIR) / "bench/results";
@@ -106,13 +167,18 @@ int main(int argc, char** argv) {
     else if (a == "--scratch" && has_value) scratch = argv[++i];
     else if (a == "--out" && has_value) out = argv[++i];
     else if (a == "--scene" && has_value) base = argv[++i];
+    else if (a == "--replot") replot = true;
     else {
       std::fprintf(stderr, "usage: bench_scaling [--runs N] [--threads T] [--hairfit PATH] [--scratch DIR] [--out DIR] "
-                           "[--scene BASE]\n");
+                           "[--scene BASE] [--replot]\n");
       return 2;
     }
   }
   try {
+    if (replot) {  // only redraw DIR/scaling.png from DIR/scaling.csv
+      write_plot(read_points(out / "scaling.csv"), out / "scaling.png");
+      return 0;
+    }
     // The base scene's own figures: its guides, and roots per unit of hair.density.
     std::printf("# Scaling\n\nhairfit: %s\nsource at: %s\nbase: %s, %d run(s) per point, --threads %d\n\n",
                 hairfit.c_str(), source_commit().c_str(), base.string().c_str(), runs, threads);
@@ -162,10 +228,7 @@ int main(int argc, char** argv) {
       points.push_back(p);
     }
     write_text_file_atomically(out / "scaling.csv", csv);
-    std::vector<Image> images = panels(points, "fibres", "fibres (" + std::to_string(int(base_guides)) + " guides)");
-    for (Image& i : panels(points, "guides", "guides (" + std::to_string(int(base_fibres)) + " fibres)"))
-      images.push_back(std::move(i));
-    write_png(out / "scaling.png", contact_sheet(images, {}, 2, {1.0f, 1.0f, 1.0f}));
+    write_plot(points, out / "scaling.png");
     std::printf("\nwrote %s and %s\n", (out / "scaling.csv").string().c_str(), (out / "scaling.png").string().c_str());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "bench_scaling: %s\n", e.what());
