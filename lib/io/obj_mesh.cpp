@@ -7,6 +7,7 @@
 #include <cstring>
 #include <fstream>
 #include <map>
+#include <regex>
 #include <sstream>
 
 #include "core/error.h"
@@ -58,6 +59,13 @@ int check_obj_text(const std::filesystem::path& path, const std::string& text, i
     std::istringstream fields(face.substr(2));
     std::string token;
     while (fields >> token) {
+      // v, v/vt, v//vn or v/vt/vn: integers only (tinyobjloader reads other text as index 0).
+      static const std::regex kFaceToken("-?[0-9]+(/(-?[0-9]+)?(/-?[0-9]+)?)?");
+      if (!std::regex_match(token, kFaceToken))
+        throw InputError({Diagnostic{{file, number, static_cast<int>(face.find(token)) + 1},
+                                     "face entry \"" + token + "\" is not a vertex index (write v, v/vt, v//vn or v/vt/vn "
+                                     "with integers)",
+                                     face}});
       const long index = std::strtol(token.c_str(), nullptr, 10);
       const long resolved = index < 0 ? vertices + index + 1 : index;
       if (index == 0 || resolved < 1 || resolved > vertices)
@@ -119,6 +127,10 @@ LoadedMesh load_obj_mesh(const std::filesystem::path& path, double scale_to_cm) 
   for (const tinyobj::shape_t& shape : reader.GetShapes()) {
     const std::vector<tinyobj::index_t>& idx = shape.mesh.indices;
     for (std::size_t f = 0; f + 2 < idx.size(); f += 3) {
+      for (std::size_t k = f; k < f + 3; ++k)  // after the text checks, only a reader disagreement gets here
+        if (idx[k].vertex_index < 0 || idx[k].vertex_index >= n)
+          throw InputError(file, "a face refers to vertex " + std::to_string(idx[k].vertex_index + 1) + " of " +
+                                     std::to_string(n) + " as the OBJ reader sees them; check the `v` and `f` lines");
       Vec3i t(weld[idx[f].vertex_index], weld[idx[f + 1].vertex_index], weld[idx[f + 2].vertex_index]);
       const Vec3 e1 = welded[t[1]] - welded[t[0]], e2 = welded[t[2]] - welded[t[0]];
       if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2] || e1.cross(e2).squaredNorm() == 0.0) {
