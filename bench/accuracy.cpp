@@ -195,6 +195,24 @@ std::string number(double v) {
 
 const char* const kCdm = "density.voxel (CDM)";
 
+// The presets the README recommends, each knob at a value the one-knob rows show to be cheap
+// (preview) or to buy accuracy (final); "default" is the shipped defaults.
+void apply_preset(Scene& s, const std::string& preset) {
+  if (preset == "preview") {
+    s.rod.integrator = "rk4";
+    s.rod.segments = 16;
+    s.fields.voxel = 0.5;
+    s.guides.samples = 8;
+    s.guides.tolerance = 1e-3;
+    s.guides.max_iterations = 25;
+    s.density.voxel = 0.5;
+  } else if (preset == "final") {
+    s.guides.samples = 64;
+    s.guides.tolerance = 1e-8;
+    s.guides.max_iterations = 200;
+  }
+}
+
 std::vector<Setting> settings(bool quick) {
   std::vector<Setting> s;
   s.push_back({"default", "defaults", [](Scene&) {}, true});
@@ -214,6 +232,8 @@ std::vector<Setting> settings(bool quick) {
     s.push_back({"guides.tolerance", number(v), [=](Scene& sc) { sc.guides.tolerance = v; }});
   for (int v : quick ? std::vector<int>{10, 200} : std::vector<int>{10, 25, 50, 200})
     s.push_back({"guides.max_iterations", std::to_string(v), [=](Scene& sc) { sc.guides.max_iterations = v; }});
+  for (const char* preset : {"preview", "final"})
+    s.push_back({"preset", preset, [=](Scene& sc) { apply_preset(sc, preset); }});
   s.push_back({"default (CDM)", "defaults", [](Scene&) {}, true, true});
   for (double v : {0.125, 0.5, 1.0})
     s.push_back({kCdm, number(v), [=](Scene& sc) { sc.density.voxel = v; }, false, true});
@@ -229,12 +249,14 @@ std::string default_value(const std::string& knob, const Scene& s) {
   if (knob == "guides.tolerance") return number(s.guides.tolerance);
   if (knob == "guides.max_iterations") return std::to_string(s.guides.max_iterations);
   if (knob == kCdm) return number(s.density.voxel);
+  if (knob == "preset") return "default";
   return "";
 }
 
 // Orders a knob's values from coarse to fine: smaller voxels and tolerances are finer, more
 // segments, samples and iterations are.
 double fineness(const std::string& knob, const std::string& value) {
+  if (knob == "preset") return value == "preview" ? 0.0 : value == "default" ? 1.0 : 2.0;
   const double v = std::stod(value);
   return knob.find("voxel") != std::string::npos || knob.find("tolerance") != std::string::npos ? -v : v;
 }
