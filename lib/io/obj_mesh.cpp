@@ -79,6 +79,25 @@ int check_obj_text(const std::filesystem::path& path, const std::string& text, i
   return vertices;
 }
 
+// The text tinyobjloader parses: only vertex (`v`) and face (`f`) lines, the others blanked. The
+// mesh needs nothing else, and tinyobjloader reads some other statements unchecked (a `vw` weight
+// of 1e15 overflows an int inside it, found by fuzzing).
+std::string vertex_and_face_lines(const std::string& text) {
+  std::string out;
+  out.reserve(text.size());
+  std::size_t begin = 0;
+  while (begin < text.size()) {
+    std::size_t end = text.find('\n', begin);
+    if (end == std::string::npos) end = text.size();
+    const bool keep = end - begin >= 2 && (text[begin] == 'v' || text[begin] == 'f') &&
+                      (text[begin + 1] == ' ' || text[begin + 1] == '\t');
+    if (keep) out.append(text, begin, end - begin);
+    out += '\n';
+    begin = end + 1;
+  }
+  return out;
+}
+
 }  // namespace
 
 LoadedMesh load_obj_mesh(const std::filesystem::path& path, double scale_to_cm) {
@@ -99,7 +118,7 @@ LoadedMesh load_obj_mesh(const std::filesystem::path& path, double scale_to_cm) 
   config.vertex_color = false;
   config.mtl_search_path = "";
   tinyobj::ObjReader reader;
-  if (!reader.ParseFromString(text, "", config))
+  if (!reader.ParseFromString(vertex_and_face_lines(text), "", config))
     throw InputError(file, "is not a readable OBJ mesh: " + reader.Error());
 
   const std::vector<tinyobj::real_t>& v = reader.GetAttrib().vertices;

@@ -59,6 +59,18 @@ TEST_CASE("OBJ: negative (relative) indices") {
   CHECK(m.mesh.triangles.size() == 1);
 }
 
+TEST_CASE("OBJ: statements other than v and f are ignored, however odd (a fuzzed vw line overflowed the reader)") {
+  const LoadedMesh m = load_obj_mesh(write("odd.obj", "mtllib missing.mtl\no part\nvw 2 1e15 3\nvt 0.5 0.5\n"
+                                                     "vn 0 0 1\ng group\nusemtl none\ns 1\nv 0 0 0\nv 1 0 0\n"
+                                                     "v 0 1 0\nl 1 2\nf 1 2 3\n"));
+  CHECK(m.mesh.triangles.size() == 1);
+  CHECK(m.mesh.positions.size() == 3);
+  // Faces naming texture coordinates and normals still read (those are ignored too).
+  const LoadedMesh uv = load_obj_mesh(write("uv.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvn 0 0 1\n"
+                                                      "f 1/1/1 2/2/1 3/1/1\nf 1//1 3//1 2//1\n"));
+  CHECK(uv.mesh.triangles.size() == 2);
+}
+
 TEST_CASE("OBJ errors name the file, the line and the fix") {
   CHECK(error_of([] { load_obj_mesh("/nonexistent/x.obj"); }).find("/nonexistent/x.obj: error: no such file") == 0);
   CHECK(error_of([] { load_obj_mesh(temp_dir()); }).find("is a folder") != std::string::npos);
