@@ -22,10 +22,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <functional>
 #include <map>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -195,22 +193,40 @@ std::string number(double v) {
 
 const char* const kCdm = "density.voxel (CDM)";
 
-// The presets the README recommends, each knob at a value the one-knob rows show to be cheap
-// (preview) or to buy accuracy (final); "default" is the shipped defaults.
-void apply_preset(Scene& s, const std::string& preset) {
+// The presets the README recommends, from the one-knob rows: preview takes the knobs that save
+// time for little error (fewer rod segments, samples and iterations, a looser tolerance) and
+// keeps the voxels (the fields stage costs a few tenths of a second; coarser grids double the
+// error); final buys accuracy where it is cheap (samples, tolerance, iterations). "default" is
+// the shipped defaults.
+void apply_recommended_preset(Scene& s, const std::string& preset) {
   if (preset == "preview") {
-    s.rod.integrator = "rk4";
-    s.rod.segments = 16;
-    s.fields.voxel = 0.5;
+    s.rod.segments = 32;
     s.guides.samples = 8;
     s.guides.tolerance = 1e-3;
-    s.guides.max_iterations = 25;
-    s.density.voxel = 0.5;
+    s.guides.max_iterations = 30;
   } else if (preset == "final") {
     s.guides.samples = 64;
     s.guides.tolerance = 1e-8;
     s.guides.max_iterations = 200;
   }
+}
+
+// The presets as the scene format defines them now (spec: scene_presets()), whatever their values.
+void apply_spec_preset(Scene& s, const std::string& preset) {
+  for (const ScenePreset& p : scene_presets()) {
+    if (p.name != preset) continue;
+    for (const auto& [key, value] : p.values) {
+      if (key == "rod.segments") s.rod.segments = int(value);
+      else if (key == "fields.voxel") s.fields.voxel = value;
+      else if (key == "guides.samples") s.guides.samples = int(value);
+      else if (key == "guides.tolerance") s.guides.tolerance = value;
+      else if (key == "guides.max_iterations") s.guides.max_iterations = int(value);
+      else if (key == "density.voxel") s.density.voxel = value;
+      else throw std::runtime_error("bench_accuracy does not know the preset key " + key);
+    }
+    return;
+  }
+  throw std::runtime_error("the scene format has no preset " + preset);
 }
 
 std::vector<Setting> settings(bool quick) {
@@ -232,8 +248,10 @@ std::vector<Setting> settings(bool quick) {
     s.push_back({"guides.tolerance", number(v), [=](Scene& sc) { sc.guides.tolerance = v; }});
   for (int v : quick ? std::vector<int>{10, 200} : std::vector<int>{10, 25, 50, 200})
     s.push_back({"guides.max_iterations", std::to_string(v), [=](Scene& sc) { sc.guides.max_iterations = v; }});
-  for (const char* preset : {"preview", "final"})
-    s.push_back({"preset", preset, [=](Scene& sc) { apply_preset(sc, preset); }});
+  for (const char* preset : {"preview", "final"}) {
+    s.push_back({"recommended preset", preset, [=](Scene& sc) { apply_recommended_preset(sc, preset); }});
+    s.push_back({"spec preset", preset, [=](Scene& sc) { apply_spec_preset(sc, preset); }});
+  }
   s.push_back({"default (CDM)", "defaults", [](Scene&) {}, true, true});
   for (double v : {0.125, 0.5, 1.0})
     s.push_back({kCdm, number(v), [=](Scene& sc) { sc.density.voxel = v; }, false, true});
@@ -249,14 +267,14 @@ std::string default_value(const std::string& knob, const Scene& s) {
   if (knob == "guides.tolerance") return number(s.guides.tolerance);
   if (knob == "guides.max_iterations") return std::to_string(s.guides.max_iterations);
   if (knob == kCdm) return number(s.density.voxel);
-  if (knob == "preset") return "default";
+  if (knob.find("preset") != std::string::npos) return "default";
   return "";
 }
 
 // Orders a knob's values from coarse to fine: smaller voxels and tolerances are finer, more
 // segments, samples and iterations are.
 double fineness(const std::string& knob, const std::string& value) {
-  if (knob == "preset") return value == "preview" ? 0.0 : value == "default" ? 1.0 : 2.0;
+  if (knob.find("preset") != std::string::npos) return value == "preview" ? 0.0 : value == "default" ? 1.0 : 2.0;
   const double v = std::stod(value);
   return knob.find("voxel") != std::string::npos || knob.find("tolerance") != std::string::npos ? -v : v;
 }
@@ -321,16 +339,8 @@ void write_pareto_plot(const std::vector<Row>& rows, const Scene& scene, const p
 
 // The rows of an earlier accuracy.csv (enough of them for the plot), for --replot.
 std::vector<Row> read_rows(const path& csv) {
-  std::ifstream in(csv);
-  if (!in) throw std::runtime_error("cannot read " + csv.string());
-  std::string line;
-  std::getline(in, line);  // header
   std::vector<Row> rows;
-  while (std::getline(in, line)) {
-    std::vector<std::string> f;
-    std::stringstream fields(line);
-    for (std::string cell; std::getline(fields, cell, ',');) f.push_back(cell);
-    if (f.size() < 20) throw std::runtime_error(csv.string() + ": short line: " + line);
+  for (const std::vector<std::string>& f : bench::read_csv(csv, 20)) {
     Row r;
     r.setting.knob = f[0];
     r.setting.value = f[1];

@@ -11,9 +11,11 @@
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -163,6 +165,42 @@ inline std::string load_average() {
   char text[64];
   std::snprintf(text, sizeof text, "%.2f %.2f %.2f", l[0], l[1], l[2]);
   return text;
+}
+
+// The options bench_paper_scale and bench_scaling share: --runs N --threads T --hairfit PATH
+// --scratch DIR. Takes argv[i] (and its value) when it is one of them.
+struct RunSettings {
+  int runs = 1, threads = 2;
+  std::string hairfit = HAIRFIT_BINARY;
+  fs::path scratch;  // scene variants and run outputs
+};
+inline bool parse_run_option(int argc, char** argv, int& i, RunSettings& s) {
+  const std::string a = argv[i];
+  if (i + 1 >= argc) return false;
+  if (a == "--runs") s.runs = std::atoi(argv[++i]);
+  else if (a == "--threads") s.threads = std::atoi(argv[++i]);
+  else if (a == "--hairfit") s.hairfit = argv[++i];
+  else if (a == "--scratch") s.scratch = argv[++i];
+  else return false;
+  return true;
+}
+
+// The rows of a CSV file without quoting (what the benchmarks write), header skipped; each row
+// must have at least `columns` cells.
+inline std::vector<std::vector<std::string>> read_csv(const fs::path& file, std::size_t columns) {
+  std::ifstream in(file);
+  if (!in) throw std::runtime_error("cannot read " + file.string());
+  std::string line;
+  std::getline(in, line);
+  std::vector<std::vector<std::string>> rows;
+  while (std::getline(in, line)) {
+    std::vector<std::string> cells;
+    std::stringstream text(line);
+    for (std::string cell; std::getline(text, cell, ',');) cells.push_back(cell);
+    if (cells.size() < columns) throw std::runtime_error(file.string() + ": short line: " + line);
+    rows.push_back(std::move(cells));
+  }
+  return rows;
 }
 
 // The commit the source tree is at (the figures of a run belong to it; the build may hold

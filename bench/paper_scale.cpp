@@ -86,32 +86,26 @@ void report_scene(const std::string& hairfit, const fs::path& scene, const fs::p
 }  // namespace
 
 int main(int argc, char** argv) {
-  int runs = 5, threads = 2;
-  std::string hairfit = HAIRFIT_BINARY;
-  fs::path scratch = fs::temp_directory_path() / "hairfit-bench-paper-scale";
+  RunSettings run{5, 2, HAIRFIT_BINARY, fs::temp_directory_path() / "hairfit-bench-paper-scale"};
   std::vector<fs::path> scenes;
   for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    const bool has_value = i + 1 < argc;
-    if (a == "--runs" && has_value) runs = std::atoi(argv[++i]);
-    else if (a == "--threads" && has_value) threads = std::atoi(argv[++i]);
-    else if (a == "--hairfit" && has_value) hairfit = argv[++i];
-    else if (a == "--scratch" && has_value) scratch = argv[++i];
-    else if (a.rfind("--", 0) == 0) {
+    if (parse_run_option(argc, argv, i, run)) continue;
+    if (std::string(argv[i]).rfind("--", 0) == 0) {
       std::fprintf(stderr, "usage: bench_paper_scale [--runs N] [--threads T] [--hairfit PATH] [--scratch DIR] [SCENE ...]\n");
       return 2;
-    } else scenes.emplace_back(a);
+    }
+    scenes.emplace_back(argv[i]);
   }
-  if (runs < 1 || threads < 1) {
+  if (run.runs < 1 || run.threads < 1) {
     std::fprintf(stderr, "bench_paper_scale: --runs and --threads must be ≥ 1\n");
     return 2;
   }
   if (scenes.empty())
     scenes = {fs::path(HAIRFIT_SOURCE_DIR) / "fixtures/paper-scale/scene.toml",
               fs::path(HAIRFIT_SOURCE_DIR) / "fixtures/full-head/scene.toml"};
-  std::printf("# Paper scale end to end\n\nhairfit: %s\nsource at: %s\n", hairfit.c_str(), source_commit().c_str());
+  std::printf("# Paper scale end to end\n\nhairfit: %s\nsource at: %s\n", run.hairfit.c_str(), source_commit().c_str());
   try {
-    for (const fs::path& scene : scenes) report_scene(hairfit, scene, scratch / scene.parent_path().filename(), runs, threads);
+    for (const fs::path& scene : scenes) report_scene(run.hairfit, scene, run.scratch / scene.parent_path().filename(), run.runs, run.threads);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "bench_paper_scale: %s\n", e.what());
     return 1;

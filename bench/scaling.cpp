@@ -11,8 +11,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -110,30 +108,10 @@ std::vector<Image> panels(const std::vector<Point>& points, const std::string& s
 
 // The points of an earlier scaling.csv, for --replot.
 std::vector<Point> read_points(const fs::path& csv) {
-  std::ifstream in(csv);
-  if (!in) throw std::runtime_error("cannot read " + csv.string());
-  std::string line;
-  std::getline(in, line);  // header
   std::vector<Point> points;
-  while (std::getline(in, line)) {
-    std::vector<std::string> f;
-    std::stringstream cells(line);
-    for (std::string cell; std::getline(cells, cell, ',');) f.push_back(cell);
-    if (f.size() < 11) throw std::runtime_error(csv.string() + ": short line: " + line);
-    Point p;
-    p.series = f[0];
-    p.fibres = std::stod(f[1]);
-    p.guides = std::stod(f[2]);
-    p.wall = std::stod(f[3]);
-    p.cpu = std::stod(f[4]);
-    p.peak_mib = std::stod(f[5]);
-    p.guides_s = std::stod(f[6]);
-    p.strands_s = std::stod(f[7]);
-    p.density_s = std::stod(f[8]);
-    p.evaluations = std::stod(f[9]);
-    p.load = f[10];
-    points.push_back(p);
-  }
+  for (const std::vector<std::string>& f : read_csv(csv, 11))
+    points.push_back({f[0], std::stod(f[1]), std::stod(f[2]), std::stod(f[3]), std::stod(f[4]), std::stod(f[5]),
+                      std::stod(f[6]), std::stod(f[7]), std::stod(f[8]), std::stod(f[9]), f[10]});
   return points;
 }
 
@@ -152,20 +130,15 @@ void write_plot(const std::vector<Point>& points, const fs::path& file) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  int runs = 1, threads = 2;
+  RunSettings run{1, 2, HAIRFIT_BINARY, fs::temp_directory_path() / "hairfit-bench-scaling"};
   bool replot = false;
-  std::string hairfit = HAIRFIT_BINARY;
-  fs::path scratch = fs::temp_directory_path() / "hairfit-bench-scaling";
   fs::path out = fs::path(HAIRFIT_SOURCE_DIR) / "bench/results";
   fs::path base = fs::path(HAIRFIT_SOURCE_DIR) / "fixtures/paper-scale/scene.toml";
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     const bool has_value = i + 1 < argc;
-    if (a == "--runs" && has_value) runs = std::atoi(argv[++i]);
-    else if (a == "--threads" && has_value) threads = std::atoi(argv[++i]);
-    else if (a == "--hairfit" && has_value) hairfit = argv[++i];
-    else if (a == "--scratch" && has_value) scratch = argv[++i];
-    else if (a == "--out" && has_value) out = argv[++i];
+    if (parse_run_option(argc, argv, i, run)) continue;
+    if (a == "--out" && has_value) out = argv[++i];
     else if (a == "--scene" && has_value) base = argv[++i];
     else if (a == "--replot") replot = true;
     else {
@@ -181,14 +154,14 @@ int main(int argc, char** argv) {
     }
     // The base scene's own figures: its guides, and roots per unit of hair.density.
     std::printf("# Scaling\n\nhairfit: %s\nsource at: %s\nbase: %s, %d run(s) per point, --threads %d\n\n",
-                hairfit.c_str(), source_commit().c_str(), base.string().c_str(), runs, threads);
+                run.hairfit.c_str(), source_commit().c_str(), base.string().c_str(), run.runs, run.threads);
     const RunRecord probe = [&] {
-      const fs::path dir = scratch / "probe";
+      const fs::path dir = run.scratch / "probe";
       write_scene_variant(base, {}, dir / "scene.toml");
       fs::remove_all(dir / "out");
       fs::create_directories(dir / "out");
       RunRecord r;
-      r.usage = run_process({hairfit, "run", (dir / "scene.toml").string(), "--out", (dir / "out").string(), "--until",
+      r.usage = run_process({run.hairfit, "run", (dir / "scene.toml").string(), "--out", (dir / "out").string(), "--until",
                              "roots", "--no-cache", "--quiet"},
                             dir / "out/run.log");
       if (r.usage.exit_code != 0) throw std::runtime_error("probe run failed; see " + (dir / "out/run.log").string());
@@ -212,9 +185,9 @@ int main(int argc, char** argv) {
     std::printf("| varied | fibres | guides | CPU s | wall s (loaded) | peak MiB | guides s | strands s | density s | "
                 "evaluations/guide | load |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
     for (std::size_t v = 0; v < variants.size(); ++v) {
-      const fs::path dir = scratch / ("point" + std::to_string(v));
+      const fs::path dir = run.scratch / ("point" + std::to_string(v));
       write_scene_variant(base, variants[v].second, dir / "scene.toml");
-      Point p = measure(hairfit, dir / "scene.toml", dir / "out", runs, threads);
+      Point p = measure(run.hairfit, dir / "scene.toml", dir / "out", run.runs, run.threads);
       p.series = variants[v].first;
       std::printf("| %s | %.0f | %.0f | %.2f | %.2f | %.0f | %.2f | %.2f | %.2f | %.1f | %s |\n", p.series.c_str(),
                   p.fibres, p.guides, p.cpu, p.wall, p.peak_mib, p.guides_s, p.strands_s, p.density_s, p.evaluations,
