@@ -226,7 +226,7 @@ TEST_CASE("an accuracy preset sets the knobs the scene leaves alone, and an expl
   }
   CHECK(preview.guides.samples == 12);  // set in the file: the preset does not touch it
   CHECK(preview.rod.segments == 32);
-  CHECK(finest.rod.segments == 128);
+  CHECK(finest.guides.samples == 64);
   CHECK(plain.rod.segments == Scene().rod.segments);
   CHECK(first_error("preset = \"fastest\"\n").find("preset") != std::string::npos);
 }
