@@ -37,6 +37,17 @@ std::vector<double> follow_weights(std::vector<double> distances) {
   return distances;
 }
 
+// Σ wᵢ·(f_L, m(0)) over the given guides or pre-guides: a warm start for a neighbouring guide.
+template <typename Item>
+void add_weighted_loads(const std::vector<Item>& items, const std::vector<int>& which, const std::vector<double>& weights,
+                        double loads[6]) {
+  for (std::size_t i = 0; i < which.size(); ++i)
+    for (int a = 0; a < 3; ++a) {
+      loads[a] += weights[i] * items[which[i]].force[a];
+      loads[3 + a] += weights[i] * items[which[i]].root_moment[a];
+    }
+}
+
 std::vector<int> all_indices(int count) {
   std::vector<int> all(count);
   std::iota(all.begin(), all.end(), 0);
@@ -104,13 +115,7 @@ Guide solve_guide(const RootSet& bases, int b, const PreGuides& preguides, const
   if (seed_start)
     std::copy(seed_start, seed_start + 6, start);
   else if (o.warm_start)
-    for (std::size_t i = 0; i < g.neighbours.size(); ++i) {
-      const PreGuide& p = preguides.items[g.neighbours[i]];
-      for (int a = 0; a < 3; ++a) {
-        start[a] += g.neighbour_weights[i] * p.force[a];
-        start[3 + a] += g.neighbour_weights[i] * p.root_moment[a];
-      }
-    }
+    add_weighted_loads(preguides.items, g.neighbours, g.neighbour_weights, start);
   const GuideSolve solve = optimise_guide(targets, start, o.max_iterations, o.tolerance);
   g.force = Vec3(solve.eta[0], solve.eta[1], solve.eta[2]);
   g.root_moment = Vec3(solve.eta[3], solve.eta[4], solve.eta[5]);
@@ -179,11 +184,7 @@ Guides make_guides(const RootSet& bases, const PreGuides& preguides, const Bound
     for (int j : from) weights.push_back((bases.positions[j] - bases.positions[b]).norm());
     weights = follow_weights(weights);
     double start[6] = {0, 0, 0, 0, 0, 0};
-    for (std::size_t i = 0; i < from.size(); ++i)
-      for (int a = 0; a < 3; ++a) {
-        start[a] += weights[i] * guides.items[from[i]].force[a];
-        start[3 + a] += weights[i] * guides.items[from[i]].root_moment[a];
-      }
+    add_weighted_loads(guides.items, from, weights, start);
     guides.items[b] = solve_guide(bases, b, preguides, boundary, options, nullptr, {}, start);
     progress.item_done();
   });
