@@ -80,7 +80,7 @@ struct SceneRod {
 
 struct ScenePreguides {
   std::array<double, 2> depth_range{0.15, 0.6};  // immersion depth / local thickness, top → bottom
-  double max_load = 1000.0;                       // dimensionless terminal-force cap (F L² / EI)
+  double max_load = 40.0;                         // dimensionless terminal-force cap (F L² / EI)
 };
 
 struct SceneWeights {

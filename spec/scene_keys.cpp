@@ -248,7 +248,7 @@ std::vector<SceneKey> build_keys() {
   keys.push_back(pair("preguides.depth_range", REF(preguides.depth_range), "", closed(0, 1), "preguides",
                       "Target immersion depth of a pre-guide's tip as a share of the local thickness, from the top of the head to its lowest roots."));
   keys.push_back(number("preguides.max_load", REF(preguides.max_load), "", above(0, 1e6), "preguides",
-                        "Largest dimensionless terminal force F·L²/EI the continuation tries."));
+                        "Largest dimensionless terminal force F·L²/EI the continuation tries. Beyond ≈40 the tip is already within a few degrees of the pull and more load only tightens the bend at the root, while the guides that start from these loads become exponentially sensitive (like exp(√load)) and cost several times more to optimise."));
 
   keys.push_back(text("guides.start", REF(guides.start), {"warm", "straight"}, "guides",
                       "Start each optimisation from the neighbouring pre-guides' loads (warm) or from a straight rod (straight, the paper)."));

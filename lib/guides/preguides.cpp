@@ -11,6 +11,25 @@
 
 namespace hairfit {
 
+namespace {
+
+FibreShape shape_of(const Vec3& root, double length, int nodes_count, const std::vector<double>& nodes,
+                    const std::vector<double>& frames, const std::vector<double>& curvature) {
+  FibreShape shape;
+  shape.nodes.resize(nodes_count);
+  shape.tangents.resize(nodes_count);
+  shape.darboux.resize(nodes_count);
+  for (int i = 0; i < nodes_count; ++i) {
+    const Eigen::Map<const Mat3> frame(&frames[9 * i]);
+    shape.nodes[i] = root + length * Eigen::Map<const Vec3>(&nodes[3 * i]);
+    shape.tangents[i] = frame.col(2);
+    shape.darboux[i] = frame * Eigen::Map<const Vec3>(&curvature[3 * i]);
+  }
+  return shape;
+}
+
+}  // namespace
+
 FibreShape fibre_shape(const RodModel& model, const Vec3& root, double length, const RodDiscretisation& rod,
                        const Vec3& force, const Vec3& root_moment) {
   const int n = rod.segments + 1;
@@ -18,17 +37,17 @@ FibreShape fibre_shape(const RodModel& model, const Vec3& root, double length, c
   Vec3 m1;
   integrate_rod<double>(model, rod.integrator, rod.segments, force.data(), root_moment.data(), m1.data(),
                         RodTrace<double>{nodes.data(), frames.data(), curvature.data(), nullptr});
-  FibreShape shape;
-  shape.nodes.resize(n);
-  shape.tangents.resize(n);
-  shape.darboux.resize(n);
-  for (int i = 0; i < n; ++i) {
-    const Eigen::Map<const Mat3> frame(&frames[9 * i]);
-    shape.nodes[i] = root + length * Eigen::Map<const Vec3>(&nodes[3 * i]);
-    shape.tangents[i] = frame.col(2);
-    shape.darboux[i] = frame * Eigen::Map<const Vec3>(&curvature[3 * i]);
-  }
-  return shape;
+  return shape_of(root, length, n, nodes, frames, curvature);
+}
+
+FibreShape fibre_shape(const RodModel& model, const Vec3& root, double length, const RodDiscretisation& rod,
+                       const ShootingResult& solution) {
+  if (solution.breaks.size() < 2) return fibre_shape(model, root, length, rod, solution.terminal_force, solution.root_moment);
+  const int n = rod.segments + 1;
+  std::vector<double> nodes(3 * n), frames(9 * n), curvature(3 * n);
+  trace_pieces(model, rod.integrator, rod.segments, solution,
+               RodTrace<double>{nodes.data(), frames.data(), curvature.data(), nullptr});
+  return shape_of(root, length, n, nodes, frames, curvature);
 }
 
 namespace {
@@ -44,29 +63,36 @@ class Cantilever {
  public:
   Cantilever(const Vec3& bend, const RodDiscretisation& rod) : bend_(bend), rod_(rod) {}
 
-  // Newton from `m0` at load P; true when |m(1)| ≤ 1e-10·max(1, P). A heavy rod (dimensionless
-  // weight above kHeavy) makes m(1) depend on m(0) like exp(√weight), beyond what one shooting
-  // interval resolves in double precision: then the rod library's multiple shooting takes over.
-  bool solve(const RodModel& model, double load, Vec3& m0, int& solves) const {
+  // Solves at load P from `at` (its m(0), and its pieces when it has them); on success `at` becomes
+  // the solution. Single shooting (Newton until |m(1)| ≤ 1e-10·max(1, P)) up to kHeavy; beyond,
+  // m(1) depends on m(0) like exp(√P) and the rod library's multiple shooting takes over, warm
+  // started from the pieces of the nearby solution, which stay a good start where a sweep from
+  // m(0) alone would diverge.
+  bool solve(const RodModel& model, double load, ShootingResult& at, int& solves) const {
+    const Vec3 force = load * bend_;
     if (model.force_per_length.norm() > kHeavy || load > kHeavy) {
       ShootingOptions options;
       options.integrator = rod_.integrator;
       options.segments = rod_.segments;
-      options.max_iterations = 40;
-      const ShootingResult r = shoot_root_moment(model, load * bend_, Vec3::Zero(), m0, options);
+      // A solve from nothing (the rod under its weight alone) continues from the unloaded rod; a
+      // failed warm start returns at once, and the caller shortens its load step.
+      options.restart_from_rest = at.breaks.empty() && at.root_moment.isZero();
+      options.max_iterations = options.restart_from_rest ? 40 : 10;
+      const ShootingResult r = shoot_root_moment(model, force, Vec3::Zero(), at, options);
       solves += std::max(1, r.iterations);
-      if (r.converged) m0 = r.root_moment;
+      if (r.converged) at = r;
       return r.converged;
     }
+    Vec3 m0 = at.root_moment;
     const double tolerance = 1e-10 * std::max(1.0, load);
     for (int iteration = 0; iteration < 10; ++iteration) {
       ++solves;
-      RodJet3 force[3], moment[3], m1[3];
+      RodJet3 jet_force[3], moment[3], m1[3];
       for (int k = 0; k < 3; ++k) {
-        force[k] = RodJet3(load * bend_[k]);
+        jet_force[k] = RodJet3(force[k]);
         moment[k] = RodJet3(m0[k], k);
       }
-      integrate_rod<RodJet3>(model, rod_.integrator, rod_.segments, force, moment, m1, RodTrace<RodJet3>{});
+      integrate_rod<RodJet3>(model, rod_.integrator, rod_.segments, jet_force, moment, m1, RodTrace<RodJet3>{});
       Vec3 residual;
       Mat3 jacobian;
       for (int k = 0; k < 3; ++k) {
@@ -74,7 +100,14 @@ class Cantilever {
         jacobian.row(k) = m1[k].v.transpose();
       }
       if (!residual.allFinite()) return false;
-      if (residual.norm() <= tolerance) return true;
+      if (residual.norm() <= tolerance) {
+        at = ShootingResult{};  // one piece: the shape is one integration from m(0)
+        at.root_moment = m0;
+        at.terminal_force = force;
+        at.force_per_length = model.force_per_length;
+        at.converged = true;
+        return true;
+      }
       const Vec3 step = jacobian.fullPivLu().solve(-residual);
       if (!step.allFinite()) return false;
       m0 += step;
@@ -89,6 +122,13 @@ class Cantilever {
 
 constexpr double kMaxTipTurn = 0.26;  // radians (15°) of tip rotation per accepted load step
 constexpr int kNewtonBudget = 250;    // Newton steps per pre-guide for following its branch
+
+// A guess for `next` from the solution `at`: its pieces, with m(0) replaced by a predictor.
+ShootingResult predicted(const ShootingResult& at, const Vec3& root_moment) {
+  ShootingResult guess = at;
+  guess.root_moment = root_moment;
+  return guess;
+}
 
 PreGuide solve_preguide(const RootSet& roots, int i, const Boundary& boundary, const PreguideOptions& o) {
   PreGuide g;
@@ -108,12 +148,13 @@ PreGuide solve_preguide(const RootSet& roots, int i, const Boundary& boundary, c
 
   struct State {
     double load = 0.0;
-    Vec3 m0 = Vec3::Zero();
+    ShootingResult solution;  // m(0), and the pieces of a heavy rod
     double miss = 0.0;
     Vec3 tip_tangent = Vec3::Zero();
+    const Vec3& m0() const { return solution.root_moment; }
   };
   auto settle = [&](State& st) {
-    const FibreShape shape = fibre_shape(model, g.root, g.length, o.rod, st.load * bend, st.m0);
+    const FibreShape shape = fibre_shape(model, g.root, g.length, o.rod, st.solution);
     st.miss = boundary.volume->value(shape.nodes.back()) + g.target_depth;
     st.tip_tangent = shape.tangents.back();
   };
@@ -123,7 +164,7 @@ PreGuide solve_preguide(const RootSet& roots, int i, const Boundary& boundary, c
   // the drooping one.
   if (model.force_per_length.norm() > kHeavy) {
     // Multiple shooting continues from the unloaded rod itself.
-    cantilever.solve(model, 0.0, current.m0, g.solves);
+    cantilever.solve(model, 0.0, current.solution, g.solves);
   } else {
     RodModel scaled = model;
     double share = 0.0, share_step = model.force_per_length.norm() > 0.0 ? 0.05 : 1.0;
@@ -132,27 +173,29 @@ PreGuide solve_preguide(const RootSet& roots, int i, const Boundary& boundary, c
     while (share < 1.0 && share_step > 1e-5 && g.solves < kNewtonBudget) {
       const double next = std::min(1.0, share + share_step);
       scaled.force_per_length = next * model.force_per_length;
-      const Vec3 predictor = share > share_prev ? Vec3(current.m0 + (current.m0 - m_prev) * ((next - share) / (share - share_prev)))
-                                                : current.m0;
-      Vec3 m0 = predictor;
-      bool accepted = cantilever.solve(scaled, 0.0, m0, g.solves) && (m0 - predictor).norm() <= 0.1 * (1.0 + current.m0.norm());
+      const Vec3 predictor = share > share_prev ? Vec3(current.m0() + (current.m0() - m_prev) * ((next - share) / (share - share_prev)))
+                                                : current.m0();
+      ShootingResult trial = predicted(current.solution, predictor);
+      bool accepted = cantilever.solve(scaled, 0.0, trial, g.solves) &&
+                      (trial.root_moment - predictor).norm() <= 0.1 * (1.0 + current.m0().norm());
       Vec3 tip = tip_prev;
       if (accepted) {
-        tip = fibre_shape(scaled, g.root, g.length, o.rod, Vec3::Zero(), m0).tangents.back();
+        tip = fibre_shape(scaled, g.root, g.length, o.rod, trial).tangents.back();
         accepted = std::acos(std::clamp(tip.dot(tip_prev), -1.0, 1.0)) <= kMaxTipTurn;
       }
       if (!accepted) {
         share_step *= 0.5;
         continue;
       }
-      m_prev = current.m0;
+      m_prev = current.m0();
       share_prev = share;
-      current.m0 = m0;
+      current.solution = trial;
       tip_prev = tip;
       share = next;
       share_step = std::min(share_step * 1.5, 0.25);
     }
-    if (share < 1.0) current.m0 = Vec3::Zero();  // could not follow the weight: flagged below by the miss
+    if (share < 1.0) current.solution = ShootingResult{};  // could not follow the weight: flagged below by the miss
+    current.solution.force_per_length = model.force_per_length;
   }
   settle(current);
   previous = current;
@@ -167,12 +210,12 @@ PreGuide solve_preguide(const RootSet& roots, int i, const Boundary& boundary, c
     State next;
     next.load = std::min(o.max_load, current.load + step);
     const Vec3 predictor = current.load > previous.load
-                               ? Vec3(current.m0 + (current.m0 - previous.m0) * ((next.load - current.load) /
-                                                                                  (current.load - previous.load)))
-                               : current.m0;
-    next.m0 = predictor;
-    bool accepted = cantilever.solve(model, next.load, next.m0, g.solves) &&
-                    (next.m0 - predictor).norm() <= 0.1 * (1.0 + current.m0.norm());
+                               ? Vec3(current.m0() + (current.m0() - previous.m0()) * ((next.load - current.load) /
+                                                                                      (current.load - previous.load)))
+                               : current.m0();
+    next.solution = predicted(current.solution, predictor);
+    bool accepted = cantilever.solve(model, next.load, next.solution, g.solves) &&
+                    (next.m0() - predictor).norm() <= 0.1 * (1.0 + current.m0().norm());
     if (accepted) {
       settle(next);
       // On the branch of the unloaded rod the tip turns steadily toward the pull, never back.
@@ -199,14 +242,14 @@ PreGuide solve_preguide(const RootSet& roots, int i, const Boundary& boundary, c
        ++k) {
     State mid = above;
     mid.load = 0.5 * (above.load + below.load);
-    if (!cantilever.solve(model, mid.load, mid.m0, g.solves)) break;
+    if (!cantilever.solve(model, mid.load, mid.solution, g.solves)) break;
     settle(mid);
     if (std::fabs(mid.miss) < std::fabs(best.miss)) best = mid;
     (mid.miss > 0.0 ? above : below) = mid;
   }
   g.force = best.load * bend;
-  g.root_moment = best.m0;
-  g.shape = fibre_shape(model, g.root, g.length, o.rod, g.force, g.root_moment);
+  g.root_moment = best.m0();
+  g.shape = fibre_shape(model, g.root, g.length, o.rod, best.solution);
   g.depth = -boundary.volume->value(g.shape.nodes.back());
   g.reached = best.miss <= tolerance;
   return g;

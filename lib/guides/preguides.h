@@ -11,6 +11,7 @@
 #include "core/progress.h"
 #include "guides/boundary.h"
 #include "guides/hair_rod.h"
+#include "rod/rod_shooting.h"
 #include "scalp/roots.h"
 
 namespace hairfit {
@@ -19,7 +20,7 @@ struct PreguideOptions {
   HairMaterial material;
   RodDiscretisation rod;
   std::array<double, 2> depth_range{0.15, 0.6};  // share of the local thickness: top of head → lowest roots
-  double max_load = 1000.0;                       // largest dimensionless terminal force F·L²/EI tried
+  double max_load = 40.0;                         // largest dimensionless terminal force F·L²/EI tried
   Vec3 down{0, -1, 0};
   Vec3 front{0, 0, 1};
   int threads = 1;
@@ -59,6 +60,10 @@ PreGuides make_preguides(const RootSet& roots, const Boundary& boundary, const P
 // The shape of a rod with dimensionless loads (initial-value form: one forward integration).
 FibreShape fibre_shape(const RodModel& model, const Vec3& root, double length, const RodDiscretisation& rod,
                        const Vec3& force, const Vec3& root_moment);
+
+// The same from a shooting solution, traced piece by piece when it has pieces (heavy rods).
+FibreShape fibre_shape(const RodModel& model, const Vec3& root, double length, const RodDiscretisation& rod,
+                       const ShootingResult& solution);
 
 Digest digest(const PreGuides& preguides);
 

@@ -94,17 +94,8 @@ SolvedRod solve_rod(const Rod& rod, const RodRoot& root, const RodLoad& load, co
     shooting.tolerance = options.tolerance;
     shooting.max_iterations = options.max_iterations;
     const ShootingResult s = shoot_root_moment(model, force, load.terminal_torque / scale.moment, m0, shooting);
-    // Trace piece by piece from the states shooting found (one long integration from m(0) would
-    // amplify its last bit by exp(√tension)); the centreline runs on continuously.
-    RodState<double> state{};
-    for (std::size_t k = 0; k + 1 < s.breaks.size(); ++k) {
-      Eigen::Map<Mat3>(state.frame) = s.frames[k];
-      Eigen::Map<Vec3>(state.moment) = s.moments[k];
-      integrate_rod_steps<double>(model, options.integrator, options.segments, s.breaks[k], s.breaks[k + 1],
-                                  force.data(), state, trace);
-    }
+    m1 = trace_pieces(model, options.integrator, options.segments, s, trace);
     m0 = s.root_moment;
-    m1 = Eigen::Map<const Vec3>(state.moment);
     solved.iterations = s.iterations;
     solved.residual = s.residual;
     solved.converged = s.converged;

@@ -9,6 +9,20 @@
 
 namespace hairfit {
 
+Vec3 trace_pieces(const RodModel& model, RodIntegrator integrator, int segments, const ShootingResult& solution,
+                  const RodTrace<double>& trace) {
+  RodModel loaded = model;
+  loaded.force_per_length = solution.force_per_length;
+  RodState<double> state{};
+  for (std::size_t k = 0; k + 1 < solution.breaks.size(); ++k) {
+    Eigen::Map<Mat3>(state.frame) = solution.frames[k];
+    Eigen::Map<Vec3>(state.moment) = solution.moments[k];
+    integrate_rod_steps<double>(loaded, integrator, segments, solution.breaks[k], solution.breaks[k + 1],
+                                solution.terminal_force.data(), state, trace);
+  }
+  return Eigen::Map<const Vec3>(state.moment);
+}
+
 int shooting_pieces(const RodModel& model, const Vec3& terminal_force, int segments) {
   const double tension = terminal_force.norm() + model.force_per_length.norm();
   const int pieces = static_cast<int>(std::ceil(std::sqrt(tension) / 3.0));
@@ -184,10 +198,46 @@ bool newton(const Problem& p, const Level& level, double tol, int max_steps, Ite
   return false;
 }
 
+// Start states on the breaks of `p` from an earlier solution: each new piece start is traced, under
+// the earlier loads, from the start of the earlier piece that holds it. That reproduces the earlier
+// solution at the new breaks (no trace spans more than one earlier piece, so the exponential growth
+// stays bounded). Without earlier pieces: a sweep from m(0).
+Iterate warm_start(const Problem& p, const Level& level, const ShootingResult& near) {
+  const Vec3 m0 = near.root_moment.allFinite() ? near.root_moment : Vec3::Zero();
+  const bool usable = near.breaks.size() >= 2 && near.frames.size() + 1 == near.breaks.size() &&
+                      near.moments.size() == near.frames.size() && near.breaks.back() == p.options.segments;
+  if (!usable) return sweep(p, level, m0);
+  RodModel earlier = level.model;
+  earlier.force_per_length = near.force_per_length;
+  Iterate x;
+  for (int k = 0; k < p.pieces(); ++k) {
+    const int at = p.breaks[k];
+    std::size_t j = 0;
+    while (j + 2 < near.breaks.size() && near.breaks[j + 1] <= at) ++j;
+    RodState<double> state{};
+    Eigen::Map<Mat3>(state.frame) = near.frames[j];
+    Eigen::Map<Vec3>(state.moment) = near.moments[j];
+    integrate_rod_steps<double>(earlier, p.options.integrator, p.options.segments, near.breaks[j], at,
+                                near.terminal_force.data(), state, RodTrace<double>{});
+    x.frames.push_back(k == 0 ? level.model.root_frame : Mat3(Eigen::Map<const Mat3>(state.frame)));
+    x.moments.push_back(Eigen::Map<const Vec3>(state.moment));
+  }
+  if (!x.moments[0].allFinite()) return sweep(p, level, m0);
+  return x;
+}
+
 }  // namespace
 
 ShootingResult shoot_root_moment(const RodModel& model, const Vec3& terminal_force, const Vec3& terminal_torque,
                                  const Vec3& guess, const ShootingOptions& options) {
+  ShootingResult near;
+  near.root_moment = guess;
+  return shoot_root_moment(model, terminal_force, terminal_torque, near, options);
+}
+
+ShootingResult shoot_root_moment(const RodModel& model, const Vec3& terminal_force, const Vec3& terminal_torque,
+                                 const ShootingResult& near, const ShootingOptions& options) {
+  const Vec3 guess = near.root_moment.allFinite() ? near.root_moment : Vec3::Zero();
   const int pieces = shooting_pieces(model, terminal_force, options.segments);
   Problem p{options, {}};
   for (int k = 0; k <= pieces; ++k)
@@ -200,14 +250,14 @@ ShootingResult shoot_root_moment(const RodModel& model, const Vec3& terminal_for
   double residual_norm = 0.0;
 
   // First the warm start at the full load: callers that continue a load themselves end here.
-  Iterate x = sweep(p, full, guess.allFinite() ? guess : Vec3::Zero());
+  Iterate x = warm_start(p, full, near);
   // A warm start is meant for a small load increment: a root far from it belongs to another
   // equilibrium (Newton jumped branches), so it is not taken.
-  bool converged = !guess.isZero() && guess.allFinite() &&
+  bool converged = !guess.isZero() &&
                    newton(p, full, tol, 8, x, result.iterations, residual_norm) &&
                    (x.moments[0] - guess).norm() <= 0.1 + 0.25 * guess.norm();
 
-  if (!converged) {
+  if (!converged && options.restart_from_rest) {
     // Continuation λ: 0 → 1 from the unloaded rod, whose solution is exact (m ≡ 0). Predictor for
     // m(0): the tangent of the solution path at λ = 0, −J0⁻¹·∂F/∂λ (J0 from one jet sweep, ∂F/∂λ
     // by a one-sided difference: F is smooth in λ and vanishes at λ = 0), then secants. Branch
@@ -273,6 +323,8 @@ ShootingResult shoot_root_moment(const RodModel& model, const Vec3& terminal_for
   result.root_moment = x.moments[0];
   result.terminal_moment = f.tail<3>() + full.terminal_torque;
   result.breaks = p.breaks;
+  result.terminal_force = terminal_force;
+  result.force_per_length = model.force_per_length;
   result.frames = x.frames;
   result.moments = x.moments;
   return result;

@@ -21,6 +21,9 @@ struct ShootingOptions {
   int segments = 64;
   double tolerance = 1e-11;  // on the residual norm, relative to max(1, |f_L|, |t_L|, |f|)
   int max_iterations = 400;  // Newton steps in total
+  // When the warm start fails: continue the load from the unloaded rod (true), or give up at once
+  // (false: for callers that continue the load themselves and would rather shorten their step).
+  bool restart_from_rest = true;
 };
 
 struct ShootingResult {
@@ -32,6 +35,8 @@ struct ShootingResult {
   std::vector<int> breaks;
   std::vector<Mat3> frames;
   std::vector<Vec3> moments;
+  Vec3 terminal_force = Vec3::Zero();    // the loads solved for (a later warm start retraces with them)
+  Vec3 force_per_length = Vec3::Zero();
   int iterations = 0;      // Newton steps (Jacobian evaluations)
   double residual = 0.0;   // norm of all mismatches and m(1) − t_L
   bool converged = false;
@@ -40,6 +45,16 @@ struct ShootingResult {
 // All quantities dimensionless (rod_integrate.h). `guess` is the warm start for m(0) (zero: none).
 ShootingResult shoot_root_moment(const RodModel& model, const Vec3& terminal_force, const Vec3& terminal_torque,
                                  const Vec3& guess, const ShootingOptions& options);
+
+// The same from an earlier solution at a nearby load (its pieces and their start states), which
+// unlike m(0) alone stays a good start under large loads, where a sweep from m(0) diverges.
+ShootingResult shoot_root_moment(const RodModel& model, const Vec3& terminal_force, const Vec3& terminal_torque,
+                                 const ShootingResult& near, const ShootingOptions& options);
+
+// Traces a solution piece by piece from its start states (one long integration from m(0) would
+// amplify its last bit by exp(√tension)); the centreline runs on continuously. Returns m(1).
+Vec3 trace_pieces(const RodModel& model, RodIntegrator integrator, int segments, const ShootingResult& solution,
+                  const RodTrace<double>& trace);
 
 // The number of pieces shooting uses for a load: 1 up to |f_L| + |f| ≈ 9, then ≈ √(|f_L| + |f|)/3,
 // at most min(segments, 48).

@@ -2,13 +2,16 @@
 // input, and the `hairfit rod` command.
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include "core/error.h"
 #include "rod/rod.h"
 #include "rod/rod_jet.h"
 #include "rod/rod_shooting.h"
+#include "rod_references.h"
 
 using namespace hairfit;
 
@@ -251,4 +254,36 @@ TEST_CASE("hairfit rod rejects bad input with exit code 2") {
     CAPTURE(std::string(bad));
     CHECK(run_cli(bad).status == 2);
   }
+}
+
+TEST_CASE("warm starts from an earlier solution's pieces follow a heavy cantilever to load 1000") {
+  // A tip force α normal to the rod: the tip tends to the pull and the root moment to √(2α), while
+  // m(1) depends on m(0) like exp(√α) ≈ e³¹ at the end. Each level starts from the previous one's
+  // pieces (traced under the previous loads when the piece count grows) and must converge from
+  // there, without the restart from the unloaded rod, to the elliptic-integral answer.
+  const RodModel model = make_rod_model(Rod{}, RodRoot{});
+  ShootingOptions options;
+  options.segments = 256;
+  options.max_iterations = 8;
+  options.restart_from_rest = false;
+  ShootingResult at = shoot_root_moment(model, Vec3(10.0, 0.0, 0.0), Vec3::Zero(), Vec3::Zero(), ShootingOptions{});
+  REQUIRE(at.converged);
+  int levels = 0;
+  for (double alpha = 12.5; alpha <= 1000.0; alpha *= 1.25, ++levels) {
+    CAPTURE(alpha);
+    const ShootingResult next = shoot_root_moment(model, Vec3(alpha, 0.0, 0.0), Vec3::Zero(), at, options);
+    REQUIRE(next.converged);
+    CHECK(next.iterations <= 6);
+    const int n = options.segments + 1;
+    std::vector<double> nodes(3 * n), frames(9 * n);
+    const Vec3 m1 = trace_pieces(model, options.integrator, options.segments, next,
+                                 RodTrace<double>{nodes.data(), frames.data(), nullptr, nullptr});
+    CHECK(m1.norm() <= 1e-8 * alpha);
+    const test::CantileverTip exact = test::cantilever_tip(alpha, true);
+    CHECK((Eigen::Map<const Vec3>(&nodes[3 * (n - 1)]) - Vec3(exact.x, 0.0, exact.z)).norm() <= 2e-5);
+    // The elastica's first integral: m(0)² = 2α·sin θ_L, with θ_L the tip angle from the axis.
+    CHECK(next.root_moment.squaredNorm() == doctest::Approx(2.0 * alpha * std::sin(exact.angle)).epsilon(1e-4));
+    at = next;
+  }
+  CHECK(levels == 20);  // 12.5 · 1.25^19 ≈ 870
 }
