@@ -48,6 +48,18 @@ void add_weighted_loads(const std::vector<Item>& items, const std::vector<int>& 
     }
 }
 
+// How far to follow a pre-guide at a point: fully inside the acceptable region, not at all once
+// it is a boundary width beyond the scalp or the volume (smoothstep in between). A pre-guide that
+// could not reach its depth pokes out of the volume; there its direction and curvature would pull
+// the guide out after it, so there the boundary term and the rod alone decide.
+double follow_trust(const Boundary& boundary, const Vec3& p, double width) {
+  const double beyond = std::max(boundary.beyond_scalp(p), boundary.beyond_volume(p));
+  if (beyond <= 0.0) return 1.0;
+  if (beyond >= width) return 0.0;
+  const double x = beyond / width;
+  return 1.0 - x * x * (3.0 - 2.0 * x);
+}
+
 std::vector<int> all_indices(int count) {
   std::vector<int> all(count);
   std::iota(all.begin(), all.end(), 0);
@@ -85,6 +97,7 @@ GuideTargets make_targets(const RootSet& bases, int b, const PreGuides& preguide
     for (int node : t.sample_nodes) {
       nb.tangents.push_back(shape.tangents[node]);
       nb.darboux.push_back(shape.darboux[node]);
+      nb.trust.push_back(follow_trust(boundary, shape.nodes[node], o.boundary_width));
     }
     t.neighbours.push_back(std::move(nb));
   }

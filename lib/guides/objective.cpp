@@ -103,14 +103,14 @@ class GuideCost {
     for (const GuideTargets::Neighbour& nb : t_.neighbours)
       for (std::size_t k = 0; k < samples; ++k) {
         // 1 − cos φ = ½|t_G − t_j|² for unit tangents (the frame keeps d3 unit exactly).
-        const T scale = T(std::sqrt(w.direction * nb.weight * t_.sample_weights[k] / 2.0));
+        const T scale = T(std::sqrt(w.direction * nb.weight_at(k) * t_.sample_weights[k] / 2.0));
         const T* d3 = &frames[9 * t_.sample_nodes[k] + 6];
         for (int a = 0; a < 3; ++a) *r++ = scale * (d3[a] - T(nb.tangents[k][a]));
       }
     for (const GuideTargets::Neighbour& nb : t_.neighbours)
       for (std::size_t k = 0; k < samples; ++k) {
         // Darboux vectors in world axes, per unit normalised arc length: R·κ·L.
-        const T scale = T(std::sqrt(w.similarity * nb.weight * t_.sample_weights[k]));
+        const T scale = T(std::sqrt(w.similarity * nb.weight_at(k) * t_.sample_weights[k]));
         const T* R = &frames[9 * t_.sample_nodes[k]];
         const T* kappa = &curvature[3 * t_.sample_nodes[k]];
         for (int a = 0; a < 3; ++a) {

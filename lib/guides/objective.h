@@ -23,6 +23,9 @@ struct GuideTargets {
     double weight = 0.0;          // ω_j, Σ ω_j = 1
     std::vector<Vec3> tangents;   // at the samples
     std::vector<Vec3> darboux;    // at the samples
+    // Per sample, in [0, 1]: how far the pre-guide is to be followed there (empty: everywhere).
+    std::vector<double> trust;
+    double weight_at(std::size_t k) const { return trust.empty() ? weight : weight * trust[k]; }
   };
   std::vector<Neighbour> neighbours;
   const Boundary* boundary = nullptr;

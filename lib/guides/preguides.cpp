@@ -161,11 +161,8 @@ PreGuide solve_preguide(const RootSet& roots, int i, const Boundary& boundary, c
   State current, previous;
   // The rod under its own weight first, by continuation in the weight from the straight rod: a
   // heavy hair (ρAgL³/EI is ~10³ for 30 cm of hair) has many equilibria, and only this path finds
-  // the drooping one.
-  if (model.force_per_length.norm() > kHeavy) {
-    // Multiple shooting continues from the unloaded rod itself.
-    cantilever.solve(model, 0.0, current.solution, g.solves);
-  } else {
+  // the drooping one. Beyond kHeavy each level starts from the pieces of the one before.
+  {
     RodModel scaled = model;
     double share = 0.0, share_step = model.force_per_length.norm() > 0.0 ? 0.05 : 1.0;
     Vec3 m_prev = Vec3::Zero(), tip_prev = g.direction;
