@@ -6,6 +6,7 @@
 
 #include "rod/cayley.h"
 #include "rod/rod_jet.h"
+#include "rod/rod_sensitivity.h"
 
 namespace hairfit {
 
@@ -324,10 +325,79 @@ ShootingResult shoot_root_moment(const RodModel& model, const Vec3& terminal_for
   result.terminal_moment = f.tail<3>() + full.terminal_torque;
   result.breaks = p.breaks;
   result.terminal_force = terminal_force;
+  result.terminal_torque = terminal_torque;
   result.force_per_length = model.force_per_length;
   result.frames = x.frames;
   result.moments = x.moments;
   return result;
+}
+
+std::vector<Eigen::Matrix<double, 6, 6>> shooting_sensitivity(const RodModel& model, const ShootingResult& solution,
+                                                              const ShootingOptions& options) {
+  Problem p{options, solution.breaks};
+  RodModel loaded = model;
+  loaded.force_per_length = solution.force_per_length;
+  const Level level{loaded, solution.terminal_force, solution.terminal_torque};
+  const Iterate x{solution.frames, solution.moments};
+  Eigen::VectorXd f;
+  Eigen::MatrixXd g_x;
+  residual_and_jacobian(p, level, x, f, g_x);
+  // G_(f_L, t_L): the force acts on every piece (jets over f_L, each piece from its fixed start);
+  // the torque only in the last residual, m(1) − t_L.
+  Eigen::MatrixXd g_load = Eigen::MatrixXd::Zero(p.size(), 6);
+  using J3 = RodJet3;
+  J3 force[3];
+  for (int i = 0; i < 3; ++i) force[i] = J3(level.terminal_force[i], i);
+  for (int k = 0; k < p.pieces(); ++k) {
+    RodState<J3> state;
+    Eigen::Map<Eigen::Matrix<J3, 3, 1>>(state.position).setZero();
+    Eigen::Map<Eigen::Matrix<J3, 3, 3>>(state.frame) = x.frames[k].cast<J3>();
+    Eigen::Map<Eigen::Matrix<J3, 3, 1>>(state.moment) = x.moments[k].cast<J3>();
+    integrate_rod_steps<J3>(loaded, options.integrator, options.segments, p.breaks[k], p.breaks[k + 1], force, state,
+                            RodTrace<J3>{});
+    const Eigen::Map<const Eigen::Matrix<J3, 3, 3>> end_frame(state.frame);
+    if (k + 1 < p.pieces()) {
+      const Eigen::Matrix<J3, 3, 1> psi = cayley::log<J3>(x.frames[k + 1].transpose().cast<J3>() * end_frame);
+      for (int i = 0; i < 3; ++i) {
+        g_load.block<1, 3>(6 * k + i, 0) = psi[i].v.transpose();
+        g_load.block<1, 3>(6 * k + 3 + i, 0) = state.moment[i].v.transpose();
+      }
+    } else {
+      for (int i = 0; i < 3; ++i) g_load.block<1, 3>(6 * k + i, 0) = state.moment[i].v.transpose();
+      g_load.block<3, 3>(6 * k, 3) = -Mat3::Identity();
+    }
+  }
+  const Eigen::FullPivLU<Eigen::MatrixXd> lu(g_x);
+  if (!lu.isInvertible()) return {};
+  const Eigen::MatrixXd s = -lu.solve(g_load);
+  if (!s.allFinite()) return {};
+  std::vector<Eigen::Matrix<double, 6, 6>> blocks(p.pieces(), Eigen::Matrix<double, 6, 6>::Zero());
+  blocks[0].bottomRows<3>() = s.topRows<3>();
+  for (int k = 1; k < p.pieces(); ++k) blocks[k] = s.block<6, 6>(6 * k - 3, 0);
+  return blocks;
+}
+
+void trace_pieces(const RodModel& model, RodIntegrator integrator, int segments, const ShootingResult& solution,
+                  const std::vector<Eigen::Matrix<double, 6, 6>>& sensitivity, const RodTrace<RodJet6>& trace) {
+  using J6 = RodJet6;
+  RodModel loaded = model;
+  loaded.force_per_length = solution.force_per_length;
+  J6 force[3];
+  for (int i = 0; i < 3; ++i) force[i] = J6(solution.terminal_force[i], i);
+  RodState<J6> state;
+  Eigen::Map<Eigen::Matrix<J6, 3, 1>>(state.position).setZero();
+  for (std::size_t k = 0; k + 1 < solution.breaks.size(); ++k) {
+    Eigen::Matrix<J6, 3, 1> phi, moment;
+    for (int i = 0; i < 3; ++i) {
+      phi[i] = J6(0.0);
+      phi[i].v = sensitivity[k].row(i).transpose();
+      moment[i] = J6(solution.moments[k][i]);
+      moment[i].v = sensitivity[k].row(3 + i).transpose();
+    }
+    Eigen::Map<Eigen::Matrix<J6, 3, 3>>(state.frame) = solution.frames[k].cast<J6>() * cayley::matrix<J6>(phi);
+    Eigen::Map<Eigen::Matrix<J6, 3, 1>>(state.moment) = moment;
+    integrate_rod_steps<J6>(loaded, integrator, segments, solution.breaks[k], solution.breaks[k + 1], force, state, trace);
+  }
 }
 
 }  // namespace hairfit

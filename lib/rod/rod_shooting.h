@@ -36,6 +36,7 @@ struct ShootingResult {
   std::vector<Mat3> frames;
   std::vector<Vec3> moments;
   Vec3 terminal_force = Vec3::Zero();    // the loads solved for (a later warm start retraces with them)
+  Vec3 terminal_torque = Vec3::Zero();
   Vec3 force_per_length = Vec3::Zero();
   int iterations = 0;      // Newton steps (Jacobian evaluations)
   double residual = 0.0;   // norm of all mismatches and m(1) − t_L

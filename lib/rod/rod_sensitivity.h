@@ -1,0 +1,30 @@
+// Derivatives of a multiple-shooting solution (rod_shooting.h) with respect to its terminal loads
+// (f_L, t_L), for optimisers whose rods are too heavy for the initial-value form: there the shape
+// is a function of the loads only through the boundary-value solve, and its derivative follows
+// from the implicit function theorem on the shooting equations G(X; f_L, t_L) = 0:
+//   dX/d(f_L, t_L) = −G_X⁻¹ · G_(f_L, t_L),
+// X the start state (frame, moment) of every piece. Tracing each piece from its start state with
+// jets seeded by these derivatives gives every node's exact derivative (to round-off), without
+// the exponential growth of one long integration. Includes Ceres' jets: only for code that needs
+// derivatives (the guide optimiser).
+#pragma once
+#include <Eigen/Core>
+#include <vector>
+
+#include "rod/rod_jet.h"
+#include "rod/rod_shooting.h"
+
+namespace hairfit {
+
+// Per piece k, the 6×6 derivative of its start state (δφ_k, δm_k) — δφ the Cayley coordinates of
+// the frame correction R_k·cay(δφ), zero for the clamped root piece — with respect to (f_L, t_L).
+// Empty when the shooting Jacobian is singular at the solution.
+std::vector<Eigen::Matrix<double, 6, 6>> shooting_sensitivity(const RodModel& model, const ShootingResult& solution,
+                                                              const ShootingOptions& options);
+
+// Traces the solution piece by piece with jets over (f_L, t_L): nodes, frames and curvature as in
+// RodTrace, each carrying its derivative.
+void trace_pieces(const RodModel& model, RodIntegrator integrator, int segments, const ShootingResult& solution,
+                  const std::vector<Eigen::Matrix<double, 6, 6>>& sensitivity, const RodTrace<RodJet6>& trace);
+
+}  // namespace hairfit
