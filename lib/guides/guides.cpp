@@ -132,8 +132,11 @@ Guide solve_guide(const RootSet& bases, int b, const PreGuides& preguides, const
   const GuideSolve solve = optimise_guide(targets, start, o.max_iterations, o.tolerance);
   g.force = Vec3(solve.eta[0], solve.eta[1], solve.eta[2]);
   g.root_moment = Vec3(solve.eta[3], solve.eta[4], solve.eta[5]);
-  g.shape = fibre_shape(targets.model, g.root, g.length, o.rod, g.force, g.root_moment);
-  {
+  if (solve.heavy) {  // traced piece by piece: one integration from m(0) would diverge
+    g.shape = fibre_shape(targets.model, g.root, g.length, o.rod, solve.solution);
+    g.terminal_torque = solve.solution.terminal_torque;
+  } else {
+    g.shape = fibre_shape(targets.model, g.root, g.length, o.rod, g.force, g.root_moment);
     Vec3 m1;
     integrate_rod<double>(targets.model, o.rod.integrator, o.rod.segments, solve.eta, solve.eta + 3, m1.data(),
                           RodTrace<double>{});
@@ -147,7 +150,8 @@ Guide solve_guide(const RootSet& bases, int b, const PreGuides& preguides, const
   g.converged = solve.converged;
   g.termination = solve.termination;
   g.initial_cost = 2.0 * solve.initial_cost;  // Ceres reports ½Σr²
-  const GuideTerms terms = evaluate_guide_terms(targets, solve.eta);
+  const GuideTerms terms =
+      solve.heavy ? evaluate_guide_terms(targets, solve.solution) : evaluate_guide_terms(targets, solve.eta);
   g.cost = terms.total;
   g.f1 = terms.f1;
   g.f2 = terms.f2;

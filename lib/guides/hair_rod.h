@@ -18,6 +18,11 @@ struct RodDiscretisation {
   int segments = 64;
 };
 
+// The dimensionless load (weight ρAgL³/EI or terminal force F·L²/EI) beyond which one forward
+// integration loses precision: m(1) depends on m(0) like exp(√load). Heavier rods are solved and
+// optimised by multiple shooting from their terminal loads.
+constexpr double kHeavyRod = 50.0;
+
 // A fibre of the given length (cm): circular section, straight at rest, loaded by its weight
 // ρ·A·g per length when the material has gravity.
 Rod hair_rod(double length, const HairMaterial& material);

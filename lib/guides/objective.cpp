@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "rod/rod_jet.h"
+#include "rod/rod_sensitivity.h"
 
 namespace hairfit {
 
@@ -97,6 +98,13 @@ class GuideCost {
     T m1[3];
     integrate_rod<T>(t_.model, t_.rod.integrator, t_.rod.segments, eta, eta + 3, m1,
                      RodTrace<T>{nodes.data(), frames.data(), curvature.data(), nullptr});
+    return residuals_of_shape(nodes.data(), frames.data(), curvature.data(), residuals);
+  }
+
+  // The residuals of a traced rod shape (nodes with the root at the origin in units of L, frames,
+  // material curvature), however it was solved.
+  template <typename T>
+  bool residuals_of_shape(const T* nodes, const T* frames, const T* curvature, T* residuals) const {
     const GuideWeights& w = t_.weights;
     T* r = residuals;
     const std::size_t samples = t_.sample_nodes.size();
@@ -205,12 +213,86 @@ class ReparameterisedCost {
   LoadCoordinates coordinates_;
 };
 
+// The guide objective of a rod too heavy for the initial-value form: the parameters are the
+// terminal loads (f_L, t_L) themselves, the paper's six, and every evaluation solves the
+// boundary-value problem by multiple shooting, warm-started from the previous evaluation's pieces;
+// the Jacobian follows from shooting_sensitivity. A load whose solve does not converge is reported
+// to Ceres as infeasible, and Levenberg–Marquardt shortens its step.
+class HeavyGuideCost : public ceres::CostFunction {
+ public:
+  HeavyGuideCost(const GuideTargets& t, ShootingResult start) : cost_(t), t_(t), near_(std::move(start)) {
+    set_num_residuals(cost_.residual_count());
+    mutable_parameter_block_sizes()->push_back(6);
+    options_.integrator = t.rod.integrator;
+    options_.segments = t.rod.segments;
+    options_.max_iterations = 12;
+    options_.restart_from_rest = false;
+  }
+
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
+    const double* x = parameters[0];
+    const ShootingResult s = solve(x);
+    if (!s.converged) return false;
+    near_ = s;
+    const int n = t_.rod.segments + 1;
+    if (!jacobians || !jacobians[0]) {
+      std::vector<double> nodes(3 * n), frames(9 * n), curvature(3 * n);
+      trace_pieces(t_.model, t_.rod.integrator, t_.rod.segments, s,
+                   RodTrace<double>{nodes.data(), frames.data(), curvature.data(), nullptr});
+      return cost_.residuals_of_shape(nodes.data(), frames.data(), curvature.data(), residuals);
+    }
+    const auto sensitivity = shooting_sensitivity(t_.model, s, options_);
+    if (sensitivity.empty()) return false;
+    std::vector<Jet> nodes(3 * n), frames(9 * n), curvature(3 * n), r(num_residuals());
+    trace_pieces(t_.model, t_.rod.integrator, t_.rod.segments, s, sensitivity,
+                 RodTrace<Jet>{nodes.data(), frames.data(), curvature.data(), nullptr});
+    if (!cost_.residuals_of_shape(nodes.data(), frames.data(), curvature.data(), r.data())) return false;
+    for (int i = 0; i < num_residuals(); ++i) {
+      residuals[i] = r[i].a;
+      for (int j = 0; j < 6; ++j) jacobians[0][6 * i + j] = r[i].v[j];
+    }
+    return true;
+  }
+
+  // The solution at x, warm-started from the last one.
+  ShootingResult solve(const double* x) const {
+    return shoot_root_moment(t_.model, Vec3(x[0], x[1], x[2]), Vec3(x[3], x[4], x[5]), near_, options_);
+  }
+
+ private:
+  GuideCost cost_;
+  const GuideTargets& t_;
+  ShootingOptions options_;
+  mutable ShootingResult near_;  // Ceres evaluates one residual block from one thread
+};
+
+// Σ wᵢFᵢ and the unweighted terms from the residual vector (blocks as GuideCost writes them).
+GuideTerms terms_of(const GuideTargets& targets, const std::vector<double>& r);
+template <typename Shape>
+GuideTerms with_unweighted_f4(const GuideTargets& targets, const Shape& shape, GuideTerms terms);
+
 }  // namespace
+
+GuideTerms evaluate_guide_terms(const GuideTargets& targets, const ShootingResult& solution) {
+  const GuideCost cost(targets);
+  const int n = targets.rod.segments + 1;
+  std::vector<double> nodes(3 * n), frames(9 * n), curvature(3 * n), r(cost.residual_count());
+  trace_pieces(targets.model, targets.rod.integrator, targets.rod.segments, solution,
+               RodTrace<double>{nodes.data(), frames.data(), curvature.data(), nullptr});
+  cost.residuals_of_shape(nodes.data(), frames.data(), curvature.data(), r.data());
+  return with_unweighted_f4(targets, solution, terms_of(targets, r));
+}
 
 GuideTerms evaluate_guide_terms(const GuideTargets& targets, const double eta[6]) {
   GuideCost cost(targets);
   std::vector<double> r(cost.residual_count());
   cost(eta, r.data());
+  return with_unweighted_f4(targets, eta, terms_of(targets, r));
+}
+
+namespace {
+
+GuideTerms terms_of(const GuideTargets& targets, const std::vector<double>& r) {
   GuideTerms terms;
   const std::size_t block = targets.sample_nodes.size() * 3 * targets.neighbours.size();
   auto sum_squares = [&](std::size_t from, std::size_t to) {
@@ -225,16 +307,23 @@ GuideTerms evaluate_guide_terms(const GuideTargets& targets, const double eta[6]
   terms.f1 = w.direction > 0 ? e1 / w.direction : 0.0;
   terms.f2 = w.similarity > 0 ? e2 / w.similarity : 0.0;
   terms.f3 = w.boundary > 0 ? e3 / w.boundary : 0.0;
-  if (targets.density && w.density > 0) {
-    terms.f4 = e4 / w.density;
-  } else if (targets.density) {  // unweighted F4 even when w4 = 0: evaluate with w4 = 1
-    GuideTargets unit = targets;
-    unit.weights = GuideWeights{0.0, 0.0, 0.0, 1.0};
-    terms.f4 = evaluate_guide_terms(unit, eta).total;
-  }
+  if (targets.density && w.density > 0) terms.f4 = e4 / w.density;
   terms.total = e1 + e2 + e3 + e4;
   return terms;
 }
+
+// With a density grid but w4 = 0 the residuals carry no F4: evaluate it with w4 = 1 alone.
+template <typename Shape>
+GuideTerms with_unweighted_f4(const GuideTargets& targets, const Shape& shape, GuideTerms terms) {
+  if (targets.density && !(targets.weights.density > 0)) {
+    GuideTargets unit = targets;
+    unit.weights = GuideWeights{0.0, 0.0, 0.0, 1.0};
+    terms.f4 = evaluate_guide_terms(unit, shape).total;
+  }
+  return terms;
+}
+
+}  // namespace
 
 std::vector<double> guide_residuals(const GuideTargets& targets, const double eta[6], std::vector<double>* jacobian) {
   GuideCost cost(targets);
@@ -255,7 +344,75 @@ std::vector<double> guide_residuals(const GuideTargets& targets, const double et
   return r;
 }
 
+namespace {
+
+ceres::Solver::Options solver_options(int max_iterations, double tolerance) {
+  ceres::Solver::Options options;
+  options.linear_solver_type = ceres::DENSE_QR;
+  options.max_num_iterations = max_iterations;
+  options.function_tolerance = tolerance;
+  options.gradient_tolerance = 1e-10;
+  options.parameter_tolerance = 1e-10;
+  options.num_threads = 1;
+  options.logging_type = ceres::SILENT;
+  options.minimizer_progress_to_stdout = false;
+  return options;
+}
+
+void record(const ceres::Solver::Summary& summary, bool finite, GuideSolve& result) {
+  result.iterations = static_cast<int>(summary.iterations.size()) - 1;
+  result.evaluations = summary.num_residual_evaluations + summary.num_jacobian_evaluations;
+  result.converged = finite && summary.termination_type == ceres::CONVERGENCE;
+  result.termination = ceres::TerminationTypeToString(summary.termination_type);
+  result.initial_cost = summary.initial_cost;
+  result.final_cost = finite ? summary.final_cost : summary.initial_cost;
+}
+
+// A heavy rod: Levenberg–Marquardt over x = (f_L, t_L) from (start force, zero torque) — a
+// pre-guide's terminal torque is zero — or, when that load cannot be solved, from the rod hanging
+// under its weight alone. The first solve continues the loads from the unloaded rod.
+GuideSolve optimise_heavy_guide(const GuideTargets& targets, const double start[6], int max_iterations,
+                                double tolerance) {
+  GuideSolve result;
+  result.heavy = true;
+  ShootingOptions first;
+  first.integrator = targets.rod.integrator;
+  first.segments = targets.rod.segments;
+  double x[6] = {start[0], start[1], start[2], 0.0, 0.0, 0.0};
+  ShootingResult at = shoot_root_moment(targets.model, Vec3(x[0], x[1], x[2]), Vec3::Zero(), Vec3::Zero(), first);
+  if (!at.converged) {
+    std::fill(x, x + 6, 0.0);
+    at = shoot_root_moment(targets.model, Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), first);
+  }
+  result.solution = at;
+  result.evaluations = 1;
+  if (!at.converged) {  // not even the hanging rod: keep the best iterate, flagged
+    result.termination = "NO_START";
+  } else {
+    auto* cost = new HeavyGuideCost(targets, at);
+    ceres::Problem problem;
+    problem.AddResidualBlock(cost, nullptr, x);
+    ceres::Solver::Summary summary;
+    ceres::Solve(solver_options(max_iterations, tolerance), &problem, &summary);
+    bool finite = true;
+    for (double v : x) finite = finite && std::isfinite(v);
+    // The pieces at the accepted x (the last evaluation may have been a rejected trial).
+    const ShootingResult final_solution = finite ? cost->solve(x) : ShootingResult{};
+    if (final_solution.converged) result.solution = final_solution;
+    record(summary, finite && final_solution.converged, result);
+  }
+  const ShootingResult& s = result.solution;
+  for (int a = 0; a < 3; ++a) {
+    result.eta[a] = s.terminal_force[a];
+    result.eta[3 + a] = s.root_moment[a];
+  }
+  return result;
+}
+
+}  // namespace
+
 GuideSolve optimise_guide(const GuideTargets& targets, const double start[6], int max_iterations, double tolerance) {
+  if (targets.model.force_per_length.norm() > kHeavyRod) return optimise_heavy_guide(targets, start, max_iterations, tolerance);
   GuideSolve result;
   std::copy(start, start + 6, result.eta);
   const LoadCoordinates coordinates(targets.model, targets.rod, start);
@@ -268,27 +425,13 @@ GuideSolve optimise_guide(const GuideTargets& targets, const double start[6], in
   ceres::Problem problem(problem_options);
   problem.AddResidualBlock(new ceres::AutoDiffCostFunction<ReparameterisedCost, ceres::DYNAMIC, 6>(functor, residuals),
                            nullptr, x);
-  ceres::Solver::Options options;
-  options.linear_solver_type = ceres::DENSE_QR;
-  options.max_num_iterations = max_iterations;
-  options.function_tolerance = tolerance;
-  options.gradient_tolerance = 1e-10;
-  options.parameter_tolerance = 1e-10;
-  options.num_threads = 1;
-  options.logging_type = ceres::SILENT;
-  options.minimizer_progress_to_stdout = false;
   ceres::Solver::Summary summary;
-  ceres::Solve(options, &problem, &summary);
+  ceres::Solve(solver_options(max_iterations, tolerance), &problem, &summary);
 
   bool finite = true;
   for (double v : x) finite = finite && std::isfinite(v);
   if (finite) coordinates.to_loads(x, result.eta);  // LM only ever accepts steps that lower the cost
-  result.iterations = static_cast<int>(summary.iterations.size()) - 1;
-  result.evaluations = summary.num_residual_evaluations + summary.num_jacobian_evaluations;
-  result.converged = finite && summary.termination_type == ceres::CONVERGENCE;
-  result.termination = ceres::TerminationTypeToString(summary.termination_type);
-  result.initial_cost = summary.initial_cost;
-  result.final_cost = finite ? summary.final_cost : summary.initial_cost;
+  record(summary, finite, result);
   return result;
 }
 

@@ -7,6 +7,7 @@
 #include "density/grid.h"
 #include "guides/density_term.h"
 #include "guides/guides.h"
+#include "rod/rod_shooting.h"
 
 namespace hairfit {
 
@@ -50,6 +51,8 @@ struct GuideTerms {
   double total = 0.0;       // Σ wᵢFᵢ
 };
 GuideTerms evaluate_guide_terms(const GuideTargets& targets, const double eta[6]);
+// The same for a heavy rod's multiple-shooting solution (GuideSolve::solution).
+GuideTerms evaluate_guide_terms(const GuideTargets& targets, const ShootingResult& solution);
 
 // The residuals the optimiser sees at eta (blocks F1, F2, F3, then F4 when targets.density is
 // set), and, when `jacobian` is given, their derivatives in eta by automatic differentiation
@@ -58,6 +61,11 @@ std::vector<double> guide_residuals(const GuideTargets& targets, const double et
 
 struct GuideSolve {
   double eta[6] = {0, 0, 0, 0, 0, 0};  // best (f_L, m(0)), dimensionless
+  // A heavy rod (weight beyond kHeavyRod) is optimised in its terminal loads by multiple shooting:
+  // then `solution` holds the pieces its shape is traced from (one integration from eta would not
+  // reproduce it), and solution.terminal_torque is t_L.
+  bool heavy = false;
+  ShootingResult solution;
   int iterations = 0;
   int evaluations = 0;
   bool converged = false;

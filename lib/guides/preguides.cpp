@@ -57,7 +57,7 @@ namespace {
 // exist at the same load (curled rods); a step is accepted only when Newton lands near the
 // predictor and the tip turns by less than kMaxTipTurn, else the load step is halved, so the
 // path stays on the branch connected to the unloaded rod.
-constexpr double kHeavy = 50.0;  // dimensionless load beyond which single shooting loses precision
+constexpr double kHeavy = kHeavyRod;
 
 class Cantilever {
  public:

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "rod/band_lu.h"
 #include "rod/cayley.h"
 #include "rod/rod_jet.h"
 #include "rod/rod_sensitivity.h"
@@ -57,6 +58,8 @@ struct Problem {
   std::vector<int> breaks;  // K+1 step indices
   int pieces() const { return static_cast<int>(breaks.size()) - 1; }
   int size() const { return 6 * pieces() - 3; }
+  // Row 6k + i (i < 6) of the Jacobian touches columns 6k − 3 … 6k + 8: piece k's start and the next.
+  static constexpr int kBand = 8;
 };
 
 // Frame and moment at the end of piece k from the start state (double).
@@ -178,9 +181,9 @@ bool newton(const Problem& p, const Level& level, double tol, int max_steps, Ite
     if (norm <= tol) return true;
     if (step == max_steps || iterations >= p.options.max_iterations) return false;
     ++iterations;
-    const Eigen::FullPivLU<Eigen::MatrixXd> lu(jacobian);
+    const BandLU lu(jacobian, Problem::kBand, Problem::kBand);
     const Eigen::VectorXd delta = -lu.solve(f);
-    if (!lu.isInvertible() || !delta.allFinite()) return false;
+    if (!delta.allFinite()) return false;
     // Backtracking on the residual: full Newton steps near the root, shorter ones far from it.
     double alpha = 1.0;
     bool accepted = false;
@@ -367,8 +370,7 @@ std::vector<Eigen::Matrix<double, 6, 6>> shooting_sensitivity(const RodModel& mo
       g_load.block<3, 3>(6 * k, 3) = -Mat3::Identity();
     }
   }
-  const Eigen::FullPivLU<Eigen::MatrixXd> lu(g_x);
-  if (!lu.isInvertible()) return {};
+  const BandLU lu(g_x, Problem::kBand, Problem::kBand);
   const Eigen::MatrixXd s = -lu.solve(g_load);
   if (!s.allFinite()) return {};
   std::vector<Eigen::Matrix<double, 6, 6>> blocks(p.pieces(), Eigen::Matrix<double, 6, 6>::Zero());
