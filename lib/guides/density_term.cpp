@@ -18,6 +18,27 @@ double surcharge_step(double occupancy, double threshold, double width) {
   return x * x * (3.0 - 2.0 * x);
 }
 
+double density_ceiling(const DensityGrid& grid, const DensityTermOptions& term) {
+  const GridGeometry& g = grid.geometry();
+  if (term.model == GuideDensityModel::binary) {
+    double top = 0.0;
+    for (double v : grid.values()) top = std::max(top, v);
+    const double s = top > 0.0 ? surcharge_step(top, term.threshold, term.surcharge_width) : 0.0;
+    return top * top + term.surcharge * s * s;
+  }
+  // Every cell centre a trilinear blend can use: the grid and the ring of zero cells around it.
+  double top = 0.0;
+  const double h2 = 2.0 * g.voxel;
+  for (int k = -1; k <= g.dims.z(); ++k)
+    for (int j = -1; j <= g.dims.y(); ++j)
+      for (int i = -1; i <= g.dims.x(); ++i) {
+        const Vec3 d((grid.cell(i + 1, j, k) - grid.cell(i - 1, j, k)) / h2, (grid.cell(i, j + 1, k) - grid.cell(i, j - 1, k)) / h2,
+                     (grid.cell(i, j, k + 1) - grid.cell(i, j, k - 1)) / h2);
+        top = std::max(top, d.squaredNorm());
+      }
+  return term.strength * top;
+}
+
 std::vector<std::vector<Vec3>> guide_deposit_fibres(const std::vector<Vec3>& guide, const std::vector<int>& pores_of_guide,
                                                     const GuideDensityOptions& options) {
   if (pores_of_guide.empty()) return {guide};

@@ -23,6 +23,12 @@ struct DensityTermOptions {
   double threshold = 0.5;        // BOM: occupancy above which the surcharge applies
   double surcharge = 10.0;       // c_BOM
   double surcharge_width = 0.2;  // BOM: occupancy over which the surcharge rises (smoothstep)
+  // Not a user option: the F4 integrand a sample pays once it lies a voxel or more beyond the
+  // scalp or the volume boundary, density_ceiling of the grid the guide is optimised against
+  // (make_guides_with_density sets it per batch). Outside the acceptable region F4 is then never
+  // lower than anywhere inside, so leaving the region cannot lower F4 and the boundary term F3
+  // alone decides, as without a density model. 0: the outside residual is zero.
+  double outside = 0.0;
 };
 
 struct GuideDensityOptions {
@@ -46,6 +52,12 @@ GridGeometry make_density_geometry(const Vec3& lower, const Vec3& upper, double 
 // The paper's surcharge indicator on occupancy o ∈ [0, 1], smoothed: 0 below threshold − width/2,
 // 1 above threshold + width/2, the C¹ smoothstep 3x² − 2x³ between (x the position in the ramp).
 double surcharge_step(double occupancy, double threshold, double width);
+
+// The largest F4 integrand (per unit normalised arc length, before w4) any sample can pay on
+// `grid`: BOM o² + c_BOM·S(o)² at the largest occupancy o (both grow with o); CDM c_ρ·|∇Φρ|² at
+// its largest over the cell centres, which bounds c_ρ⟨∇Φρ, t⟩² everywhere since the central
+// gradient is a trilinear blend of its cell-centre values and |·|² is convex. 0 on an empty grid.
+double density_ceiling(const DensityGrid& grid, const DensityTermOptions& term);
 
 // The fibres a guide deposits (CDM): one per pore of its cluster, as make_strands grows them
 // (uncut), in pore order; `pores_of_guide` are indices into options.pores. No pores: the guide

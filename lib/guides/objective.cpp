@@ -56,6 +56,16 @@ T surcharge_residual(const T& occupancy, double threshold, double width) {
   return x * x * (T(3) - T(2) * x);
 }
 
+// How far a sample lies outside the acceptable region, as a C¹ step over one density voxel `h`:
+// 0 inside, 1 from h beyond a surface on; the two surfaces add (a sample is never beyond both).
+template <typename T>
+T outside_step(const T& u, double h) {
+  if (!(u > T(0))) return T(0);
+  if (!(u < T(h))) return T(1);
+  const T x = u / T(h);
+  return x * x * (T(3) - T(2) * x);
+}
+
 // The boundary residual φ(u) of a sample lying u cm beyond a surface (u > 0: outside the
 // acceptable region). Smooth form: √c_d·S((u + w)/w) + H(u): the step of eq. 9 rises over the last
 // w cm inside the surface (S the C¹ smoothstep), so the full c_d applies at the surface itself and
@@ -82,10 +92,11 @@ class GuideCost {
   int residual_count() const {
     return static_cast<int>(t_.sample_nodes.size() * (6 * t_.neighbours.size() + 2 + density_per_sample()));
   }
-  // F4 residuals per sample: none without a grid, 1 for CDM, 2 for BOM (occupancy, surcharge).
+  // F4 residuals per sample: none without a grid; CDM the slope, BOM occupancy and surcharge;
+  // both then the outside residual.
   int density_per_sample() const {
     if (!t_.density) return 0;
-    return t_.density_term.model == GuideDensityModel::continuous ? 1 : 2;
+    return t_.density_term.model == GuideDensityModel::continuous ? 2 : 3;
   }
 
   // Residuals in blocks: F1 (3 per neighbour and sample), F2 (3 per neighbour and sample), F3
@@ -150,6 +161,12 @@ class GuideCost {
           *r++ = T(std::sqrt(w.density * d.surcharge * t_.sample_weights[k])) *
                  surcharge_residual(occupancy, d.threshold, d.surcharge_width);
         }
+        // Outside the acceptable region the sample pays the grid's largest F4 integrand on top
+        // (density_term.h, DensityTermOptions::outside): the head and the space beyond the volume
+        // count as full, so a guide never escapes crowding by leaving the region.
+        const double h = t_.density->geometry().voxel;
+        *r++ = T(std::sqrt(w.density * d.outside * t_.sample_weights[k])) *
+               (outside_step(-field_at(*t_.boundary->scalp, p), h) + outside_step(field_at(*t_.boundary->volume, p), h));
       }
     }
     return true;

@@ -44,7 +44,11 @@ struct GuideTargets {
 //   CDM: F4 = c_ρ ∫⟨∇Φρ, t⟩² ds (∇Φρ by central differences of the grid),
 //   BOM: F4 = ∫ o² ds + c_BOM ∫ S(o)² ds, o the trilinear occupancy at the guide, S the smoothed
 //        surcharge step around the threshold (surcharge_step): the paper's ∫δ ds where o is 0 or
-//        1, plus c_BOM where the guide runs through a region denser than the threshold.
+//        1, plus c_BOM where the guide runs through a region denser than the threshold;
+//   both plus ∫ F4max·(H(u_S) + H(u_V))² ds, F4max = density_term.outside (the grid's largest
+//        integrand, density_ceiling), u_S/u_V how far the sample lies behind the scalp/beyond the
+//        volume, H the C¹ step from 0 at the surface to 1 a density voxel beyond it: outside the
+//        acceptable region F4 is never lower than anywhere inside.
 // Quadrature is the trapezoidal rule on the samples, exactly what the residuals sum to.
 struct GuideTerms {
   double f1 = 0.0, f2 = 0.0, f3 = 0.0, f4 = 0.0;

@@ -2,7 +2,9 @@
 // finite differences, and no trace without a density model.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include "density/accumulator.h"
 #include "guides/density_term.h"
@@ -119,7 +121,7 @@ TEST_CASE("F4 adds no residual and is zero without a density model") {
     d.density = &zero;
     d.density_term.model = model;
     const std::vector<double> rd = guide_residuals(d, kEta);
-    const std::size_t per = model == GuideDensityModel::continuous ? 1 : 2;
+    const std::size_t per = model == GuideDensityModel::continuous ? 2 : 3;  // + the outside residual
     REQUIRE(rd.size() == r.size() + per * t.sample_nodes.size());
     for (std::size_t i = 0; i < r.size(); ++i) CHECK(rd[i] == r[i]);
     for (std::size_t i = r.size(); i < rd.size(); ++i) CHECK(rd[i] == 0.0);
@@ -169,6 +171,74 @@ TEST_CASE("F4 equals the paper's integrals by the trapezoidal rule on the guide'
   CHECK(evaluate_guide_terms(t, kEta).f4 == doctest::Approx(expect).epsilon(1e-9));
 }
 
+TEST_CASE("the density ceiling is the largest F4 integrand anywhere on the grid") {
+  const DensityGrid cdm = cdm_grid(grid()), bom = bom_grid(grid());
+  DensityTermOptions term;
+  term.model = GuideDensityModel::binary;
+  term.surcharge = 7.0;
+  // BOM: the grid is 0/1, so the largest integrand is 1² + c_BOM·S(1)² = 1 + 7.
+  CHECK(density_ceiling(bom, term) == doctest::Approx(8.0).epsilon(1e-15));
+  CHECK(density_ceiling(DensityGrid(), term) == 0.0);
+  // CDM: c_ρ·|∇Φρ|² bounds c_ρ⟨∇Φρ, t⟩² for unit t, and |∇Φρ|² at random points never exceeds
+  // the ceiling, which some cell centre (or a zero cell of the ring just outside) attains.
+  term.model = GuideDensityModel::continuous;
+  term.strength = 2.5;
+  const double ceiling = density_ceiling(cdm, term);
+  CHECK(ceiling > 0.0);
+  const GridGeometry& g = cdm.geometry();
+  double at_centres = 0.0;
+  for (int k = -1; k <= g.dims.z(); ++k)
+    for (int j = -1; j <= g.dims.y(); ++j)
+      for (int i = -1; i <= g.dims.x(); ++i)
+        at_centres = std::max(at_centres, 2.5 * cdm.central_gradient(g.cell_centre(i, j, k)).squaredNorm());
+  CHECK(ceiling == doctest::Approx(at_centres).epsilon(1e-12));
+  std::uint64_t state = 12345;
+  auto uniform = [&state]() {  // a fixed LCG: the test is deterministic
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return static_cast<double>(state >> 11) / 9007199254740992.0;
+  };
+  double sampled = 0.0;
+  for (int n = 0; n < 200000; ++n) {
+    const Vec3 p = g.origin + (g.upper() - g.origin).cwiseProduct(Vec3(uniform(), uniform(), uniform()));
+    sampled = std::max(sampled, 2.5 * cdm.central_gradient(p).squaredNorm());
+  }
+  CHECK(sampled <= ceiling * (1 + 1e-12));
+  CHECK(sampled > 0.25 * ceiling);  // the samples do reach the dense part (the peak is at one centre)
+}
+
+TEST_CASE("outside the acceptable region a sample pays the density ceiling on top of F4") {
+  const DensityGrid cdm = cdm_grid(grid()), bom = bom_grid(grid());
+  // A guide that leaves the volume (the ball of radius 14): nearly straight up from y = 8, 10 long.
+  const double eta[6] = {0.0, 0.05, 0.0, 0.0, 0.0, -0.05};
+  for (GuideDensityModel model : {GuideDensityModel::continuous, GuideDensityModel::binary}) {
+    CAPTURE(static_cast<int>(model));
+    GuideTargets t = targets(16);
+    t.density = model == GuideDensityModel::continuous ? &cdm : &bom;
+    t.density_term.model = model;
+    const double base = evaluate_guide_terms(t, eta).f4;
+    t.density_term.outside = 3.0;
+    const double with_outside = evaluate_guide_terms(t, eta).f4;
+    // Independently: Σ Δs·3·(H(u_S) + H(u_V))², H the smoothstep from 0 at a surface to 1 one
+    // density voxel beyond it.
+    const FibreShape shape = fibre_shape(t.model, t.root, t.length, t.rod, Vec3(eta[0], eta[1], eta[2]), Vec3(eta[3], eta[4], eta[5]));
+    const double h = grid().voxel;
+    auto step = [h](double u) {
+      const double x = std::clamp(u / h, 0.0, 1.0);
+      return x * x * (3 - 2 * x);
+    };
+    double expect = 0.0;
+    int beyond = 0;
+    for (std::size_t k = 0; k < t.sample_nodes.size(); ++k) {
+      const Vec3& p = shape.nodes[t.sample_nodes[k]];
+      const double H = step(t.boundary->beyond_scalp(p)) + step(t.boundary->beyond_volume(p));
+      expect += t.sample_weights[k] * 3.0 * H * H;
+      beyond += t.boundary->beyond_volume(p) > h;
+    }
+    CHECK(beyond >= 2);  // the fixture puts samples well beyond the volume
+    CHECK(with_outside - base == doctest::Approx(expect).epsilon(1e-9));
+  }
+}
+
 TEST_CASE("F4 jets match central finite differences of the double residuals") {
   const DensityGrid cdm = cdm_grid(grid()), bom = bom_grid(grid());
   for (GuideDensityModel model : {GuideDensityModel::continuous, GuideDensityModel::binary}) {
@@ -177,6 +247,7 @@ TEST_CASE("F4 jets match central finite differences of the double residuals") {
     t.density = model == GuideDensityModel::continuous ? &cdm : &bom;
     t.density_term.model = model;
     t.density_term.surcharge_width = 0.5;  // a wide ramp: more samples on it
+    t.density_term.outside = 2.0;          // and the outside residual, for the samples beyond the volume
     const std::size_t first = t.sample_nodes.size() * (6 * t.neighbours.size() + 2);
     std::vector<double> jacobian;
     const std::vector<double> r = guide_residuals(t, kEta, &jacobian);
