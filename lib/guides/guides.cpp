@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <stdexcept>
 
@@ -109,6 +110,20 @@ GuideTargets make_targets(const RootSet& bases, int b, const PreGuides& preguide
   return t;
 }
 
+// A solved guide's shape: traced piece by piece for a heavy rod (one integration from m(0) would
+// diverge), else one integration from (f_L, m(0)).
+FibreShape solved_shape(const GuideTargets& t, const GuideSolve& s) {
+  if (s.heavy) return fibre_shape(t.model, t.root, t.length, t.rod, s.solution);
+  return fibre_shape(t.model, t.root, t.length, t.rod, Vec3(s.eta[0], s.eta[1], s.eta[2]), Vec3(s.eta[3], s.eta[4], s.eta[5]));
+}
+
+// How far (cm) a shape's worst node lies beyond the scalp or the volume (≤ 0: none does).
+double worst_excursion(const FibreShape& shape, const Boundary& boundary) {
+  double worst = -std::numeric_limits<double>::infinity();
+  for (const Vec3& p : shape.nodes) worst = std::max({worst, boundary.beyond_scalp(p), boundary.beyond_volume(p)});
+  return worst;
+}
+
 // `seed_start`: the loads to start from (world axes, dimensionless); null = as options.warm_start
 // says (the followed pre-guides' loads, weighted, or straight).
 Guide solve_guide(const RootSet& bases, int b, const PreGuides& preguides, const Boundary& boundary, const GuideOptions& o,
@@ -129,14 +144,29 @@ Guide solve_guide(const RootSet& bases, int b, const PreGuides& preguides, const
     std::copy(seed_start, seed_start + 6, start);
   else if (o.warm_start)
     add_weighted_loads(preguides.items, g.neighbours, g.neighbour_weights, start);
-  const GuideSolve solve = optimise_guide(targets, start, o.max_iterations, o.tolerance);
+  GuideSolve solve = optimise_guide(targets, start, o.max_iterations, o.tolerance);
+  g.shape = solved_shape(targets, solve);
+  // Levenberg–Marquardt can stop in a local minimum that runs through the head or out of the
+  // volume well past the boundary ramp: then the other start (straight ↔ the neighbours' loads)
+  // is tried too, and the lower cost kept.
+  if (worst_excursion(g.shape, boundary) > o.boundary_width) {
+    double other[6] = {0, 0, 0, 0, 0, 0};
+    if (std::all_of(start, start + 6, [](double v) { return v == 0.0; }))
+      add_weighted_loads(preguides.items, g.neighbours, g.neighbour_weights, other);
+    GuideSolve retry = optimise_guide(targets, other, o.max_iterations, o.tolerance);
+    const int iterations = solve.iterations + retry.iterations, evaluations = solve.evaluations + retry.evaluations;
+    if (retry.final_cost < solve.final_cost) {
+      solve = std::move(retry);
+      g.shape = solved_shape(targets, solve);
+    }
+    solve.iterations = iterations;
+    solve.evaluations = evaluations;
+  }
   g.force = Vec3(solve.eta[0], solve.eta[1], solve.eta[2]);
   g.root_moment = Vec3(solve.eta[3], solve.eta[4], solve.eta[5]);
-  if (solve.heavy) {  // traced piece by piece: one integration from m(0) would diverge
-    g.shape = fibre_shape(targets.model, g.root, g.length, o.rod, solve.solution);
+  if (solve.heavy) {
     g.terminal_torque = solve.solution.terminal_torque;
   } else {
-    g.shape = fibre_shape(targets.model, g.root, g.length, o.rod, g.force, g.root_moment);
     Vec3 m1;
     integrate_rod<double>(targets.model, o.rod.integrator, o.rod.segments, solve.eta, solve.eta + 3, m1.data(),
                           RodTrace<double>{});

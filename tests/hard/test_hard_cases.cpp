@@ -167,6 +167,10 @@ TEST_CASE("hard: Ceres stopped after one iteration: every guide flagged, all fin
   const PipelineResult r = run(kHair + "[guides]\nmax_iterations = 1\n");
   check_all_finite(r);
   CHECK(figure<std::int64_t>(r, "guides", "failures") == figure<std::int64_t>(r, "guides", "guides"));
-  CHECK(figure<std::int64_t>(r, "guides", "max_iterations") == 1);
+  // One iteration per solve: the first, and the retry from the other start for a guide whose
+  // first solve leaves the acceptable region (guides.cpp); iterations count both.
+  const auto max_iterations = figure<std::int64_t>(r, "guides", "max_iterations");
+  CHECK(max_iterations >= 1);
+  CHECK(max_iterations <= 2);
   for (const Guide& g : r.values.guides->items) CHECK_FALSE(g.converged);
 }
