@@ -11,6 +11,7 @@
 
 #include "core/error.h"
 #include "io/atomic_file.h"
+#include "io/png_chunks.h"
 
 namespace hairfit {
 
@@ -21,11 +22,12 @@ GreyMap load_grey_map(const std::filesystem::path& path) {
   if (!fs::exists(path, ec)) throw InputError(file, "no such file; check the path (relative paths start at the scene file's folder)");
   if (fs::is_directory(path, ec)) throw InputError(file, "is a folder, not a PNG image");
   std::ifstream in(path, std::ios::binary);
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string read((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (!in && !in.eof()) throw InputError(file, "cannot be read (permissions?)");
   static const char signature[] = "\x89PNG\r\n\x1a\n";
-  if (bytes.size() < 8 || bytes.compare(0, 8, signature, 8) != 0)
+  if (read.size() < 8 || read.compare(0, 8, signature, 8) != 0)
     throw InputError(file, "is not a PNG file; maps must be grey-value PNG images (8 or 16 bit)");
+  const std::string bytes = without_empty_idat_chunks(read);
 
   // stb_image calls a 0-pixel header an "unknown image type"; say what it is.
   auto header_number = [&](std::size_t at) {

@@ -155,6 +155,12 @@ TEST_CASE("accepted: 1×1, 16-bit and grey RGB maps") {
   REQUIRE(rgb.values.size() == 2);
   CHECK(rgb.values[0] == static_cast<float>(64 / 255.0));
   CHECK(rgb.values[1] == static_cast<float>(192 / 255.0));
+  // A zero-length IDAT chunk before the data is valid PNG (stb_image mishandled it: fuzzing found it).
+  const GreyMap padded = load_grey_map(corpus("data/empty_idat.png"));
+  REQUIRE(padded.values.size() == 2);
+  CHECK(padded.bits == 8);
+  CHECK(padded.values[0] == static_cast<float>(64 / 255.0));
+  CHECK(padded.values[1] == static_cast<float>(192 / 255.0));
 }
 
 TEST_CASE("accepted: a scalp whose triangles all face inward gets the same chart and outward normals") {
