@@ -75,7 +75,7 @@ Image load_png_image(const std::filesystem::path& path) {
   int width = 0, height = 0, channels = 0;
   stbi_uc* data = stbi_load_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()), static_cast<int>(bytes.size()),
                                         &width, &height, &channels, 4);
-  if (!data) throw InputError(file, std::string("cannot be read as a PNG image (") + stbi_failure_reason() + ")");
+  if (!data) throw InputError(file, "cannot be read as a PNG image (" + stb_failure_text(stbi_failure_reason()) + ")");
   Image image;
   image.width = width;
   image.height = height;

@@ -41,7 +41,7 @@ GreyMap load_grey_map(const std::filesystem::path& path) {
   const int size = static_cast<int>(bytes.size());
   int width = 0, height = 0, channels = 0;
   if (!stbi_info_from_memory(data, size, &width, &height, &channels))
-    throw InputError(file, std::string("is a corrupt PNG (") + stbi_failure_reason() + "); re-export it as a grey PNG");
+    throw InputError(file, "is a corrupt PNG (" + stb_failure_text(stbi_failure_reason()) + "); re-export it as a grey PNG");
   if (width <= 0 || height <= 0) throw InputError(file, "has no pixels; maps need at least 1×1 pixel");
   // The header alone decides the allocation, so a few corrupt bytes must not ask for terabytes.
   constexpr int kMaxSide = 16384;
@@ -59,7 +59,8 @@ GreyMap load_grey_map(const std::filesystem::path& path) {
   map.values.resize(pixels);
   // Decode as stored; channel equality is checked before anything is averaged away.
   auto convert = [&](auto* decoded, double scale) {
-    if (!decoded) throw InputError(file, std::string("is a corrupt PNG (") + stbi_failure_reason() + ")");
+    if (!decoded)
+      throw InputError(file, "is a corrupt PNG (" + stb_failure_text(stbi_failure_reason()) + "); re-export it as a grey PNG");
     for (std::size_t i = 0; i < pixels; ++i) {
       const auto* px = decoded + i * channels;
       if (channels >= 3 && (px[0] != px[1] || px[1] != px[2])) {

@@ -94,6 +94,9 @@ TEST_CASE("every corpus scene: run exits 2, names the file, the item and the fix
       {"map_zero_width", "data/zero_width.png", ": error: has no pixels (its header says 0×1); maps need at least 1×1 pixel"},
       {"map_colour", "data/colour.png",
        ": error: is a colour image (pixel 1,0 is not grey); maps must be grey-value images: convert it to greyscale"},
+      // found by fuzzing: a zero-length IDAT cut off in its CRC at the end of the file
+      {"map_empty_idat_cut", "data/fuzz_empty_idat_cut.png",
+       ": error: is a corrupt PNG (its chunks are cut off or malformed); re-export it as a grey PNG"},
   };
   const fs::path out = fs::temp_directory_path() / ("hairfit-corpus-" + std::to_string(::getpid()));
   fs::remove_all(out);
