@@ -1,7 +1,7 @@
 // Hard numerical cases (issue 12): scenes at the edge of what the method can do. Each runs the
 // whole pipeline on a tiny scene (8 guides, a few hundred fibres) and checks that every value is
 // finite and that the trouble shows in the report's figures (failures, flagged pre-guides, the
-// inside fractions) instead of in NaN, a crash or a hang.
+// inside fractions, the guides' weight and length flags) instead of in NaN, a crash or a hang.
 #include <doctest/doctest.h>
 
 #include <algorithm>
