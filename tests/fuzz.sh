@@ -48,6 +48,6 @@ for t in $targets; do
     status=1
     echo "fuzz_$t FOUND A CRASH: see $build/fuzz-$t.log and $build/fuzz-artifacts/"
   fi
-  grep -E '^stat::number_of_executed_runs|^#[0-9]+ *DONE' "$build/fuzz-$t.log" | tail -2
+  grep -E '^stat::number_of_executed_units|^#[0-9]+[[:space:]]+DONE' "$build/fuzz-$t.log" | tail -2
 done
 exit $status

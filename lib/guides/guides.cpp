@@ -299,12 +299,19 @@ DensityGuides make_guides_with_density(const RootSet& bases, const PreGuides& pr
   return out;
 }
 
-GuideFigures guide_figures(const Guides& guides, const PreGuides& preguides, const Boundary& boundary) {
+GuideFigures guide_figures(const Guides& guides, const PreGuides& preguides, const Boundary& boundary,
+                           const GuideOptions& options, double voxel) {
   GuideFigures f;
   f.guides = guides.size();
   long long nodes = 0, inside = 0, in_head = 0, out_volume = 0;
   double mismatch = 0.0, mismatch_weight = 0.0;
+  const double segments = options.rod.segments;
   for (const Guide& g : guides.items) {
+    const Rod rod = hair_rod(g.length, options.material);
+    const double weight = rod.force_per_length.norm() * std::pow(rod.length, 3) / rod.stiffness[0];
+    f.max_weight = std::max(f.max_weight, weight);
+    f.unresolved_weight += weight > segments * segments;
+    f.shorter_than_voxel += g.length < voxel;
     f.failures += !g.converged;
     f.mean_iterations += g.iterations;
     f.max_iterations = std::max(f.max_iterations, g.iterations);

@@ -101,8 +101,16 @@ struct GuideFigures {
   double inside_head_fraction = 0.0;  // share behind the scalp
   double outside_volume_fraction = 0.0;
   double mean_direction_mismatch = 0.0;  // mean 1 − cos φ to the followed pre-guides
+  // Rods at the edge of what the discretisation resolves: the dimensionless weight w = ρA|g|L³/EI
+  // (0 without gravity) and the guides whose bending layer under their weight, L/√w, is shorter
+  // than one rod segment (w > segments²): finite, but coarse where they leave the root.
+  double max_weight = 0.0;
+  int unresolved_weight = 0;
+  int shorter_than_voxel = 0;  // shorter than one voxel of the fields, which cannot shape them
 };
-GuideFigures guide_figures(const Guides& guides, const PreGuides& preguides, const Boundary& boundary);
+// `voxel` is the distance fields' voxel edge (cm).
+GuideFigures guide_figures(const Guides& guides, const PreGuides& preguides, const Boundary& boundary,
+                           const GuideOptions& options, double voxel);
 
 Digest digest(const Guides& guides);
 

@@ -4,10 +4,13 @@
 #include <stb_image_write.h>
 
 #include <algorithm>
+#include <fstream>
+#include <iterator>
 #include <stdexcept>
 
 #include "core/error.h"
 #include "io/atomic_file.h"
+#include "io/png_chunks.h"
 
 namespace hairfit {
 
@@ -65,9 +68,14 @@ void write_png(const std::filesystem::path& path, const Image& image) {
 
 Image load_png_image(const std::filesystem::path& path) {
   const std::string file = path.string();
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(file, "cannot be opened; check the path");
+  const std::string bytes =
+      without_empty_idat_chunks(std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()));
   int width = 0, height = 0, channels = 0;
-  stbi_uc* data = stbi_load(file.c_str(), &width, &height, &channels, 4);
-  if (!data) throw InputError(file, std::string("cannot be read as a PNG image (") + stbi_failure_reason() + ")");
+  stbi_uc* data = stbi_load_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()), static_cast<int>(bytes.size()),
+                                        &width, &height, &channels, 4);
+  if (!data) throw InputError(file, "cannot be read as a PNG image (" + stb_failure_text(stbi_failure_reason()) + ")");
   Image image;
   image.width = width;
   image.height = height;

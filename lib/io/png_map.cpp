@@ -11,6 +11,7 @@
 
 #include "core/error.h"
 #include "io/atomic_file.h"
+#include "io/png_chunks.h"
 
 namespace hairfit {
 
@@ -21,11 +22,12 @@ GreyMap load_grey_map(const std::filesystem::path& path) {
   if (!fs::exists(path, ec)) throw InputError(file, "no such file; check the path (relative paths start at the scene file's folder)");
   if (fs::is_directory(path, ec)) throw InputError(file, "is a folder, not a PNG image");
   std::ifstream in(path, std::ios::binary);
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string read((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (!in && !in.eof()) throw InputError(file, "cannot be read (permissions?)");
   static const char signature[] = "\x89PNG\r\n\x1a\n";
-  if (bytes.size() < 8 || bytes.compare(0, 8, signature, 8) != 0)
+  if (read.size() < 8 || read.compare(0, 8, signature, 8) != 0)
     throw InputError(file, "is not a PNG file; maps must be grey-value PNG images (8 or 16 bit)");
+  const std::string bytes = without_empty_idat_chunks(read);
 
   // stb_image calls a 0-pixel header an "unknown image type"; say what it is.
   auto header_number = [&](std::size_t at) {
@@ -39,7 +41,7 @@ GreyMap load_grey_map(const std::filesystem::path& path) {
   const int size = static_cast<int>(bytes.size());
   int width = 0, height = 0, channels = 0;
   if (!stbi_info_from_memory(data, size, &width, &height, &channels))
-    throw InputError(file, std::string("is a corrupt PNG (") + stbi_failure_reason() + "); re-export it as a grey PNG");
+    throw InputError(file, "is a corrupt PNG (" + stb_failure_text(stbi_failure_reason()) + "); re-export it as a grey PNG");
   if (width <= 0 || height <= 0) throw InputError(file, "has no pixels; maps need at least 1×1 pixel");
   // The header alone decides the allocation, so a few corrupt bytes must not ask for terabytes.
   constexpr int kMaxSide = 16384;
@@ -57,7 +59,8 @@ GreyMap load_grey_map(const std::filesystem::path& path) {
   map.values.resize(pixels);
   // Decode as stored; channel equality is checked before anything is averaged away.
   auto convert = [&](auto* decoded, double scale) {
-    if (!decoded) throw InputError(file, std::string("is a corrupt PNG (") + stbi_failure_reason() + ")");
+    if (!decoded)
+      throw InputError(file, "is a corrupt PNG (" + stb_failure_text(stbi_failure_reason()) + "); re-export it as a grey PNG");
     for (std::size_t i = 0; i < pixels; ++i) {
       const auto* px = decoded + i * channels;
       if (channels >= 3 && (px[0] != px[1] || px[1] != px[2])) {

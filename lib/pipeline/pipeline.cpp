@@ -380,7 +380,7 @@ class Runner {
     }
     stage.digest = density_declared(scene_) ? Digest().add(digest(*v.guides).hex()).add(density_digest.hex()).hex()
                                             : digest(*v.guides).hex();
-    const GuideFigures f = guide_figures(*v.guides, *v.preguides, boundary());
+    const GuideFigures f = guide_figures(*v.guides, *v.preguides, boundary(), o, scene_.fields.voxel);
     stage.add("guides", static_cast<std::int64_t>(f.guides));
     stage.add("failures", static_cast<std::int64_t>(f.failures));
     stage.add("mean_iterations", f.mean_iterations);
@@ -390,6 +390,9 @@ class Runner {
     stage.add("inside_head_fraction", f.inside_head_fraction);
     stage.add("outside_volume_fraction", f.outside_volume_fraction);
     stage.add("mean_direction_mismatch", f.mean_direction_mismatch);
+    stage.add("max_weight", f.max_weight);
+    stage.add("unresolved_weight", static_cast<std::int64_t>(f.unresolved_weight));
+    stage.add("shorter_than_voxel", static_cast<std::int64_t>(f.shorter_than_voxel));
     stage.add("start", scene_.guides.start);
   }
 

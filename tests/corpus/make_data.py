@@ -43,10 +43,11 @@ def png_chunk(kind, payload):
     return struct.pack(">I", len(payload)) + kind + payload + struct.pack(">I", zlib.crc32(kind + payload))
 
 
-def png(width, height, depth, colour_type, rows):
+def png(width, height, depth, colour_type, rows, empty_idat_first=False):
     """rows: list of bytes (one scanline each, without the filter byte)."""
     raw = b"".join(b"\0" + r for r in rows)
     return (b"\x89PNG\r\n\x1a\n" + png_chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, depth, colour_type, 0, 0, 0))
+            + (png_chunk(b"IDAT", b"") if empty_idat_first else b"")
             + png_chunk(b"IDAT", zlib.compress(raw)) + png_chunk(b"IEND", b""))
 
 
@@ -81,6 +82,9 @@ def main():
     write("colour.png", png(2, 2, 8, 2, [b"\x40\x40\x40\xff\x00\x00", b"\x80\x80\x80\xc0\xc0\xc0"]))
     # RGB whose every pixel is grey: accepted as a grey map.
     write("grey_rgb.png", png(2, 1, 8, 2, [b"\x40\x40\x40\xc0\xc0\xc0"]))
+    # A zero-length IDAT before the data (valid PNG, found by the PNG fuzz target: stb_image's
+    # memcpy into a null buffer); loaded as the same pixels as without it.
+    write("empty_idat.png", png(2, 1, 8, 0, [b"\x40\xc0"], empty_idat_first=True))
 
 
 if __name__ == "__main__":

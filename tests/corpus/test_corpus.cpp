@@ -94,6 +94,9 @@ TEST_CASE("every corpus scene: run exits 2, names the file, the item and the fix
       {"map_zero_width", "data/zero_width.png", ": error: has no pixels (its header says 0×1); maps need at least 1×1 pixel"},
       {"map_colour", "data/colour.png",
        ": error: is a colour image (pixel 1,0 is not grey); maps must be grey-value images: convert it to greyscale"},
+      // found by fuzzing: a zero-length IDAT cut off in its CRC at the end of the file
+      {"map_empty_idat_cut", "data/fuzz_empty_idat_cut.png",
+       ": error: is a corrupt PNG (its chunks are cut off or malformed); re-export it as a grey PNG"},
   };
   const fs::path out = fs::temp_directory_path() / ("hairfit-corpus-" + std::to_string(::getpid()));
   fs::remove_all(out);
@@ -155,6 +158,12 @@ TEST_CASE("accepted: 1×1, 16-bit and grey RGB maps") {
   REQUIRE(rgb.values.size() == 2);
   CHECK(rgb.values[0] == static_cast<float>(64 / 255.0));
   CHECK(rgb.values[1] == static_cast<float>(192 / 255.0));
+  // A zero-length IDAT chunk before the data is valid PNG (stb_image mishandled it: fuzzing found it).
+  const GreyMap padded = load_grey_map(corpus("data/empty_idat.png"));
+  REQUIRE(padded.values.size() == 2);
+  CHECK(padded.bits == 8);
+  CHECK(padded.values[0] == static_cast<float>(64 / 255.0));
+  CHECK(padded.values[1] == static_cast<float>(192 / 255.0));
 }
 
 TEST_CASE("accepted: a scalp whose triangles all face inward gets the same chart and outward normals") {

@@ -1,9 +1,10 @@
 // Hard numerical cases (issue 12): scenes at the edge of what the method can do. Each runs the
 // whole pipeline on a tiny scene (8 guides, a few hundred fibres) and checks that every value is
 // finite and that the trouble shows in the report's figures (failures, flagged pre-guides, the
-// inside fractions) instead of in NaN, a crash or a hang.
+// inside fractions, the guides' weight and length flags) instead of in NaN, a crash or a hang.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <string>
@@ -131,18 +132,42 @@ TEST_CASE("hard: a saturating density grid (BOM, 4 cm cells, threshold 0)") {
   for (double x : r.values.guide_density->values()) CHECK(std::isfinite(x));
 }
 
+// ρA|g|L³/EI computed here from the scene, independently of the rod code: EI = E·A²/(4π).
+double expected_max_weight(const PipelineResult& r, const Scene& scene) {
+  double longest = 0.0;
+  for (const Guide& g : r.values.guides->items) longest = std::max(longest, g.length);
+  const double a = scene.hair.cross_section;
+  return scene.hair.mass_density * a * scene.rod.gravity * std::pow(longest, 3) /
+         (scene.hair.youngs_modulus * a * a / (4.0 * M_PI));
+}
+
 TEST_CASE("hard: huge stiffness under gravity (E = 1e15 dyn/cm², the largest allowed)") {
-  const PipelineResult r = run("[hair]\ndensity = 0.5\nlength = 12\nyoungs_modulus = 1e15\n[effects]\ngravity = true\n");
+  const std::string extra = "[hair]\ndensity = 0.5\nlength = 12\nyoungs_modulus = 1e15\n[effects]\ngravity = true\n";
+  const PipelineResult r = run(extra);
   check_all_finite(r);
+  for (const Guide& g : r.values.guides->items) {
+    CHECK(std::isfinite(g.force_scale));  // EI/L²: the cgs loads stay finite too
+    CHECK(finite(g.force * g.force_scale));
+  }
+  // The report shows that gravity no longer matters: w = ρA|g|L³/EI ≈ 2e-3 (real hair: ≈ 48).
+  const double w = figure<double>(r, "guides", "max_weight");
+  CHECK(w == doctest::Approx(expected_max_weight(r, scene_with(extra, 0.5))).epsilon(1e-12));
+  CHECK(w < 1e-2);
+  CHECK(figure<std::int64_t>(r, "guides", "unresolved_weight") == 0);
 }
 
 TEST_CASE("hard: tiny stiffness under gravity: finite up to the weight the integrator follows, refused beyond") {
   // E = 1e3 dyn/cm²: dimensionless weight ρAgL³/EI ≈ 1.9e9 for 12 cm (real hair: ≈ 48). The
   // rod's boundary layer (L/√w ≈ 3e-4 cm) is far below one of its 16 segments, so the shapes are
   // finite but not accurate; the fibres leave the volume, which the strands' inside fraction shows.
-  const PipelineResult r = run("[hair]\ndensity = 0.5\nlength = 12\nyoungs_modulus = 1e3\n[effects]\ngravity = true\n");
+  const std::string extra = "[hair]\ndensity = 0.5\nlength = 12\nyoungs_modulus = 1e3\n[effects]\ngravity = true\n";
+  const PipelineResult r = run(extra);
   check_all_finite(r);
   CHECK(figure<double>(r, "strands", "inside_fraction") < 0.9);
+  // Flagged: every guide's bending layer L/√w is shorter than one of its 16 segments (w > 16²).
+  CHECK(figure<double>(r, "guides", "max_weight") ==
+        doctest::Approx(expected_max_weight(r, scene_with(extra, 0.5))).epsilon(1e-12));
+  CHECK(figure<std::int64_t>(r, "guides", "unresolved_weight") == figure<std::int64_t>(r, "guides", "guides"));
   // E = 1e-6: weight ≈ 1.9e18; the integrator overflowed here (it crashed the run before the check).
   const Scene limp = scene_with("[hair]\ndensity = 0.5\nlength = 12\nyoungs_modulus = 1e-6\n[effects]\ngravity = true\n", 0.5);
   try {
@@ -161,6 +186,8 @@ TEST_CASE("hard: rods of near-zero length (1e-6 cm)") {
   for (const Vec3& p : r.values.strands->fibres.points) CHECK(std::isfinite(p.norm()));
   for (const Guide& g : r.values.guides->items)
     CHECK((g.shape.nodes.back() - g.root).norm() <= 1e-6 * (1 + 1e-9));  // never longer than the rod
+  // Flagged: every guide is shorter than a voxel (0.5 cm), so the fields cannot shape it.
+  CHECK(figure<std::int64_t>(r, "guides", "shorter_than_voxel") == figure<std::int64_t>(r, "guides", "guides"));
 }
 
 TEST_CASE("hard: Ceres stopped after one iteration: every guide flagged, all finite") {
@@ -173,4 +200,8 @@ TEST_CASE("hard: Ceres stopped after one iteration: every guide flagged, all fin
   CHECK(max_iterations >= 1);
   CHECK(max_iterations <= 2);
   for (const Guide& g : r.values.guides->items) CHECK_FALSE(g.converged);
+  // 12 cm hair without gravity in 0.5 cm voxels raises none of the other flags.
+  CHECK(figure<double>(r, "guides", "max_weight") == 0.0);
+  CHECK(figure<std::int64_t>(r, "guides", "unresolved_weight") == 0);
+  CHECK(figure<std::int64_t>(r, "guides", "shorter_than_voxel") == 0);
 }

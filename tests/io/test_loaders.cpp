@@ -8,6 +8,8 @@
 #include "core/error.h"
 #include "io/atomic_file.h"
 #include "io/obj_mesh.h"
+#include "io/png_chunks.h"
+#include "io/png_image.h"
 #include "io/png_map.h"
 
 using namespace hairfit;
@@ -121,6 +123,31 @@ TEST_CASE("PNG errors: missing, not a PNG, corrupt") {
   CHECK(error_of([&] { load_grey_map(write("text.png", "hello")); }).find("is not a PNG file") != std::string::npos);
   CHECK(error_of([&] { load_grey_map(write("bad.png", std::string("\x89PNG\r\n\x1a\n", 8) + "garbage")); })
             .find("is a corrupt PNG") != std::string::npos);
+}
+
+TEST_CASE("PNG chunks: zero-length IDAT chunks are dropped (stb_image memcpys into null for a leading one), nothing else") {
+  Image image = make_image(3, 2, 10, 20, 30);
+  image.rgba[4] = 200;
+  const std::vector<std::uint8_t> encoded = encode_png(image);
+  const std::string png(encoded.begin(), encoded.end());
+  const std::string empty_idat("\0\0\0\0IDAT\x35\xaf\x06\x1e", 12);  // length 0, type, CRC-32 of "IDAT"
+  constexpr std::size_t kAfterHeader = 8 + 12 + 13;                         // signature, IHDR chunk
+  REQUIRE(png.compare(kAfterHeader + 4, 4, "IDAT") == 0);
+  std::string padded = png;
+  padded.insert(kAfterHeader, empty_idat);                 // before the data: the case stb mishandles
+  padded.insert(padded.size() - 12, empty_idat);           // and one before IEND
+  CHECK(without_empty_idat_chunks(padded) == png);
+  CHECK(without_empty_idat_chunks(png) == png);
+  // A length running past the end stops the pass; the rest is kept for stb to call corrupt.
+  const std::string truncated = png.substr(0, kAfterHeader) + empty_idat + std::string("\0\0\1\0IDATabc", 11);
+  CHECK(without_empty_idat_chunks(truncated) == png.substr(0, kAfterHeader) + std::string("\0\0\1\0IDATabc", 11));
+  CHECK(without_empty_idat_chunks("\x89PNG") == "\x89PNG");
+  // A zero-length IDAT at the end whose CRC is cut off (the fuzzer's find) goes too.
+  CHECK(without_empty_idat_chunks(png.substr(0, kAfterHeader) + empty_idat.substr(0, 11)) == png.substr(0, kAfterHeader));
+  // Both loaders decode the padded file to the same pixels.
+  const Image back = load_png_image(write("padded.png", padded));
+  CHECK(back.width == 3);
+  CHECK(back.rgba == image.rgba);
 }
 
 TEST_CASE("atomic writes leave the old file intact when writing fails") {
