@@ -145,7 +145,7 @@ TEST_CASE("accepted: 1×1, 16-bit and grey RGB maps") {
   const GreyMap one = load_grey_map(corpus("data/one_pixel.png"));
   REQUIRE(one.values.size() == 1);
   CHECK(one.values[0] == static_cast<float>(128 / 255.0));
-  for (const Vec2 uv : {Vec2(0, 0), Vec2(0.5, 0.5), Vec2(1, 1), Vec2(-3, 7)}) CHECK(one.sample(uv) == one.values[0]);
+  for (const Vec2& uv : {Vec2(0, 0), Vec2(0.5, 0.5), Vec2(1, 1), Vec2(-3, 7)}) CHECK(one.sample(uv) == one.values[0]);
   // 16 bit: each value is its 16-bit number / 65535, not rounded to 8 bits.
   const GreyMap deep = load_grey_map(corpus("data/deep.png"));
   CHECK(deep.bits == 16);
