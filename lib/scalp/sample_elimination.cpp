@@ -23,46 +23,81 @@ std::vector<int> eliminate_samples(const std::vector<Vec3>& points, const std::v
   const double smallest = *std::min_element(radius.begin(), radius.end());
   const PointGrid grid(points, 3.0 * smallest);
   const double limit = 0.65 * (1.0 - std::pow(static_cast<double>(target) / m, 1.5));
-  auto pair_weight = [&](int i, int j, double d2) {
-    const double r = std::min(radius[i], radius[j]);
+  // Weight of a pair at squared distance d2 whose smaller radius is r (symmetric in the pair, so
+  // stored once per list entry and subtracted as is when a neighbour goes).
+  auto pair_weight = [limit](double r, double d2) {
     const double d = std::max(std::sqrt(d2), limit * r);
     const double x = 1.0 - d / (2.0 * r);
     const double x2 = x * x, x4 = x2 * x2;
     return x4 * x4;
   };
-  auto interacts = [&](int i, int j, double d2) {
-    const double r = std::min(radius[i], radius[j]);
-    return j != i && d2 < 4.0 * r * r;
-  };
 
-  // Neighbour lists (CSR), built cell by cell so each neighbouring cell is looked up once per
-  // cell; a point's list is in the grid's fixed order, so weights are thread-independent.
+  // Neighbour lists (CSR) with each pair's weight, built in one pass over blocks of cells: each
+  // neighbouring cell is looked up once per cell, and points and radii are read in the grid's
+  // order, so the scan walks memory contiguously. A point's list is in the grid's fixed order
+  // (cell key, then index), so the weight sums do not depend on the thread count.
   const std::vector<int>& order = grid.order();
-  auto scan_cell = [&](int cell, auto&& emit) {
-    double reach_radius = 0.0;
-    for (int k = grid.cell_begin(cell); k < grid.cell_begin(cell + 1); ++k) reach_radius = std::max(reach_radius, radius[order[k]]);
-    const auto ranges = grid.neighbourhood(cell, static_cast<int>(std::ceil(2.0 * reach_radius / grid.cell())));
-    for (int k = grid.cell_begin(cell); k < grid.cell_begin(cell + 1); ++k) {
-      const int i = order[k];
-      for (const auto& [begin, end] : ranges)
-        for (int q = begin; q < end; ++q) {
-          const int j = order[q];
-          const double d2 = (points[j] - points[i]).squaredNorm();
-          if (interacts(i, j, d2)) emit(i, j, d2);
-        }
-    }
+  const std::vector<Vec3>& sorted = grid.sorted();
+  std::vector<double> sorted_radius(m);
+  for (int k = 0; k < m; ++k) sorted_radius[k] = radius[order[k]];
+  struct Block {
+    std::vector<int> count;       // neighbours of each point of the block's cells, in grid order
+    std::vector<int> neighbour;   // their indices, point after point
+    std::vector<double> weight;   // pair weights, alongside
   };
+  constexpr int kCellsPerBlock = 64;
+  const int cells = grid.cell_count();
+  std::vector<Block> blocks((cells + kCellsPerBlock - 1) / kCellsPerBlock);
+  std::vector<double> weight(m, 0.0);
+  parallel_for(static_cast<int>(blocks.size()), threads, [&](int b) {
+    Block& block = blocks[b];
+    const int first = b * kCellsPerBlock, last = std::min(cells, first + kCellsPerBlock);
+    block.count.reserve(grid.cell_begin(last) - grid.cell_begin(first));
+    for (int cell = first; cell < last; ++cell) {
+      double reach_radius = 0.0;
+      for (int k = grid.cell_begin(cell); k < grid.cell_begin(cell + 1); ++k) reach_radius = std::max(reach_radius, sorted_radius[k]);
+      const auto ranges = grid.neighbourhood(cell, static_cast<int>(std::ceil(2.0 * reach_radius / grid.cell())));
+      for (int k = grid.cell_begin(cell); k < grid.cell_begin(cell + 1); ++k) {
+        const int i = order[k];
+        const Vec3& p = sorted[k];
+        const double r_i = sorted_radius[k];
+        const std::size_t before = block.neighbour.size();
+        double sum = 0.0;
+        for (const auto& [begin, end] : ranges)
+          for (int q = begin; q < end; ++q) {
+            const double r = std::min(r_i, sorted_radius[q]);
+            const double d2 = (sorted[q] - p).squaredNorm();
+            if (q == k || !(d2 < 4.0 * r * r)) continue;
+            const double w = pair_weight(r, d2);
+            block.neighbour.push_back(order[q]);
+            block.weight.push_back(w);
+            sum += w;
+          }
+        weight[i] = sum;
+        block.count.push_back(static_cast<int>(block.neighbour.size() - before));
+      }
+    }
+  });
   std::vector<int> start(m + 1, 0);
-  parallel_for(grid.cell_count(), threads, [&](int cell) { scan_cell(cell, [&](int i, int, double) { ++start[i + 1]; }); });
+  {
+    int k = 0;  // grid position
+    for (const Block& block : blocks)
+      for (int c : block.count) start[order[k++] + 1] = c;
+  }
   for (int i = 0; i < m; ++i) start[i + 1] += start[i];
   std::vector<int> neighbours(start[m]);
-  std::vector<double> weight(m, 0.0);
-  std::vector<int> fill(start.begin(), start.end() - 1);
-  parallel_for(grid.cell_count(), threads, [&](int cell) {
-    scan_cell(cell, [&](int i, int j, double d2) {
-      neighbours[fill[i]++] = j;
-      weight[i] += pair_weight(i, j, d2);
-    });
+  std::vector<double> neighbour_weight(start[m]);
+  parallel_for(static_cast<int>(blocks.size()), threads, [&](int b) {
+    Block& block = blocks[b];
+    int k = grid.cell_begin(b * kCellsPerBlock);
+    std::size_t from = 0;
+    for (int c : block.count) {
+      const int i = order[k++];
+      std::copy_n(block.neighbour.begin() + from, c, neighbours.begin() + start[i]);
+      std::copy_n(block.weight.begin() + from, c, neighbour_weight.begin() + start[i]);
+      from += c;
+    }
+    block = Block();  // free early
   });
 
   // Greedy elimination of the most crowded candidate. Weights only decrease, so a lazy max-heap
@@ -88,7 +123,7 @@ std::vector<int> eliminate_samples(const std::vector<Vec3>& points, const std::v
     --remaining;
     for (int k = start[i]; k < start[i + 1]; ++k) {
       const int j = neighbours[k];
-      if (alive[j]) weight[j] -= pair_weight(i, j, (points[i] - points[j]).squaredNorm());
+      if (alive[j]) weight[j] -= neighbour_weight[k];
     }
   }
   kept.reserve(target);
