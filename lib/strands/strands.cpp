@@ -23,21 +23,39 @@ struct FibreLayout {
   double u1, u2;   // its place in the wisp's unit disk
 };
 
-// Points of a fibre that runs along the guide up to arc length `reach` (t_i = i/(n−1)).
-void sweep(const GuideTrack& track, const FibreLayout& f, const Vec3& root_tangent, double reach,
-           const StrandOptions& o, std::vector<Vec3>& out) {
-  const int n = static_cast<int>(out.size());
+// Where point i of a fibre sits relative to the guide: t_i = i/(n−1) along the reach, and its
+// offsets along the frame (d1, d2) and the root tangent. None of these depend on the reach, so
+// they are computed once per fibre rather than in every step of the length solve (the cos/sin of
+// the winding used to dominate it); the values are the same expressions as before, bit for bit.
+struct SweepPoint {
+  double t;        // i/(n−1)
+  double along_d1, along_d2, along_root_tangent;
+};
+
+std::vector<SweepPoint> sweep_points(const FibreLayout& f, const StrandOptions& o, int n) {
+  std::vector<SweepPoint> out(n);
   for (int i = 0; i < n; ++i) {
     const double t = static_cast<double>(i) / (n - 1);
-    Vec3 g, tangent, d1, d2;
-    track.at(reach * t, g, tangent, d1, d2);
     const double w = smoothstep(0.0, kSettle, t);
     const double radius = o.root_radius + (o.tip_radius - o.root_radius) * t;
     const double x = (1.0 - w) * f.a + w * f.u1 * radius;
     const double y = (1.0 - w) * f.b + w * f.u2 * radius;
     const double angle = 2.0 * M_PI * o.turns * t;
     const double ca = std::cos(angle), sa = std::sin(angle);
-    out[i] = g + (ca * x - sa * y) * d1 + (sa * x + ca * y) * d2 + (1.0 - w) * f.c * root_tangent;
+    out[i] = {t, ca * x - sa * y, sa * x + ca * y, (1.0 - w) * f.c};
+  }
+  return out;
+}
+
+// Points of a fibre that runs along the guide up to arc length `reach`.
+void sweep(const GuideTrack& track, const std::vector<SweepPoint>& layout, const Vec3& root_tangent, double reach,
+           std::vector<Vec3>& out) {
+  const int n = static_cast<int>(out.size());
+  for (int i = 0; i < n; ++i) {
+    const SweepPoint& q = layout[i];
+    Vec3 g, tangent, d1, d2;
+    track.at(reach * q.t, g, tangent, d1, d2);
+    out[i] = g + q.along_d1 * d1 + q.along_d2 * d2 + q.along_root_tangent * root_tangent;
   }
 }
 
@@ -60,10 +78,11 @@ std::vector<Vec3> fibre_along(const GuideTrack& track, const Vec3& pore, double 
     f.u2 = f.b / wisp_extent;
   }
   std::vector<Vec3> points(std::max(2, o.points));
+  const std::vector<SweepPoint> layout = sweep_points(f, o, static_cast<int>(points.size()));
   // The polyline's length grows with how far along the guide it reaches; find the reach that
   // gives exactly `length` by the Illinois variant of regula falsi on a bracket.
   auto excess = [&](double reach) {
-    sweep(track, f, t0, reach, o, points);
+    sweep(track, layout, t0, reach, points);
     if (out_of_head)
       for (std::size_t i = 1; i < points.size(); ++i) points[i] = (*out_of_head)(points[i]);
     return polyline_length(points) - length;
