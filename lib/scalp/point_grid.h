@@ -52,14 +52,21 @@ class PointGrid {
   // The points in that order (sorted()[k] = points[order()[k]]): scans over a cell read memory
   // contiguously instead of jumping through the index.
   const std::vector<Vec3>& sorted() const { return sorted_; }
-  // The [begin, end) ranges in order() of the occupied cells within `reach` cells of cell k.
-  std::vector<std::pair<int, int>> neighbourhood(int k, int reach) const;
+  // The occupied cells within `reach` cells of cell k, in the fixed order: their [begin, end)
+  // ranges in order() and their integer coordinates (the cell spans coords .. coords + 1 in the
+  // units of in_cells).
+  struct CellRange {
+    int begin, end;
+    Vec3i coords;
+  };
+  std::vector<CellRange> neighbourhood(int k, int reach) const;
+  // A position in cell units: the cell holding p is the floor of this.
+  Vec3 in_cells(const Vec3& p) const { return Vec3((p.x() - origin_.x()) / cell_, (p.y() - origin_.y()) / cell_, (p.z() - origin_.z()) / cell_); }
 
  private:
   Vec3i cell_of(const Vec3& p) const {
-    return Vec3i(static_cast<int>(std::floor((p.x() - origin_.x()) / cell_)),
-                 static_cast<int>(std::floor((p.y() - origin_.y()) / cell_)),
-                 static_cast<int>(std::floor((p.z() - origin_.z()) / cell_)));
+    const Vec3 u = in_cells(p);
+    return Vec3i(static_cast<int>(std::floor(u.x())), static_cast<int>(std::floor(u.y())), static_cast<int>(std::floor(u.z())));
   }
   static std::uint64_t key(const Vec3i& c) {
     const auto f = [](int v) { return static_cast<std::uint64_t>(v + (1 << 20)) & 0x1fffff; };

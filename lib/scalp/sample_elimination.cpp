@@ -9,6 +9,52 @@
 
 namespace hairfit {
 
+namespace {
+
+// A binary max-heap of (weight, index) entries under the order: larger weight first, then lower
+// index; the keys of the entries only ever decrease, so a changed top sifts down.
+class ElimHeap {
+ public:
+  explicit ElimHeap(const std::vector<double>& weight) : entries_(weight.size()) {
+    for (std::size_t i = 0; i < weight.size(); ++i) entries_[i] = {weight[i], static_cast<int>(i)};
+    for (std::size_t k = entries_.size() / 2; k-- > 0;) sift_down(k);
+  }
+  int top() const { return entries_.front().index; }
+  double top_weight() const { return entries_.front().weight; }
+  void refresh_top(double weight) {
+    entries_.front().weight = weight;
+    sift_down(0);
+  }
+  void pop() {
+    entries_.front() = entries_.back();
+    entries_.pop_back();
+    if (!entries_.empty()) sift_down(0);
+  }
+
+ private:
+  struct Entry {
+    double weight;
+    int index;
+  };
+  static bool before(const Entry& a, const Entry& b) { return a.weight > b.weight || (a.weight == b.weight && a.index < b.index); }
+  void sift_down(std::size_t k) {
+    const std::size_t n = entries_.size();
+    const Entry moving = entries_[k];
+    for (;;) {
+      std::size_t child = 2 * k + 1;
+      if (child >= n) break;
+      if (child + 1 < n && before(entries_[child + 1], entries_[child])) ++child;
+      if (!before(entries_[child], moving)) break;
+      entries_[k] = entries_[child];
+      k = child;
+    }
+    entries_[k] = moving;
+  }
+  std::vector<Entry> entries_;
+};
+
+}  // namespace
+
 std::vector<int> eliminate_samples(const std::vector<Vec3>& points, const std::vector<double>& radius, int target,
                                    int threads) {
   const int m = static_cast<int>(points.size());
@@ -62,9 +108,20 @@ std::vector<int> eliminate_samples(const std::vector<Vec3>& points, const std::v
         const Vec3& p = sorted[k];
         const double r_i = sorted_radius[k];
         const std::size_t before = block.neighbour.size();
+        // A neighbouring cell whose box lies farther than 2·r_i from p holds no partner (a pair
+        // interacts within 2·min(r_i, r_j)); skipping it saves most distance tests. The margin
+        // keeps the test conservative against round-off in the cell coordinates.
+        const Vec3 u = grid.in_cells(p);
+        const double reach_cells = 2.0 * r_i / grid.cell() * (1.0 + 1e-9) + 1e-9;
         double sum = 0.0;
-        for (const auto& [begin, end] : ranges)
-          for (int q = begin; q < end; ++q) {
+        for (const PointGrid::CellRange& range : ranges) {
+          double gap2 = 0.0;
+          for (int a = 0; a < 3; ++a) {
+            const double gap = std::max({0.0, range.coords[a] - u[a], u[a] - (range.coords[a] + 1)});
+            gap2 += gap * gap;
+          }
+          if (gap2 > reach_cells * reach_cells) continue;
+          for (int q = range.begin; q < range.end; ++q) {
             const double r = std::min(r_i, sorted_radius[q]);
             const double d2 = (sorted[q] - p).squaredNorm();
             if (q == k || !(d2 < 4.0 * r * r)) continue;
@@ -73,6 +130,7 @@ std::vector<int> eliminate_samples(const std::vector<Vec3>& points, const std::v
             block.weight.push_back(w);
             sum += w;
           }
+        }
         weight[i] = sum;
         block.count.push_back(static_cast<int>(block.neighbour.size() - before));
       }
@@ -101,24 +159,20 @@ std::vector<int> eliminate_samples(const std::vector<Vec3>& points, const std::v
   });
 
   // Greedy elimination of the most crowded candidate. Weights only decrease, so a lazy max-heap
-  // works: an entry whose weight is out of date is pushed back with its current weight when it
-  // reaches the top. Ties go to the lower index.
-  using Entry = std::pair<double, int>;
-  auto lower = [](const Entry& a, const Entry& b) { return a.first < b.first || (a.first == b.first && a.second > b.second); };
-  std::vector<Entry> heap(m);
-  for (int i = 0; i < m; ++i) heap[i] = {weight[i], i};
-  std::make_heap(heap.begin(), heap.end(), lower);
+  // works: an entry whose weight is out of date is refreshed with its current weight when it
+  // reaches the top. Ties go to the lower index. Entries are ordered by (weight, −index), a strict
+  // total order, so the top is always the same entry whatever the heap's layout, and so is the
+  // whole sequence of eliminations. A stale top is refreshed in place by one sift-down (not a pop
+  // and a push): every alive candidate keeps exactly one entry.
+  ElimHeap heap(weight);
   std::vector<char> alive(m, 1);
   for (int remaining = m; remaining > target;) {
-    std::pop_heap(heap.begin(), heap.end(), lower);
-    const auto [w, i] = heap.back();
-    heap.pop_back();
-    if (!alive[i]) continue;
-    if (w != weight[i]) {
-      heap.push_back({weight[i], i});
-      std::push_heap(heap.begin(), heap.end(), lower);
+    const int i = heap.top();
+    if (heap.top_weight() != weight[i]) {
+      heap.refresh_top(weight[i]);
       continue;
     }
+    heap.pop();
     alive[i] = 0;
     --remaining;
     for (int k = start[i]; k < start[i + 1]; ++k) {
