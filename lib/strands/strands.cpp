@@ -47,15 +47,24 @@ std::vector<SweepPoint> sweep_points(const FibreLayout& f, const StrandOptions& 
   return out;
 }
 
-// Points of a fibre that runs along the guide up to arc length `reach`.
-void sweep(const GuideTrack& track, const std::vector<SweepPoint>& layout, const Vec3& root_tangent, double reach,
+// The guide's position and frame at its root (arc length 0).
+struct RootFrame {
+  Vec3 position, tangent, d1, d2;
+};
+
+// Points of a fibre that runs along the guide up to arc length `reach`. Arc length 0 (the first
+// point, and every point of the solve's first, zero-reach sweep) takes the root frame found once
+// per fibre instead of asking the track again.
+void sweep(const GuideTrack& track, const std::vector<SweepPoint>& layout, const RootFrame& root, double reach,
            std::vector<Vec3>& out) {
   const int n = static_cast<int>(out.size());
+  std::size_t segment = 0;  // arc lengths reach·t_i only grow along the fibre
   for (int i = 0; i < n; ++i) {
     const SweepPoint& q = layout[i];
-    Vec3 g, tangent, d1, d2;
-    track.at(reach * q.t, g, tangent, d1, d2);
-    out[i] = g + q.along_d1 * d1 + q.along_d2 * d2 + q.along_root_tangent * root_tangent;
+    const double s = reach * q.t;
+    Vec3 g = root.position, tangent = root.tangent, d1 = root.d1, d2 = root.d2;
+    if (s != 0.0) track.at(s, g, tangent, d1, d2, segment);
+    out[i] = g + q.along_d1 * d1 + q.along_d2 * d2 + q.along_root_tangent * root.tangent;
   }
 }
 
@@ -69,10 +78,11 @@ double polyline_length(const std::vector<Vec3>& p) {
 // passed through it inside the length solve, so the moved fibre still has exactly its length.
 std::vector<Vec3> fibre_along(const GuideTrack& track, const Vec3& pore, double length, double wisp_extent,
                               const StrandOptions& o, const HeadExit* out_of_head = nullptr) {
-  Vec3 g0, t0, d1, d2;
-  track.at(0.0, g0, t0, d1, d2);
-  const Vec3 delta = pore - g0;
-  FibreLayout f{delta.dot(d1), delta.dot(d2), delta.dot(t0), 0.0, 0.0};
+  RootFrame root;
+  track.at(0.0, root.position, root.tangent, root.d1, root.d2);
+  const Vec3& t0 = root.tangent;
+  const Vec3 delta = pore - root.position;
+  FibreLayout f{delta.dot(root.d1), delta.dot(root.d2), delta.dot(t0), 0.0, 0.0};
   if (wisp_extent > 0.0) {
     f.u1 = f.a / wisp_extent;
     f.u2 = f.b / wisp_extent;
@@ -82,7 +92,7 @@ std::vector<Vec3> fibre_along(const GuideTrack& track, const Vec3& pore, double 
   // The polyline's length grows with how far along the guide it reaches; find the reach that
   // gives exactly `length` by the Illinois variant of regula falsi on a bracket.
   auto excess = [&](double reach) {
-    sweep(track, layout, t0, reach, points);
+    sweep(track, layout, root, reach, points);
     if (out_of_head)
       for (std::size_t i = 1; i < points.size(); ++i) points[i] = (*out_of_head)(points[i]);
     return polyline_length(points) - length;
@@ -145,12 +155,13 @@ Strands make_strands(const Curves& guides, const Pores& pores, const StrandOptio
     tracks.emplace_back(std::vector<Vec3>(guides.points.begin() + guides.offsets[g], guides.points.begin() + guides.offsets[g + 1]));
 
   // A wisp's extent is the largest in-plane distance of its pores from the guide root.
+  std::vector<RootFrame> roots(guide_count);
+  for (int g = 0; g < guide_count; ++g) tracks[g].at(0.0, roots[g].position, roots[g].tangent, roots[g].d1, roots[g].d2);
   std::vector<double> extent(guide_count, 0.0);
   for (std::size_t i = 0; i < pores.positions.size(); ++i) {
-    Vec3 g0, t0, d1, d2;
-    tracks[pores.guide[i]].at(0.0, g0, t0, d1, d2);
-    const Vec3 delta = pores.positions[i] - g0;
-    extent[pores.guide[i]] = std::max(extent[pores.guide[i]], std::hypot(delta.dot(d1), delta.dot(d2)));
+    const RootFrame& root = roots[pores.guide[i]];
+    const Vec3 delta = pores.positions[i] - root.position;
+    extent[pores.guide[i]] = std::max(extent[pores.guide[i]], std::hypot(delta.dot(root.d1), delta.dot(root.d2)));
   }
 
   const int count = static_cast<int>(pores.positions.size());
