@@ -1,10 +1,12 @@
 #include "pipeline/pipeline.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <optional>
 
+#include "core/parallel.h"
 #include "density/accumulator.h"
 #include "density/statistics.h"
 #include "guides/guide_outputs.h"
@@ -413,14 +415,20 @@ class Runner {
     v.strands = std::make_shared<const Strands>(std::move(s));
     const Curves& fibres = v.strands->fibres;
     stage.digest = Digest().add(fibres.points).hex();
-    long long inside = 0, in_head = 0, out_volume = 0;
+    // Two field lookups per point: counted per fibre on all threads, then summed (integers, so
+    // the totals do not depend on the thread count).
     const Boundary b = boundary();
-    for (const Vec3& p : fibres.points) {
-      const bool head = b.beyond_scalp(p) > 0.0, out = b.beyond_volume(p) > 0.0;
-      in_head += head;
-      out_volume += out;
-      inside += !head && !out;
-    }
+    std::vector<std::array<int, 3>> counts(fibres.count(), {0, 0, 0});  // inside, in head, outside volume
+    parallel_for(static_cast<int>(fibres.count()), options_.threads, [&](int c) {
+      for (std::size_t k = fibres.offsets[c]; k < fibres.offsets[c + 1]; ++k) {
+        const bool head = b.beyond_scalp(fibres.points[k]) > 0.0, out = b.beyond_volume(fibres.points[k]) > 0.0;
+        counts[c][0] += !head && !out;
+        counts[c][1] += head;
+        counts[c][2] += out;
+      }
+    });
+    long long inside = 0, in_head = 0, out_volume = 0;
+    for (const std::array<int, 3>& n : counts) inside += n[0], in_head += n[1], out_volume += n[2];
     const double points = std::max<double>(1.0, fibres.points.size());
     stage.add("fibres", static_cast<std::int64_t>(fibres.count()));
     stage.add("points", static_cast<std::int64_t>(fibres.points.size()));

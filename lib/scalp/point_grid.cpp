@@ -5,7 +5,7 @@
 
 namespace hairfit {
 
-PointGrid::PointGrid(const std::vector<Vec3>& points, double cell) : points_(points), cell_(cell) {
+PointGrid::PointGrid(const std::vector<Vec3>& points, double cell) : cell_(cell) {
   if (!(cell > 0) || !std::isfinite(cell)) throw std::invalid_argument("PointGrid: cell size must be positive");
   origin_ = Vec3::Zero();
   if (!points.empty()) {
@@ -14,15 +14,27 @@ PointGrid::PointGrid(const std::vector<Vec3>& points, double cell) : points_(poi
   }
   std::vector<std::uint64_t> keys(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) keys[i] = key(cell_of(points[i]));
+  // (key, index) pairs sort faster than indices compared through the key array; the order is the
+  // same: by cell key, then by index.
+  std::vector<std::pair<std::uint64_t, int>> keyed(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) keyed[i] = {keys[i], static_cast<int>(i)};
+  std::sort(keyed.begin(), keyed.end());
   order_.resize(points.size());
-  std::iota(order_.begin(), order_.end(), 0);
-  std::sort(order_.begin(), order_.end(), [&](int a, int b) { return keys[a] != keys[b] ? keys[a] < keys[b] : a < b; });
+  sorted_.resize(points.size());
+  for (std::size_t k = 0; k < keyed.size(); ++k) {
+    order_[k] = keyed[k].second;
+    sorted_[k] = points[order_[k]];
+  }
   for (std::size_t k = 0; k < order_.size();) {
     std::size_t e = k;
-    while (e < order_.size() && keys[order_[e]] == keys[order_[k]]) ++e;
-    cell_keys_.push_back(keys[order_[k]]);
+    while (e < order_.size() && keyed[e].first == keyed[k].first) ++e;
+    cell_keys_.push_back(keyed[k].first);
     cell_begin_.push_back(static_cast<int>(k));
-    cell_coords_.push_back(cell_of(points_[order_[k]]));
+    const Vec3i c = cell_of(sorted_[k]);
+    cell_coords_.push_back(c);
+    if (k == 0) occupied_lo_ = occupied_hi_ = c;
+    occupied_lo_ = occupied_lo_.cwiseMin(c);
+    occupied_hi_ = occupied_hi_.cwiseMax(c);
     k = e;
   }
   cell_begin_.push_back(static_cast<int>(order_.size()));
@@ -37,14 +49,16 @@ PointGrid::PointGrid(const std::vector<Vec3>& points, double cell) : points_(poi
   }
 }
 
-std::vector<std::pair<int, int>> PointGrid::neighbourhood(int k, int reach) const {
-  std::vector<std::pair<int, int>> ranges;
+std::vector<PointGrid::CellRange> PointGrid::neighbourhood(int k, int reach) const {
+  std::vector<CellRange> ranges;
   const Vec3i c = cell_coords_[k];
-  for (int dz = -reach; dz <= reach; ++dz)
-    for (int dy = -reach; dy <= reach; ++dy)
-      for (int dx = -reach; dx <= reach; ++dx) {
-        const int cell = find(key(c + Vec3i(dx, dy, dz)));
-        if (cell >= 0) ranges.emplace_back(cell_begin_[cell], cell_begin_[cell + 1]);
+  const Vec3i lo = (c - Vec3i::Constant(reach)).cwiseMax(occupied_lo_);
+  const Vec3i hi = (c + Vec3i::Constant(reach)).cwiseMin(occupied_hi_);
+  for (int z = lo.z(); z <= hi.z(); ++z)
+    for (int y = lo.y(); y <= hi.y(); ++y)
+      for (int x = lo.x(); x <= hi.x(); ++x) {
+        const int cell = find(key(Vec3i(x, y, z)));
+        if (cell >= 0) ranges.push_back({cell_begin_[cell], cell_begin_[cell + 1], cell_coords_[cell]});
       }
   return ranges;
 }

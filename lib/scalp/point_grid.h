@@ -26,15 +26,17 @@ class PointGrid {
     const double r2 = radius * radius;
     const int reach_x = static_cast<int>(std::ceil(radius / cell_));
     const Vec3i c = cell_of(p);
-    for (int dz = -reach_x; dz <= reach_x; ++dz)
-      for (int dy = -reach_x; dy <= reach_x; ++dy)
-        for (int dx = -reach_x; dx <= reach_x; ++dx) {
-          const int cell = find(key(c + Vec3i(dx, dy, dz)));
+    // Only cells inside the box of occupied cells can hold points (a flat 2D set has one z layer).
+    const Vec3i lo = (c - Vec3i::Constant(reach_x)).cwiseMax(occupied_lo_);
+    const Vec3i hi = (c + Vec3i::Constant(reach_x)).cwiseMin(occupied_hi_);
+    for (int z = lo.z(); z <= hi.z(); ++z)
+      for (int y = lo.y(); y <= hi.y(); ++y)
+        for (int x = lo.x(); x <= hi.x(); ++x) {
+          const int cell = find(key(Vec3i(x, y, z)));
           if (cell < 0) continue;
           for (int k = cell_begin_[cell]; k < cell_begin_[cell + 1]; ++k) {
-            const int i = order_[k];
-            const double d2 = (points_[i] - p).squaredNorm();
-            if (d2 <= r2) visit(i, d2);
+            const double d2 = (sorted_[k] - p).squaredNorm();
+            if (d2 <= r2) visit(order_[k], d2);
           }
         }
   }
@@ -47,21 +49,31 @@ class PointGrid {
   int cell_count() const { return static_cast<int>(cell_begin_.size()) - 1; }
   int cell_begin(int k) const { return cell_begin_[k]; }
   const std::vector<int>& order() const { return order_; }
-  // The [begin, end) ranges in order() of the occupied cells within `reach` cells of cell k.
-  std::vector<std::pair<int, int>> neighbourhood(int k, int reach) const;
+  // The points in that order (sorted()[k] = points[order()[k]]): scans over a cell read memory
+  // contiguously instead of jumping through the index.
+  const std::vector<Vec3>& sorted() const { return sorted_; }
+  // The occupied cells within `reach` cells of cell k, in the fixed order: their [begin, end)
+  // ranges in order() and their integer coordinates (the cell spans coords .. coords + 1 in the
+  // units of in_cells).
+  struct CellRange {
+    int begin, end;
+    Vec3i coords;
+  };
+  std::vector<CellRange> neighbourhood(int k, int reach) const;
+  // A position in cell units: the cell holding p is the floor of this.
+  Vec3 in_cells(const Vec3& p) const { return Vec3((p.x() - origin_.x()) / cell_, (p.y() - origin_.y()) / cell_, (p.z() - origin_.z()) / cell_); }
 
  private:
   Vec3i cell_of(const Vec3& p) const {
-    return Vec3i(static_cast<int>(std::floor((p.x() - origin_.x()) / cell_)),
-                 static_cast<int>(std::floor((p.y() - origin_.y()) / cell_)),
-                 static_cast<int>(std::floor((p.z() - origin_.z()) / cell_)));
+    const Vec3 u = in_cells(p);
+    return Vec3i(static_cast<int>(std::floor(u.x())), static_cast<int>(std::floor(u.y())), static_cast<int>(std::floor(u.z())));
   }
   static std::uint64_t key(const Vec3i& c) {
     const auto f = [](int v) { return static_cast<std::uint64_t>(v + (1 << 20)) & 0x1fffff; };
     return f(c.x()) | (f(c.y()) << 21) | (f(c.z()) << 42);
   }
 
-  std::vector<Vec3> points_;
+  std::vector<Vec3> sorted_;  // points in cell order
   double cell_;
   Vec3 origin_;
   std::vector<int> order_;  // point indices sorted by cell key, then index
@@ -83,6 +95,7 @@ class PointGrid {
   std::vector<std::uint64_t> cell_keys_;
   std::vector<int> cell_begin_;  // occupied cells in key order, with a final end offset
   std::vector<Vec3i> cell_coords_;
+  Vec3i occupied_lo_ = Vec3i::Zero(), occupied_hi_ = Vec3i::Constant(-1);  // box of occupied cells
 };
 
 }  // namespace hairfit

@@ -9,6 +9,52 @@
 
 namespace hairfit {
 
+namespace {
+
+// A binary max-heap of (weight, index) entries under the order: larger weight first, then lower
+// index; the keys of the entries only ever decrease, so a changed top sifts down.
+class ElimHeap {
+ public:
+  explicit ElimHeap(const std::vector<double>& weight) : entries_(weight.size()) {
+    for (std::size_t i = 0; i < weight.size(); ++i) entries_[i] = {weight[i], static_cast<int>(i)};
+    for (std::size_t k = entries_.size() / 2; k-- > 0;) sift_down(k);
+  }
+  int top() const { return entries_.front().index; }
+  double top_weight() const { return entries_.front().weight; }
+  void refresh_top(double weight) {
+    entries_.front().weight = weight;
+    sift_down(0);
+  }
+  void pop() {
+    entries_.front() = entries_.back();
+    entries_.pop_back();
+    if (!entries_.empty()) sift_down(0);
+  }
+
+ private:
+  struct Entry {
+    double weight;
+    int index;
+  };
+  static bool before(const Entry& a, const Entry& b) { return a.weight > b.weight || (a.weight == b.weight && a.index < b.index); }
+  void sift_down(std::size_t k) {
+    const std::size_t n = entries_.size();
+    const Entry moving = entries_[k];
+    for (;;) {
+      std::size_t child = 2 * k + 1;
+      if (child >= n) break;
+      if (child + 1 < n && before(entries_[child + 1], entries_[child])) ++child;
+      if (!before(entries_[child], moving)) break;
+      entries_[k] = entries_[child];
+      k = child;
+    }
+    entries_[k] = moving;
+  }
+  std::vector<Entry> entries_;
+};
+
+}  // namespace
+
 std::vector<int> eliminate_samples(const std::vector<Vec3>& points, const std::vector<double>& radius, int target,
                                    int threads) {
   const int m = static_cast<int>(points.size());
@@ -23,72 +69,115 @@ std::vector<int> eliminate_samples(const std::vector<Vec3>& points, const std::v
   const double smallest = *std::min_element(radius.begin(), radius.end());
   const PointGrid grid(points, 3.0 * smallest);
   const double limit = 0.65 * (1.0 - std::pow(static_cast<double>(target) / m, 1.5));
-  auto pair_weight = [&](int i, int j, double d2) {
-    const double r = std::min(radius[i], radius[j]);
+  // Weight of a pair at squared distance d2 whose smaller radius is r (symmetric in the pair, so
+  // stored once per list entry and subtracted as is when a neighbour goes).
+  auto pair_weight = [limit](double r, double d2) {
     const double d = std::max(std::sqrt(d2), limit * r);
     const double x = 1.0 - d / (2.0 * r);
     const double x2 = x * x, x4 = x2 * x2;
     return x4 * x4;
   };
-  auto interacts = [&](int i, int j, double d2) {
-    const double r = std::min(radius[i], radius[j]);
-    return j != i && d2 < 4.0 * r * r;
-  };
 
-  // Neighbour lists (CSR), built cell by cell so each neighbouring cell is looked up once per
-  // cell; a point's list is in the grid's fixed order, so weights are thread-independent.
+  // Neighbour lists (CSR) with each pair's weight, built in one pass over blocks of cells: each
+  // neighbouring cell is looked up once per cell, and points and radii are read in the grid's
+  // order, so the scan walks memory contiguously. A point's list is in the grid's fixed order
+  // (cell key, then index), so the weight sums do not depend on the thread count.
   const std::vector<int>& order = grid.order();
-  auto scan_cell = [&](int cell, auto&& emit) {
-    double reach_radius = 0.0;
-    for (int k = grid.cell_begin(cell); k < grid.cell_begin(cell + 1); ++k) reach_radius = std::max(reach_radius, radius[order[k]]);
-    const auto ranges = grid.neighbourhood(cell, static_cast<int>(std::ceil(2.0 * reach_radius / grid.cell())));
-    for (int k = grid.cell_begin(cell); k < grid.cell_begin(cell + 1); ++k) {
-      const int i = order[k];
-      for (const auto& [begin, end] : ranges)
-        for (int q = begin; q < end; ++q) {
-          const int j = order[q];
-          const double d2 = (points[j] - points[i]).squaredNorm();
-          if (interacts(i, j, d2)) emit(i, j, d2);
-        }
-    }
+  const std::vector<Vec3>& sorted = grid.sorted();
+  std::vector<double> sorted_radius(m);
+  for (int k = 0; k < m; ++k) sorted_radius[k] = radius[order[k]];
+  struct Block {
+    std::vector<int> count;       // neighbours of each point of the block's cells, in grid order
+    std::vector<int> neighbour;   // their indices, point after point
+    std::vector<double> weight;   // pair weights, alongside
   };
+  constexpr int kCellsPerBlock = 64;
+  const int cells = grid.cell_count();
+  std::vector<Block> blocks((cells + kCellsPerBlock - 1) / kCellsPerBlock);
+  std::vector<double> weight(m, 0.0);
+  parallel_for(static_cast<int>(blocks.size()), threads, [&](int b) {
+    Block& block = blocks[b];
+    const int first = b * kCellsPerBlock, last = std::min(cells, first + kCellsPerBlock);
+    block.count.reserve(grid.cell_begin(last) - grid.cell_begin(first));
+    for (int cell = first; cell < last; ++cell) {
+      double reach_radius = 0.0;
+      for (int k = grid.cell_begin(cell); k < grid.cell_begin(cell + 1); ++k) reach_radius = std::max(reach_radius, sorted_radius[k]);
+      const auto ranges = grid.neighbourhood(cell, static_cast<int>(std::ceil(2.0 * reach_radius / grid.cell())));
+      for (int k = grid.cell_begin(cell); k < grid.cell_begin(cell + 1); ++k) {
+        const int i = order[k];
+        const Vec3& p = sorted[k];
+        const double r_i = sorted_radius[k];
+        const std::size_t before = block.neighbour.size();
+        // A neighbouring cell whose box lies farther than 2·r_i from p holds no partner (a pair
+        // interacts within 2·min(r_i, r_j)); skipping it saves most distance tests. The margin
+        // keeps the test conservative against round-off in the cell coordinates.
+        const Vec3 u = grid.in_cells(p);
+        const double reach_cells = 2.0 * r_i / grid.cell() * (1.0 + 1e-9) + 1e-9;
+        double sum = 0.0;
+        for (const PointGrid::CellRange& range : ranges) {
+          double gap2 = 0.0;
+          for (int a = 0; a < 3; ++a) {
+            const double gap = std::max({0.0, range.coords[a] - u[a], u[a] - (range.coords[a] + 1)});
+            gap2 += gap * gap;
+          }
+          if (gap2 > reach_cells * reach_cells) continue;
+          for (int q = range.begin; q < range.end; ++q) {
+            const double r = std::min(r_i, sorted_radius[q]);
+            const double d2 = (sorted[q] - p).squaredNorm();
+            if (q == k || !(d2 < 4.0 * r * r)) continue;
+            const double w = pair_weight(r, d2);
+            block.neighbour.push_back(order[q]);
+            block.weight.push_back(w);
+            sum += w;
+          }
+        }
+        weight[i] = sum;
+        block.count.push_back(static_cast<int>(block.neighbour.size() - before));
+      }
+    }
+  });
   std::vector<int> start(m + 1, 0);
-  parallel_for(grid.cell_count(), threads, [&](int cell) { scan_cell(cell, [&](int i, int, double) { ++start[i + 1]; }); });
+  {
+    int k = 0;  // grid position
+    for (const Block& block : blocks)
+      for (int c : block.count) start[order[k++] + 1] = c;
+  }
   for (int i = 0; i < m; ++i) start[i + 1] += start[i];
   std::vector<int> neighbours(start[m]);
-  std::vector<double> weight(m, 0.0);
-  std::vector<int> fill(start.begin(), start.end() - 1);
-  parallel_for(grid.cell_count(), threads, [&](int cell) {
-    scan_cell(cell, [&](int i, int j, double d2) {
-      neighbours[fill[i]++] = j;
-      weight[i] += pair_weight(i, j, d2);
-    });
+  std::vector<double> neighbour_weight(start[m]);
+  parallel_for(static_cast<int>(blocks.size()), threads, [&](int b) {
+    Block& block = blocks[b];
+    int k = grid.cell_begin(b * kCellsPerBlock);
+    std::size_t from = 0;
+    for (int c : block.count) {
+      const int i = order[k++];
+      std::copy_n(block.neighbour.begin() + from, c, neighbours.begin() + start[i]);
+      std::copy_n(block.weight.begin() + from, c, neighbour_weight.begin() + start[i]);
+      from += c;
+    }
+    block = Block();  // free early
   });
 
   // Greedy elimination of the most crowded candidate. Weights only decrease, so a lazy max-heap
-  // works: an entry whose weight is out of date is pushed back with its current weight when it
-  // reaches the top. Ties go to the lower index.
-  using Entry = std::pair<double, int>;
-  auto lower = [](const Entry& a, const Entry& b) { return a.first < b.first || (a.first == b.first && a.second > b.second); };
-  std::vector<Entry> heap(m);
-  for (int i = 0; i < m; ++i) heap[i] = {weight[i], i};
-  std::make_heap(heap.begin(), heap.end(), lower);
+  // works: an entry whose weight is out of date is refreshed with its current weight when it
+  // reaches the top. Ties go to the lower index. Entries are ordered by (weight, −index), a strict
+  // total order, so the top is always the same entry whatever the heap's layout, and so is the
+  // whole sequence of eliminations. A stale top is refreshed in place by one sift-down (not a pop
+  // and a push): every alive candidate keeps exactly one entry.
+  ElimHeap heap(weight);
   std::vector<char> alive(m, 1);
   for (int remaining = m; remaining > target;) {
-    std::pop_heap(heap.begin(), heap.end(), lower);
-    const auto [w, i] = heap.back();
-    heap.pop_back();
-    if (!alive[i]) continue;
-    if (w != weight[i]) {
-      heap.push_back({weight[i], i});
-      std::push_heap(heap.begin(), heap.end(), lower);
+    const int i = heap.top();
+    if (heap.top_weight() != weight[i]) {
+      heap.refresh_top(weight[i]);
       continue;
     }
+    heap.pop();
     alive[i] = 0;
     --remaining;
     for (int k = start[i]; k < start[i + 1]; ++k) {
       const int j = neighbours[k];
-      if (alive[j]) weight[j] -= pair_weight(i, j, (points[i] - points[j]).squaredNorm());
+      if (alive[j]) weight[j] -= neighbour_weight[k];
     }
   }
   kept.reserve(target);

@@ -52,14 +52,33 @@ GuideTrack::GuideTrack(const std::vector<Vec3>& points) {
 
 void GuideTrack::at(double s, Vec3& position, Vec3& t, Vec3& d1, Vec3& d2) const {
   const std::size_t n = p_.size();
+  const std::size_t k = s >= s_.back() ? n - 1 : std::upper_bound(s_.begin(), s_.end(), std::max(s, 0.0)) - s_.begin() - 1;
+  interpolate(s, k, position, t, d1, d2);
+}
+
+void GuideTrack::at(double s, Vec3& position, Vec3& t, Vec3& d1, Vec3& d2, std::size_t& segment) const {
+  const std::size_t n = p_.size();
   if (s >= s_.back()) {
+    interpolate(s, n - 1, position, t, d1, d2);
+    return;
+  }
+  const double clamped = std::max(s, 0.0);
+  if (segment >= n - 1 || s_[segment] > clamped) segment = 0;  // not a forward step: start over
+  // The last node at or before s (s_ increases strictly), as upper_bound − 1 would find it.
+  while (s_[segment + 1] <= clamped) ++segment;
+  interpolate(s, segment, position, t, d1, d2);
+}
+
+// Position and frame at s on segment k (k = n − 1: beyond the tip).
+void GuideTrack::interpolate(double s, std::size_t k, Vec3& position, Vec3& t, Vec3& d1, Vec3& d2) const {
+  const std::size_t n = p_.size();
+  if (k == n - 1) {
     const Vec3 last = (p_[n - 1] - p_[n - 2]).normalized();
     position = p_[n - 1] + (s - s_.back()) * last;
     t = t_[n - 1];
     d1 = d1_[n - 1];
   } else {
     s = std::max(s, 0.0);
-    const std::size_t k = std::min<std::size_t>(std::upper_bound(s_.begin(), s_.end(), s) - s_.begin(), n - 1) - 1;
     const double f = (s - s_[k]) / (s_[k + 1] - s_[k]);
     position = (1.0 - f) * p_[k] + f * p_[k + 1];
     t = ((1.0 - f) * t_[k] + f * t_[k + 1]).normalized();

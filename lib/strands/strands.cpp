@@ -23,21 +23,48 @@ struct FibreLayout {
   double u1, u2;   // its place in the wisp's unit disk
 };
 
-// Points of a fibre that runs along the guide up to arc length `reach` (t_i = i/(n−1)).
-void sweep(const GuideTrack& track, const FibreLayout& f, const Vec3& root_tangent, double reach,
-           const StrandOptions& o, std::vector<Vec3>& out) {
-  const int n = static_cast<int>(out.size());
+// Where point i of a fibre sits relative to the guide: t_i = i/(n−1) along the reach, and its
+// offsets along the frame (d1, d2) and the root tangent. None of these depend on the reach, so
+// they are computed once per fibre rather than in every step of the length solve (the cos/sin of
+// the winding used to dominate it); the values are the same expressions as before, bit for bit.
+struct SweepPoint {
+  double t;        // i/(n−1)
+  double along_d1, along_d2, along_root_tangent;
+};
+
+std::vector<SweepPoint> sweep_points(const FibreLayout& f, const StrandOptions& o, int n) {
+  std::vector<SweepPoint> out(n);
   for (int i = 0; i < n; ++i) {
     const double t = static_cast<double>(i) / (n - 1);
-    Vec3 g, tangent, d1, d2;
-    track.at(reach * t, g, tangent, d1, d2);
     const double w = smoothstep(0.0, kSettle, t);
     const double radius = o.root_radius + (o.tip_radius - o.root_radius) * t;
     const double x = (1.0 - w) * f.a + w * f.u1 * radius;
     const double y = (1.0 - w) * f.b + w * f.u2 * radius;
     const double angle = 2.0 * M_PI * o.turns * t;
     const double ca = std::cos(angle), sa = std::sin(angle);
-    out[i] = g + (ca * x - sa * y) * d1 + (sa * x + ca * y) * d2 + (1.0 - w) * f.c * root_tangent;
+    out[i] = {t, ca * x - sa * y, sa * x + ca * y, (1.0 - w) * f.c};
+  }
+  return out;
+}
+
+// The guide's position and frame at its root (arc length 0).
+struct RootFrame {
+  Vec3 position, tangent, d1, d2;
+};
+
+// Points of a fibre that runs along the guide up to arc length `reach`. Arc length 0 (the first
+// point, and every point of the solve's first, zero-reach sweep) takes the root frame found once
+// per fibre instead of asking the track again.
+void sweep(const GuideTrack& track, const std::vector<SweepPoint>& layout, const RootFrame& root, double reach,
+           std::vector<Vec3>& out) {
+  const int n = static_cast<int>(out.size());
+  std::size_t segment = 0;  // arc lengths reach·t_i only grow along the fibre
+  for (int i = 0; i < n; ++i) {
+    const SweepPoint& q = layout[i];
+    const double s = reach * q.t;
+    Vec3 g = root.position, tangent = root.tangent, d1 = root.d1, d2 = root.d2;
+    if (s != 0.0) track.at(s, g, tangent, d1, d2, segment);
+    out[i] = g + q.along_d1 * d1 + q.along_d2 * d2 + q.along_root_tangent * root.tangent;
   }
 }
 
@@ -51,19 +78,21 @@ double polyline_length(const std::vector<Vec3>& p) {
 // passed through it inside the length solve, so the moved fibre still has exactly its length.
 std::vector<Vec3> fibre_along(const GuideTrack& track, const Vec3& pore, double length, double wisp_extent,
                               const StrandOptions& o, const HeadExit* out_of_head = nullptr) {
-  Vec3 g0, t0, d1, d2;
-  track.at(0.0, g0, t0, d1, d2);
-  const Vec3 delta = pore - g0;
-  FibreLayout f{delta.dot(d1), delta.dot(d2), delta.dot(t0), 0.0, 0.0};
+  RootFrame root;
+  track.at(0.0, root.position, root.tangent, root.d1, root.d2);
+  const Vec3& t0 = root.tangent;
+  const Vec3 delta = pore - root.position;
+  FibreLayout f{delta.dot(root.d1), delta.dot(root.d2), delta.dot(t0), 0.0, 0.0};
   if (wisp_extent > 0.0) {
     f.u1 = f.a / wisp_extent;
     f.u2 = f.b / wisp_extent;
   }
   std::vector<Vec3> points(std::max(2, o.points));
+  const std::vector<SweepPoint> layout = sweep_points(f, o, static_cast<int>(points.size()));
   // The polyline's length grows with how far along the guide it reaches; find the reach that
   // gives exactly `length` by the Illinois variant of regula falsi on a bracket.
   auto excess = [&](double reach) {
-    sweep(track, f, t0, reach, o, points);
+    sweep(track, layout, root, reach, points);
     if (out_of_head)
       for (std::size_t i = 1; i < points.size(); ++i) points[i] = (*out_of_head)(points[i]);
     return polyline_length(points) - length;
@@ -126,12 +155,13 @@ Strands make_strands(const Curves& guides, const Pores& pores, const StrandOptio
     tracks.emplace_back(std::vector<Vec3>(guides.points.begin() + guides.offsets[g], guides.points.begin() + guides.offsets[g + 1]));
 
   // A wisp's extent is the largest in-plane distance of its pores from the guide root.
+  std::vector<RootFrame> roots(guide_count);
+  for (int g = 0; g < guide_count; ++g) tracks[g].at(0.0, roots[g].position, roots[g].tangent, roots[g].d1, roots[g].d2);
   std::vector<double> extent(guide_count, 0.0);
   for (std::size_t i = 0; i < pores.positions.size(); ++i) {
-    Vec3 g0, t0, d1, d2;
-    tracks[pores.guide[i]].at(0.0, g0, t0, d1, d2);
-    const Vec3 delta = pores.positions[i] - g0;
-    extent[pores.guide[i]] = std::max(extent[pores.guide[i]], std::hypot(delta.dot(d1), delta.dot(d2)));
+    const RootFrame& root = roots[pores.guide[i]];
+    const Vec3 delta = pores.positions[i] - root.position;
+    extent[pores.guide[i]] = std::max(extent[pores.guide[i]], std::hypot(delta.dot(root.d1), delta.dot(root.d2)));
   }
 
   const int count = static_cast<int>(pores.positions.size());
