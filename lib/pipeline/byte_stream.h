@@ -81,6 +81,7 @@ class ByteReader {
   }
   void raw(void* out, std::size_t size) {
     if (size > bytes_.size() - at_) throw CodecError("cache payload ends early");
+    if (size == 0) return;  // an empty vector's data() may be null, which memcpy must not get
     std::memcpy(out, bytes_.data() + at_, size);
     at_ += size;
   }

@@ -125,3 +125,25 @@ TEST_CASE("a payload claiming more elements than it holds is refused before allo
   CHECK_THROWS_AS(decode_value<Guides>(out.bytes(), decode_guides), CodecError);
   CHECK_THROWS_AS(decode_value<DensityGrid>(std::string(), decode_density_grid), CodecError);
 }
+
+TEST_CASE("empty vectors and strings round-trip (memcpy never sees the null data() of an empty vector)") {
+  ByteWriter out;
+  out.put(std::vector<double>{});
+  out.put(std::string());
+  out.put(std::vector<Vec3>{});
+  out.put(std::vector<int>{7});
+  ByteReader in(out.bytes());
+  std::vector<double> doubles{1.0};
+  std::string text = "x";
+  std::vector<Vec3> points{Vec3(1, 2, 3)};
+  std::vector<int> ints;
+  in.get(doubles);
+  in.get(text);
+  in.get(points);
+  in.get(ints);
+  CHECK(doubles.empty());
+  CHECK(text.empty());
+  CHECK(points.empty());
+  CHECK(ints == std::vector<int>{7});
+  CHECK_NOTHROW(in.expect_end());
+}

@@ -34,6 +34,10 @@ inline CommandResult run_hairfit(const std::string& arguments) {
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   r.out = read_all(base + ".out");
   r.err = read_all(base + ".err");
+  // Under tests/sanitize.sh a report from the program exits 99 (no test expects it); show the
+  // report, which would otherwise vanish with the captured stderr.
+  if (r.err.find("runtime error: ") != std::string::npos || r.err.find("Sanitizer") != std::string::npos)
+    std::fprintf(stderr, "sanitizer report from `hairfit %s`:\n%s\n", arguments.c_str(), r.err.c_str());
   std::remove((base + ".out").c_str());
   std::remove((base + ".err").c_str());
   return r;
