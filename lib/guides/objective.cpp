@@ -112,6 +112,15 @@ class GuideCost {
     return residuals_of_shape(nodes.data(), frames.data(), curvature.data(), residuals);
   }
 
+  // The residuals of a multiple-shooting solution, traced piece by piece.
+  bool residuals_of_solution(const ShootingResult& solution, double* residuals) const {
+    const int n = t_.rod.segments + 1;
+    std::vector<double> nodes(3 * n), frames(9 * n), curvature(3 * n);
+    trace_pieces(t_.model, t_.rod.integrator, t_.rod.segments, solution,
+                 RodTrace<double>{nodes.data(), frames.data(), curvature.data(), nullptr});
+    return residuals_of_shape(nodes.data(), frames.data(), curvature.data(), residuals);
+  }
+
   // The residuals of a traced rod shape (nodes with the root at the origin in units of L, frames,
   // material curvature), however it was solved.
   template <typename T>
@@ -251,13 +260,8 @@ class HeavyGuideCost : public ceres::CostFunction {
     const ShootingResult s = solve(x);
     if (!s.converged) return false;
     near_ = s;
+    if (!jacobians || !jacobians[0]) return cost_.residuals_of_solution(s, residuals);
     const int n = t_.rod.segments + 1;
-    if (!jacobians || !jacobians[0]) {
-      std::vector<double> nodes(3 * n), frames(9 * n), curvature(3 * n);
-      trace_pieces(t_.model, t_.rod.integrator, t_.rod.segments, s,
-                   RodTrace<double>{nodes.data(), frames.data(), curvature.data(), nullptr});
-      return cost_.residuals_of_shape(nodes.data(), frames.data(), curvature.data(), residuals);
-    }
     const auto sensitivity = shooting_sensitivity(t_.model, s, options_);
     if (sensitivity.empty()) return false;
     std::vector<Jet> nodes(3 * n), frames(9 * n), curvature(3 * n), r(num_residuals());
@@ -284,31 +288,6 @@ class HeavyGuideCost : public ceres::CostFunction {
 };
 
 // Σ wᵢFᵢ and the unweighted terms from the residual vector (blocks as GuideCost writes them).
-GuideTerms terms_of(const GuideTargets& targets, const std::vector<double>& r);
-template <typename Shape>
-GuideTerms with_unweighted_f4(const GuideTargets& targets, const Shape& shape, GuideTerms terms);
-
-}  // namespace
-
-GuideTerms evaluate_guide_terms(const GuideTargets& targets, const ShootingResult& solution) {
-  const GuideCost cost(targets);
-  const int n = targets.rod.segments + 1;
-  std::vector<double> nodes(3 * n), frames(9 * n), curvature(3 * n), r(cost.residual_count());
-  trace_pieces(targets.model, targets.rod.integrator, targets.rod.segments, solution,
-               RodTrace<double>{nodes.data(), frames.data(), curvature.data(), nullptr});
-  cost.residuals_of_shape(nodes.data(), frames.data(), curvature.data(), r.data());
-  return with_unweighted_f4(targets, solution, terms_of(targets, r));
-}
-
-GuideTerms evaluate_guide_terms(const GuideTargets& targets, const double eta[6]) {
-  GuideCost cost(targets);
-  std::vector<double> r(cost.residual_count());
-  cost(eta, r.data());
-  return with_unweighted_f4(targets, eta, terms_of(targets, r));
-}
-
-namespace {
-
 GuideTerms terms_of(const GuideTargets& targets, const std::vector<double>& r) {
   GuideTerms terms;
   const std::size_t block = targets.sample_nodes.size() * 3 * targets.neighbours.size();
@@ -340,7 +319,22 @@ GuideTerms with_unweighted_f4(const GuideTargets& targets, const Shape& shape, G
   return terms;
 }
 
+
 }  // namespace
+
+GuideTerms evaluate_guide_terms(const GuideTargets& targets, const ShootingResult& solution) {
+  const GuideCost cost(targets);
+  std::vector<double> r(cost.residual_count());
+  cost.residuals_of_solution(solution, r.data());
+  return with_unweighted_f4(targets, solution, terms_of(targets, r));
+}
+
+GuideTerms evaluate_guide_terms(const GuideTargets& targets, const double eta[6]) {
+  GuideCost cost(targets);
+  std::vector<double> r(cost.residual_count());
+  cost(eta, r.data());
+  return with_unweighted_f4(targets, eta, terms_of(targets, r));
+}
 
 std::vector<double> guide_residuals(const GuideTargets& targets, const double eta[6], std::vector<double>* jacobian) {
   GuideCost cost(targets);

@@ -57,20 +57,18 @@ namespace {
 // exist at the same load (curled rods); a step is accepted only when Newton lands near the
 // predictor and the tip turns by less than kMaxTipTurn, else the load step is halved, so the
 // path stays on the branch connected to the unloaded rod.
-constexpr double kHeavy = kHeavyRod;
-
 class Cantilever {
  public:
   Cantilever(const Vec3& bend, const RodDiscretisation& rod) : bend_(bend), rod_(rod) {}
 
   // Solves at load P from `at` (its m(0), and its pieces when it has them); on success `at` becomes
-  // the solution. Single shooting (Newton until |m(1)| ≤ 1e-10·max(1, P)) up to kHeavy; beyond,
+  // the solution. Single shooting (Newton until |m(1)| ≤ 1e-10·max(1, P)) up to kHeavyRod; beyond,
   // m(1) depends on m(0) like exp(√P) and the rod library's multiple shooting takes over, warm
   // started from the pieces of the nearby solution, which stay a good start where a sweep from
   // m(0) alone would diverge.
   bool solve(const RodModel& model, double load, ShootingResult& at, int& solves) const {
     const Vec3 force = load * bend_;
-    if (model.force_per_length.norm() > kHeavy || load > kHeavy) {
+    if (model.force_per_length.norm() > kHeavyRod || load > kHeavyRod) {
       ShootingOptions options;
       options.integrator = rod_.integrator;
       options.segments = rod_.segments;
@@ -161,7 +159,7 @@ PreGuide solve_preguide(const RootSet& roots, int i, const Boundary& boundary, c
   State current, previous;
   // The rod under its own weight first, by continuation in the weight from the straight rod: a
   // heavy hair (ρAgL³/EI is ~10³ for 30 cm of hair) has many equilibria, and only this path finds
-  // the drooping one. Beyond kHeavy each level starts from the pieces of the one before.
+  // the drooping one. Beyond kHeavyRod each level starts from the pieces of the one before.
   {
     RodModel scaled = model;
     double share = 0.0, share_step = model.force_per_length.norm() > 0.0 ? 0.05 : 1.0;

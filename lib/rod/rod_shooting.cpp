@@ -11,10 +11,20 @@
 
 namespace hairfit {
 
-Vec3 trace_pieces(const RodModel& model, RodIntegrator integrator, int segments, const ShootingResult& solution,
-                  const RodTrace<double>& trace) {
+namespace {
+
+// The model under the weight a solution was solved for (continuations scale the weight).
+RodModel solved_model(const RodModel& model, const ShootingResult& solution) {
   RodModel loaded = model;
   loaded.force_per_length = solution.force_per_length;
+  return loaded;
+}
+
+}  // namespace
+
+Vec3 trace_pieces(const RodModel& model, RodIntegrator integrator, int segments, const ShootingResult& solution,
+                  const RodTrace<double>& trace) {
+  const RodModel loaded = solved_model(model, solution);
   RodState<double> state{};
   for (std::size_t k = 0; k + 1 < solution.breaks.size(); ++k) {
     Eigen::Map<Mat3>(state.frame) = solution.frames[k];
@@ -211,8 +221,7 @@ Iterate warm_start(const Problem& p, const Level& level, const ShootingResult& n
   const bool usable = near.breaks.size() >= 2 && near.frames.size() + 1 == near.breaks.size() &&
                       near.moments.size() == near.frames.size() && near.breaks.back() == p.options.segments;
   if (!usable) return sweep(p, level, m0);
-  RodModel earlier = level.model;
-  earlier.force_per_length = near.force_per_length;
+  const RodModel earlier = solved_model(level.model, near);
   Iterate x;
   for (int k = 0; k < p.pieces(); ++k) {
     const int at = p.breaks[k];
@@ -338,8 +347,7 @@ ShootingResult shoot_root_moment(const RodModel& model, const Vec3& terminal_for
 std::vector<Eigen::Matrix<double, 6, 6>> shooting_sensitivity(const RodModel& model, const ShootingResult& solution,
                                                               const ShootingOptions& options) {
   Problem p{options, solution.breaks};
-  RodModel loaded = model;
-  loaded.force_per_length = solution.force_per_length;
+  const RodModel loaded = solved_model(model, solution);
   const Level level{loaded, solution.terminal_force, solution.terminal_torque};
   const Iterate x{solution.frames, solution.moments};
   Eigen::VectorXd f;
@@ -382,8 +390,7 @@ std::vector<Eigen::Matrix<double, 6, 6>> shooting_sensitivity(const RodModel& mo
 void trace_pieces(const RodModel& model, RodIntegrator integrator, int segments, const ShootingResult& solution,
                   const std::vector<Eigen::Matrix<double, 6, 6>>& sensitivity, const RodTrace<RodJet6>& trace) {
   using J6 = RodJet6;
-  RodModel loaded = model;
-  loaded.force_per_length = solution.force_per_length;
+  const RodModel loaded = solved_model(model, solution);
   J6 force[3];
   for (int i = 0; i < 3; ++i) force[i] = J6(solution.terminal_force[i], i);
   RodState<J6> state;
