@@ -51,15 +51,8 @@ PointGrid::PointGrid(const std::vector<Vec3>& points, double cell) : cell_(cell)
 
 std::vector<PointGrid::CellRange> PointGrid::neighbourhood(int k, int reach) const {
   std::vector<CellRange> ranges;
-  const Vec3i c = cell_coords_[k];
-  const Vec3i lo = (c - Vec3i::Constant(reach)).cwiseMax(occupied_lo_);
-  const Vec3i hi = (c + Vec3i::Constant(reach)).cwiseMin(occupied_hi_);
-  for (int z = lo.z(); z <= hi.z(); ++z)
-    for (int y = lo.y(); y <= hi.y(); ++y)
-      for (int x = lo.x(); x <= hi.x(); ++x) {
-        const int cell = find(key(Vec3i(x, y, z)));
-        if (cell >= 0) ranges.push_back({cell_begin_[cell], cell_begin_[cell + 1], cell_coords_[cell]});
-      }
+  for_each_cell_near(cell_coords_[k], reach,
+                     [&](int cell) { ranges.push_back({cell_begin_[cell], cell_begin_[cell + 1], cell_coords_[cell]}); });
   return ranges;
 }
 

@@ -24,21 +24,12 @@ class PointGrid {
   template <class Visit>
   void for_each_within(const Vec3& p, double radius, Visit&& visit) const {
     const double r2 = radius * radius;
-    const int reach_x = static_cast<int>(std::ceil(radius / cell_));
-    const Vec3i c = cell_of(p);
-    // Only cells inside the box of occupied cells can hold points (a flat 2D set has one z layer).
-    const Vec3i lo = (c - Vec3i::Constant(reach_x)).cwiseMax(occupied_lo_);
-    const Vec3i hi = (c + Vec3i::Constant(reach_x)).cwiseMin(occupied_hi_);
-    for (int z = lo.z(); z <= hi.z(); ++z)
-      for (int y = lo.y(); y <= hi.y(); ++y)
-        for (int x = lo.x(); x <= hi.x(); ++x) {
-          const int cell = find(key(Vec3i(x, y, z)));
-          if (cell < 0) continue;
-          for (int k = cell_begin_[cell]; k < cell_begin_[cell + 1]; ++k) {
-            const double d2 = (sorted_[k] - p).squaredNorm();
-            if (d2 <= r2) visit(order_[k], d2);
-          }
-        }
+    for_each_cell_near(cell_of(p), static_cast<int>(std::ceil(radius / cell_)), [&](int cell) {
+      for (int k = cell_begin_[cell]; k < cell_begin_[cell + 1]; ++k) {
+        const double d2 = (sorted_[k] - p).squaredNorm();
+        if (d2 <= r2) visit(order_[k], d2);
+      }
+    });
   }
 
   // Index of the nearest point other than `exclude` (−1 for none), searching outward up to max_radius.
@@ -64,6 +55,21 @@ class PointGrid {
   Vec3 in_cells(const Vec3& p) const { return Vec3((p.x() - origin_.x()) / cell_, (p.y() - origin_.y()) / cell_, (p.z() - origin_.z()) / cell_); }
 
  private:
+  // Calls visit(cell) for every occupied cell within `reach` cells of `centre` on each axis, in the
+  // fixed order (x fastest). Only cells inside the box of occupied cells can hold points (a flat
+  // 2D set has one z layer), so the box is clipped to it first.
+  template <class Visit>
+  void for_each_cell_near(const Vec3i& centre, int reach, Visit&& visit) const {
+    const Vec3i lo = (centre - Vec3i::Constant(reach)).cwiseMax(occupied_lo_);
+    const Vec3i hi = (centre + Vec3i::Constant(reach)).cwiseMin(occupied_hi_);
+    for (int z = lo.z(); z <= hi.z(); ++z)
+      for (int y = lo.y(); y <= hi.y(); ++y)
+        for (int x = lo.x(); x <= hi.x(); ++x) {
+          const int cell = find(key(Vec3i(x, y, z)));
+          if (cell >= 0) visit(cell);
+        }
+  }
+
   Vec3i cell_of(const Vec3& p) const {
     const Vec3 u = in_cells(p);
     return Vec3i(static_cast<int>(std::floor(u.x())), static_cast<int>(std::floor(u.y())), static_cast<int>(std::floor(u.z())));
