@@ -27,15 +27,26 @@ double density_ceiling(const DensityGrid& grid, const DensityTermOptions& term) 
     return top * top + term.surcharge * s * s;
   }
   // Every cell centre a trilinear blend can use: the grid and the ring of zero cells around it.
+  // Central differences there reach two cells beyond the grid, so they read a copy padded with
+  // two rings of zeros: no bounds check in the loop (this runs once per batch over the grid).
+  const int nx = g.dims.x() + 4, ny = g.dims.y() + 4, nz = g.dims.z() + 4;
+  std::vector<double> padded(static_cast<std::size_t>(nx) * ny * nz, 0.0);
+  const std::vector<double>& values = grid.values();
+  for (int k = 0; k < g.dims.z(); ++k)
+    for (int j = 0; j < g.dims.y(); ++j)
+      std::copy_n(values.begin() + g.index(0, j, k), g.dims.x(),
+                  padded.begin() + (2 + static_cast<std::size_t>(nx) * ((j + 2) + static_cast<std::size_t>(ny) * (k + 2))));
+  const std::ptrdiff_t sy = nx, sz = static_cast<std::ptrdiff_t>(nx) * ny;
   double top = 0.0;
   const double h2 = 2.0 * g.voxel;
-  for (int k = -1; k <= g.dims.z(); ++k)
-    for (int j = -1; j <= g.dims.y(); ++j)
-      for (int i = -1; i <= g.dims.x(); ++i) {
-        const Vec3 d((grid.cell(i + 1, j, k) - grid.cell(i - 1, j, k)) / h2, (grid.cell(i, j + 1, k) - grid.cell(i, j - 1, k)) / h2,
-                     (grid.cell(i, j, k + 1) - grid.cell(i, j, k - 1)) / h2);
+  for (int k = 1; k < nz - 1; ++k)
+    for (int j = 1; j < ny - 1; ++j) {
+      const double* c = padded.data() + 1 + sy * j + sz * k;
+      for (int i = 1; i < nx - 1; ++i, ++c) {
+        const Vec3 d((c[1] - c[-1]) / h2, (c[sy] - c[-sy]) / h2, (c[sz] - c[-sz]) / h2);
         top = std::max(top, d.squaredNorm());
       }
+    }
   return term.strength * top;
 }
 
@@ -55,7 +66,7 @@ std::vector<std::vector<Vec3>> guide_deposit_fibres(const std::vector<Vec3>& gui
   std::vector<std::vector<Vec3>> fibres;
   fibres.reserve(pores_of_guide.size());
   for (int i : pores_of_guide)
-    fibres.push_back(make_fibre(guide, options.pores.positions[i], options.pores.lengths[i], extent, options.strands));
+    fibres.push_back(make_fibre(track, options.pores.positions[i], options.pores.lengths[i], extent, options.strands));
   return fibres;
 }
 

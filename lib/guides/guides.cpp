@@ -282,10 +282,14 @@ DensityGuides make_guides_with_density(const RootSet& bases, const PreGuides& pr
       out.guides.items[begin + i] = solve_guide_with_density(bases, begin + i, preguides, boundary, options, frozen, term);
     });
     if (density.term.model == GuideDensityModel::continuous) {
+      // Grown on all threads, deposited in guide order.
+      std::vector<std::vector<std::vector<Vec3>>> grown(end - begin);
+      parallel_for(end - begin, options.threads, [&](int i) {
+        grown[i] = guide_deposit_fibres(out.guides.items[begin + i].shape.nodes, pores_of[begin + i], density);
+      });
       std::vector<std::vector<Vec3>> fibres;
-      for (int g = begin; g < end; ++g)
-        for (std::vector<Vec3>& f : guide_deposit_fibres(out.guides.items[g].shape.nodes, pores_of[g], density))
-          fibres.push_back(std::move(f));
+      for (std::vector<std::vector<Vec3>>& of_guide : grown)
+        for (std::vector<Vec3>& f : of_guide) fibres.push_back(std::move(f));
       accumulator.add_fibres(fibres, options.threads);
     } else {
       std::vector<Tube> tubes;

@@ -146,6 +146,11 @@ std::vector<Vec3> make_fibre(const std::vector<Vec3>& guide, const Vec3& pore, d
   return fibre_kept_out(GuideTrack(guide), pore, length, wisp_extent, options, out_of_head);
 }
 
+std::vector<Vec3> make_fibre(const GuideTrack& guide, const Vec3& pore, double length, double wisp_extent,
+                             const StrandOptions& options, const HeadExit& out_of_head) {
+  return fibre_kept_out(guide, pore, length, wisp_extent, options, out_of_head);
+}
+
 Strands make_strands(const Curves& guides, const Pores& pores, const StrandOptions& options, const DistanceFunction& volume,
                      const HeadExit& out_of_head) {
   const int guide_count = static_cast<int>(guides.count());
