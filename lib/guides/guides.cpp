@@ -191,15 +191,15 @@ Guide solve_guide(const RootSet& bases, int b, const PreGuides& preguides, const
 }
 
 // A guide with the density term, by continuation: first without F4 from the usual start (the
-// pre-guides' loads, or straight), then with F4 from that optimum. F4 then perturbs a shape
-// that already follows the pre-guides inside the acceptable region. Started from the pre-guides'
-// loads directly, Levenberg–Marquardt with F4 on ended in local minima behind the scalp (smoke
-// fixture, CDM: a guide 3.3 cm deep, its wisp leaving density 2.35 cm inside the head; the paper
-// scale, CDM: 3.9 % of guide nodes outside the region against 0.1 % without F4). Iterations and
-// evaluations count both solves; the rest describes the second.
+// pre-guides' loads, or straight), then with F4 from that optimum (`plain`). F4 then perturbs a
+// shape that already follows the pre-guides inside the acceptable region. Started from the
+// pre-guides' loads directly, Levenberg–Marquardt with F4 on ended in local minima behind the
+// scalp (smoke fixture, CDM: a guide 3.3 cm deep, its wisp leaving density 2.35 cm inside the
+// head; the paper scale, CDM: 3.9 % of guide nodes outside the region against 0.1 % without F4).
+// Iterations and evaluations count both solves; the rest describes the second.
 Guide solve_guide_with_density(const RootSet& bases, int b, const PreGuides& preguides, const Boundary& boundary,
-                               const GuideOptions& o, const DensityGrid& density, const DensityTermOptions& term) {
-  const Guide plain = solve_guide(bases, b, preguides, boundary, o);
+                               const GuideOptions& o, const Guide& plain, const DensityGrid& density,
+                               const DensityTermOptions& term) {
   double start[6];
   for (int a = 0; a < 3; ++a) {
     start[a] = plain.force[a];
@@ -272,6 +272,9 @@ DensityGuides make_guides_with_density(const RootSet& bases, const PreGuides& pr
       const int g = density.pores.guide[i];
       if (g >= 0 && g < count) pores_of[g].push_back(static_cast<int>(i));
     }
+  // The first solves do not see the density: all of them at once, on all threads.
+  std::vector<Guide> plain(count);
+  parallel_for(count, options.threads, [&](int b) { plain[b] = solve_guide(bases, b, preguides, boundary, options); });
   DensityAccumulator accumulator(density.grid);
   for (int begin = 0; begin < count; begin += density.batch) {
     const int end = std::min(count, begin + density.batch);
@@ -279,7 +282,8 @@ DensityGuides make_guides_with_density(const RootSet& bases, const PreGuides& pr
     DensityTermOptions term = density.term;
     term.outside = density_ceiling(frozen, term);
     parallel_for(end - begin, options.threads, [&](int i) {
-      out.guides.items[begin + i] = solve_guide_with_density(bases, begin + i, preguides, boundary, options, frozen, term);
+      out.guides.items[begin + i] =
+          solve_guide_with_density(bases, begin + i, preguides, boundary, options, plain[begin + i], frozen, term);
     });
     if (density.term.model == GuideDensityModel::continuous) {
       // Grown on all threads, deposited in guide order.
