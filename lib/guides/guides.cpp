@@ -275,6 +275,7 @@ DensityGuides make_guides_with_density(const RootSet& bases, const PreGuides& pr
   // The first solves do not see the density: all of them at once, on all threads.
   std::vector<Guide> plain(count);
   parallel_for(count, options.threads, [&](int b) { plain[b] = solve_guide(bases, b, preguides, boundary, options); });
+  ProgressCounter progress(options.progress);  // guides finished, after their second solve
   DensityAccumulator accumulator(density.grid);
   for (int begin = 0; begin < count; begin += density.batch) {
     const int end = std::min(count, begin + density.batch);
@@ -284,6 +285,7 @@ DensityGuides make_guides_with_density(const RootSet& bases, const PreGuides& pr
     parallel_for(end - begin, options.threads, [&](int i) {
       out.guides.items[begin + i] =
           solve_guide_with_density(bases, begin + i, preguides, boundary, options, plain[begin + i], frozen, term);
+      progress.item_done();
     });
     if (density.term.model == GuideDensityModel::continuous) {
       // Grown on all threads, deposited in guide order.
