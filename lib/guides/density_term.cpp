@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/parallel.h"
 #include "strands/guide_track.h"
 
 namespace hairfit {
@@ -18,28 +19,31 @@ double surcharge_step(double occupancy, double threshold, double width) {
   return x * x * (3.0 - 2.0 * x);
 }
 
-double density_ceiling(const DensityGrid& grid, const DensityTermOptions& term) {
+double density_ceiling(const DensityGrid& grid, const DensityTermOptions& term, int threads) {
   const GridGeometry& g = grid.geometry();
+  const std::vector<double>& values = grid.values();
   if (term.model == GuideDensityModel::binary) {
     double top = 0.0;
-    for (double v : grid.values()) top = std::max(top, v);
+    for (double v : values) top = std::max(top, v);
     const double s = top > 0.0 ? surcharge_step(top, term.threshold, term.surcharge_width) : 0.0;
     return top * top + term.surcharge * s * s;
   }
   // Every cell centre a trilinear blend can use: the grid and the ring of zero cells around it.
   // Central differences there reach two cells beyond the grid, so they read a copy padded with
-  // two rings of zeros: no bounds check in the loop (this runs once per batch over the grid).
+  // two rings of zeros (no bounds checks), one z layer per task: this runs once per batch over
+  // the whole grid. The largest of the layers' maxima is the same for any thread count.
   const int nx = g.dims.x() + 4, ny = g.dims.y() + 4, nz = g.dims.z() + 4;
   std::vector<double> padded(static_cast<std::size_t>(nx) * ny * nz, 0.0);
-  const std::vector<double>& values = grid.values();
   for (int k = 0; k < g.dims.z(); ++k)
     for (int j = 0; j < g.dims.y(); ++j)
       std::copy_n(values.begin() + g.index(0, j, k), g.dims.x(),
                   padded.begin() + (2 + static_cast<std::size_t>(nx) * ((j + 2) + static_cast<std::size_t>(ny) * (k + 2))));
   const std::ptrdiff_t sy = nx, sz = static_cast<std::ptrdiff_t>(nx) * ny;
-  double top = 0.0;
   const double h2 = 2.0 * g.voxel;
-  for (int k = 1; k < nz - 1; ++k)
+  std::vector<double> layer_top(nz, 0.0);
+  parallel_for(nz - 2, threads, [&](int layer) {
+    const int k = layer + 1;
+    double top = 0.0;
     for (int j = 1; j < ny - 1; ++j) {
       const double* c = padded.data() + 1 + sy * j + sz * k;
       for (int i = 1; i < nx - 1; ++i, ++c) {
@@ -47,7 +51,9 @@ double density_ceiling(const DensityGrid& grid, const DensityTermOptions& term) 
         top = std::max(top, d.squaredNorm());
       }
     }
-  return term.strength * top;
+    layer_top[k] = top;
+  });
+  return term.strength * *std::max_element(layer_top.begin(), layer_top.end());
 }
 
 std::vector<std::vector<Vec3>> guide_deposit_fibres(const std::vector<Vec3>& guide, const std::vector<int>& pores_of_guide,

@@ -57,7 +57,7 @@ double surcharge_step(double occupancy, double threshold, double width);
 // `grid`: BOM o² + c_BOM·S(o)² at the largest occupancy o (both grow with o); CDM c_ρ·|∇Φρ|² at
 // its largest over the cell centres, which bounds c_ρ⟨∇Φρ, t⟩² everywhere since the central
 // gradient is a trilinear blend of its cell-centre values and |·|² is convex. 0 on an empty grid.
-double density_ceiling(const DensityGrid& grid, const DensityTermOptions& term);
+double density_ceiling(const DensityGrid& grid, const DensityTermOptions& term, int threads = 1);
 
 // The fibres a guide deposits (CDM): one per pore of its cluster, as make_strands grows them
 // (uncut), in pore order; `pores_of_guide` are indices into options.pores. No pores: the guide

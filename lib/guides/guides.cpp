@@ -281,7 +281,7 @@ DensityGuides make_guides_with_density(const RootSet& bases, const PreGuides& pr
     const int end = std::min(count, begin + density.batch);
     const DensityGrid frozen = accumulator.freeze();  // the earlier batches only
     DensityTermOptions term = density.term;
-    term.outside = density_ceiling(frozen, term);
+    term.outside = density_ceiling(frozen, term, options.threads);
     parallel_for(end - begin, options.threads, [&](int i) {
       out.guides.items[begin + i] =
           solve_guide_with_density(bases, begin + i, preguides, boundary, options, plain[begin + i], frozen, term);
