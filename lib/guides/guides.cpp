@@ -316,6 +316,11 @@ GuideFigures guide_figures(const Guides& guides, const PreGuides& preguides, con
   long long nodes = 0, inside = 0, in_head = 0, out_volume = 0;
   double mismatch = 0.0, mismatch_weight = 0.0;
   const double segments = options.rod.segments;
+  // How far each pre-guide node is followed (follow_trust), for the mismatch where guides follow.
+  std::vector<std::vector<double>> trust(preguides.items.size());
+  for (std::size_t j = 0; j < preguides.items.size(); ++j)
+    for (const Vec3& p : preguides.items[j].shape.nodes) trust[j].push_back(follow_trust(boundary, p, options.boundary_width));
+  double followed = 0.0, followed_weight = 0.0;
   for (const Guide& g : guides.items) {
     const Rod rod = hair_rod(g.length, options.material);
     const double weight = rod.force_per_length.norm() * std::pow(rod.length, 3) / rod.stiffness[0];
@@ -336,8 +341,12 @@ GuideFigures guide_figures(const Guides& guides, const PreGuides& preguides, con
     for (std::size_t j = 0; j < g.neighbours.size(); ++j) {
       const FibreShape& p = preguides.items[g.neighbours[j]].shape;
       for (std::size_t i = 0; i < g.shape.tangents.size(); ++i) {
-        mismatch += g.neighbour_weights[j] * (1.0 - g.shape.tangents[i].dot(p.tangents[i]));
+        const double miss = 1.0 - g.shape.tangents[i].dot(p.tangents[i]);
+        mismatch += g.neighbour_weights[j] * miss;
         mismatch_weight += g.neighbour_weights[j];
+        const double w = g.neighbour_weights[j] * trust[g.neighbours[j]][i];
+        followed += w * miss;
+        followed_weight += w;
       }
     }
   }
@@ -351,6 +360,7 @@ GuideFigures guide_figures(const Guides& guides, const PreGuides& preguides, con
     f.outside_volume_fraction = static_cast<double>(out_volume) / nodes;
   }
   if (mismatch_weight > 0) f.mean_direction_mismatch = mismatch / mismatch_weight;
+  if (followed_weight > 0) f.followed_direction_mismatch = followed / followed_weight;
   return f;
 }
 

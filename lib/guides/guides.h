@@ -101,6 +101,9 @@ struct GuideFigures {
   double inside_head_fraction = 0.0;  // share behind the scalp
   double outside_volume_fraction = 0.0;
   double mean_direction_mismatch = 0.0;  // mean 1 − cos φ to the followed pre-guides
+  // The same weighted by how far each pre-guide node is followed (1 inside the acceptable region,
+  // 0 a boundary width beyond it): the mismatch where the guides are asked to follow at all.
+  double followed_direction_mismatch = 0.0;
   // Rods at the edge of what the discretisation resolves: the dimensionless weight w = ρA|g|L³/EI
   // (0 without gravity) and the guides whose bending layer under their weight, L/√w, is shorter
   // than one rod segment (w > segments²): finite, but coarse where they leave the root.

@@ -233,6 +233,7 @@ FigureTolerance figure_tolerance(const std::string& stage, const std::string& fi
       {"guides.inside_head_fraction", {0.005, 0}},
       {"guides.outside_volume_fraction", {0.005, 0}},
       {"guides.mean_direction_mismatch", {0, 0.05}},
+      {"guides.followed_direction_mismatch", {0, 0.05}},
       {"guides.mean_f4", {0, 0.05}},
       {"strands.points", {0, 0.002}},
       {"strands.cut", {1, 0.02}},

@@ -392,6 +392,7 @@ class Runner {
     stage.add("inside_head_fraction", f.inside_head_fraction);
     stage.add("outside_volume_fraction", f.outside_volume_fraction);
     stage.add("mean_direction_mismatch", f.mean_direction_mismatch);
+    stage.add("followed_direction_mismatch", f.followed_direction_mismatch);
     stage.add("max_weight", f.max_weight);
     stage.add("unresolved_weight", static_cast<std::int64_t>(f.unresolved_weight));
     stage.add("shorter_than_voxel", static_cast<std::int64_t>(f.shorter_than_voxel));

@@ -220,3 +220,35 @@ TEST_CASE("guides are identical for 1, 2 and 4 threads") {
     CHECK(digest(many).hex() == digest(one).hex());
   }
 }
+
+TEST_CASE("the followed mismatch counts only pre-guide nodes inside the acceptable region") {
+  // One radial pre-guide from the scalp (r = 8) out through the volume (r = 12): nodes at
+  // r = 8.5 … 11.5 lie inside (followed fully), nodes at r = 13.5 … 16 a boundary width or more
+  // beyond the volume (not followed). The guide runs along the same nodes, perpendicular to the
+  // pre-guide inside and parallel outside: 1 − cos φ is 1 at every followed node, 0 beyond.
+  GuideOptions o;
+  o.boundary_width = 1.0;
+  const Vec3 up(0, 1, 0), across(1, 0, 0);
+  PreGuide pre;
+  Guide g;
+  for (double r : {8.5, 9.0, 9.5, 10.0, 10.5, 11.0, 11.5, 13.5, 14.0, 14.5, 15.0, 15.5, 16.0}) {
+    pre.shape.nodes.push_back(r * up);
+    pre.shape.tangents.push_back(up);
+    g.shape.nodes.push_back(r * up);
+    g.shape.tangents.push_back(r < 12.0 ? across : up);
+  }
+  pre.shape.darboux.assign(pre.shape.nodes.size(), Vec3::Zero());
+  g.shape.darboux = pre.shape.darboux;
+  g.length = 7.5;
+  g.converged = true;
+  g.neighbours = {0};
+  g.neighbour_weights = {1.0};
+  PreGuides preguides;
+  preguides.items.push_back(pre);
+  Guides guides;
+  guides.items.push_back(g);
+  const GuideFigures f = guide_figures(guides, preguides, world().boundary(), o, 0.4);
+  CHECK(f.mean_direction_mismatch == doctest::Approx(7.0 / 13.0).epsilon(1e-15));
+  CHECK(f.followed_direction_mismatch == doctest::Approx(1.0).epsilon(1e-15));
+  CHECK(f.inside_fraction == doctest::Approx(7.0 / 13.0).epsilon(1e-15));
+}
