@@ -51,8 +51,9 @@ struct SceneHair {
   double density = 200.0;                   // hairs per cm² of scalp (× density map)
   double length = 25.0;                     // cm, every hair, when the length map is not used
   std::array<double, 2> length_range{15.0, 35.0};  // cm, length map black → white
-  double tilt = 0.0;                        // degrees from the normal toward down, without tilt map
+  double tilt = 0.0;                        // degrees from the normal toward tilt_toward, without tilt map
   std::array<double, 2> tilt_range{0.0, 90.0};     // degrees, tilt map black → white
+  std::string tilt_toward = "down";         // down | thicker (up the hair layer's thickness gradient)
   double youngs_modulus = 3.89e10;          // E, dyn/cm² (paper §3.1)
   double shear_modulus = 0.89e10;           // G, dyn/cm²
   double cross_section = 1.5e-5;            // A, cm² (circular: I = A²/4π, J = 2I)

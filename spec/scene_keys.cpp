@@ -199,7 +199,7 @@ std::vector<SceneKey> build_keys() {
   keys.push_back(optional_path("maps.density", OPT_REF(maps.density), "roots",
                                "Grey PNG: hair density factor, black = no hair, white = hair.density."));
   keys.push_back(optional_path("maps.tilt", OPT_REF(maps.tilt), "roots",
-                               "Grey PNG: tilt of the growth direction from the normal toward down, over hair.tilt_range."));
+                               "Grey PNG: tilt of the growth direction from the normal (toward hair.tilt_toward), over hair.tilt_range."));
   keys.push_back(optional_path("maps.length", OPT_REF(maps.length), "roots, strands",
                                "Grey PNG: hair length, over hair.length_range."));
 
@@ -210,9 +210,12 @@ std::vector<SceneKey> build_keys() {
   keys.push_back(pair("hair.length_range", REF(hair.length_range), "cm", above(0, 500), "roots",
                       "Lengths for black and white of the length map."));
   keys.push_back(number("hair.tilt", REF(hair.tilt), "degrees", closed(0, 90), "roots",
-                        "Tilt of the growth direction from the normal toward down when the tilt map is not used."));
+                        "Tilt of the growth direction from the normal (toward hair.tilt_toward) when the tilt map is not used."));
   keys.push_back(pair("hair.tilt_range", REF(hair.tilt_range), "degrees", closed(0, 90), "roots",
                       "Tilts for black and white of the tilt map."));
+  keys.push_back(text("hair.tilt_toward", REF(hair.tilt_toward), {"down", "thicker"}, "roots",
+                      "Where the normal tilts: toward down, or up the surface gradient of the hair layer's thickness "
+                      "(depth below the volume boundary), blended with down where the layer is flat."));
   keys.push_back(number("hair.youngs_modulus", REF(hair.youngs_modulus), "dyn/cm²", above(0, 1e15), "rod",
                         "Young's modulus E of a fibre (paper: 3.89e10)."));
   keys.push_back(number("hair.shear_modulus", REF(hair.shear_modulus), "dyn/cm²", above(0, 1e15), "rod",

@@ -303,7 +303,8 @@ class Runner {
 
   void roots(StageReport& stage) {
     StageValues& v = result_.values;
-    const RootOptions o = root_options(scene_, options_.threads);
+    RootOptions o = root_options(scene_, options_.threads);
+    if (o.tilt_toward == TiltToward::thicker) o.thickness = layer_thickness(*v.volume_field);
     v.roots = std::make_shared<const Roots>(make_roots(*v.chart, maps(), o));
     v.clusters = std::make_shared<const Clusters>(make_clusters(*v.chart, *v.roots, o));
     v.preguide_roots = std::make_shared<const PreguideRoots>(make_preguide_roots(*v.chart, maps(), o));

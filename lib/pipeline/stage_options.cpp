@@ -17,6 +17,7 @@ RootOptions root_options(const Scene& scene, int threads) {
   o.density = scene.hair.density;
   o.tilt = scene.hair.tilt;
   o.tilt_range = scene.hair.tilt_range;
+  o.tilt_toward = scene.hair.tilt_toward == "thicker" ? TiltToward::thicker : TiltToward::down;
   o.length = scene.hair.length;
   o.length_range = scene.hair.length_range;
   o.guides = scene.roots.guides;
@@ -25,6 +26,18 @@ RootOptions root_options(const Scene& scene, int threads) {
   o.seed = static_cast<std::uint64_t>(scene.seed);
   o.threads = threads;
   return o;
+}
+
+ThicknessField layer_thickness(const DistanceField& volume) {
+  return [&volume](const Vec3& p) {
+    const double h = volume.voxel();
+    Vec3 gradient;
+    for (int axis = 0; axis < 3; ++axis) {
+      const Vec3 step = h * Vec3::Unit(axis);
+      gradient[axis] = (volume.value(p - step) - volume.value(p + step)) / (2.0 * h);
+    }
+    return LayerThickness{-volume.value(p), gradient};
+  };
 }
 
 HairMaterial hair_material(const Scene& scene) {

@@ -68,6 +68,11 @@ std::vector<StageDeclaration> stage_declarations(const Scene& scene) {
     roots.reads.push_back("hair.length_range");
   }
   append(roots.consumes, {"chart"});
+  // Tilting toward the thicker layer reads the volume's distance field at each root.
+  if (scene.hair.tilt_toward == "thicker") {
+    roots.reads.push_back("hair.tilt_toward");
+    roots.consumes.push_back("fields");
+  }
   stages.push_back(roots);
 
   StageDeclaration preguides = named("preguides");

@@ -154,6 +154,10 @@ PrepareChecks check(const Prepared& p) {
   return c;
 }
 
+double max_thickness(const Prepared& p) {
+  return p.scalp.thickness.empty() ? 0.0 : *std::max_element(p.scalp.thickness.begin(), p.scalp.thickness.end());
+}
+
 }  // namespace
 
 Prepared prepare_scan(const Mesh& raw_scan, const std::vector<Vec3>& colors, const PrepareOptions& o,
@@ -192,7 +196,16 @@ Prepared prepare_scan(const Mesh& raw_scan, const std::vector<Vec3>& colors, con
   return p;
 }
 
+PreparedHair prepared_hair(const Prepared& p, const PrepareOptions& o) {
+  PreparedHair hair;
+  const double reach = std::max(p.scalp.hairline_reach, 1e-3);
+  hair.tilt = std::round(90.0 - std::atan(o.scalp.crown_thickness / reach) * 180.0 / M_PI);
+  hair.length = std::max(0.5, std::round(2.0 * (2.0 / 3.0) * reach) / 2.0);
+  return hair;
+}
+
 std::string prepared_scene_text(const Prepared& p, const std::string& scan_name, const PrepareOptions& o) {
+  const PreparedHair hair = prepared_hair(p, o);
   char text[4096];
   std::snprintf(
       text, sizeof text,
@@ -211,9 +224,18 @@ std::string prepared_scene_text(const Prepared& p, const std::string& scan_name,
       "volume = \"volume.obj\"\n"
       "\n"
       "[effects]\n"
-      "cutting = true               # a scanned hull is tight: fibres that leave it for long are cut\n",
+      "cutting = true               # a scanned hull is tight: fibres that leave it for long are cut\n"
+      "\n"
+      "# Hair that fits the shell: 0 cm thick at the hairline, %.3g cm over the crown (%.3g cm at most,\n"
+      "# under bumps), and no point of it farther than %.3g cm from the hairline.\n"
+      "[hair]\n"
+      "tilt_toward = \"thicker\"      # at the hairline the normal leaves the hull: grow into the hair mass\n"
+      "tilt = %.0f                    # 90° − atan(%.3g cm / %.3g cm): rising no faster than the layer can hold\n"
+      "length = %.1f                # cm, ⅔ of that reach: how far a root lies on average from the innermost point\n",
       scan_name.c_str(), o.selection.describe().c_str(), o.scalp.crown_thickness, p.scalp.ramp_length, kSceneFormat,
-      p.scale_to_cm, toml_vector(-p.up).c_str(), p.up_how.c_str(), toml_vector(p.front).c_str(), p.front_how.c_str());
+      p.scale_to_cm, toml_vector(-p.up).c_str(), p.up_how.c_str(), toml_vector(p.front).c_str(), p.front_how.c_str(),
+      o.scalp.crown_thickness, max_thickness(p), p.scalp.hairline_reach, hair.tilt, o.scalp.crown_thickness, p.scalp.hairline_reach,
+      hair.length);
   return text;
 }
 
@@ -225,8 +247,6 @@ void write_prepared(const Prepared& p, const std::filesystem::path& scan, const 
     throw InputError(dir.string(), "exists and is not a folder; --out names the folder to write the scene into");
   using Json = nlohmann::ordered_json;
   const auto vec = [](const Vec3& v) { return Json::array({v.x(), v.y(), v.z()}); };
-  double max_thickness = 0.0;
-  for (double t : p.scalp.thickness) max_thickness = std::max(max_thickness, t);
   Json record;
   record["format"] = "hairfit-prepare/1";
   record["scan"] = fs::absolute(scan).lexically_normal().string();
@@ -250,7 +270,8 @@ void write_prepared(const Prepared& p, const std::filesystem::path& scan, const 
                      {"area_cm2", surface_area(p.scalp.scalp)},
                      {"crown_thickness_cm", o.scalp.crown_thickness},
                      {"ramp_cm", p.scalp.ramp_length},
-                     {"max_thickness_cm", max_thickness},
+                     {"hairline_reach_cm", p.scalp.hairline_reach},
+                     {"max_thickness_cm", max_thickness(p)},
                      {"envelope_rms_cm", p.scalp.envelope_rms},
                      {"envelope_outliers", p.scalp.envelope_outliers}};
   record["checks"] = {{"hull_disk", p.checks.hull_disk},

@@ -102,6 +102,7 @@ ScalpResult make_scalp(const Hull& hull, const ScalpOptions& o, const std::strin
   // polygonal isolines of edge distances do not show.
   const std::vector<double> g = edge_distance(mesh, next, hull.hairline);
   const double g_max = *std::max_element(g.begin(), g.end());
+  r.hairline_reach = g_max;
   r.ramp_length = std::min(o.ramp, 0.8 * g_max);
   std::vector<double> w(n);
   for (int v = 0; v < n; ++v) w[v] = smoothstep(g[v] / r.ramp_length);

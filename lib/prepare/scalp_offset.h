@@ -37,6 +37,7 @@ struct ScalpResult {
   std::vector<double> thickness;  // per hull vertex: R − ρ, cm
   std::vector<double> ramp;       // per hull vertex: w ∈ [0, 1]
   double ramp_length = 0.0;       // cm actually used (at most 0.8 × the largest hairline distance)
+  double hairline_reach = 0.0;    // cm: the largest distance from the hairline along the hull's edges
   double envelope_rms = 0.0;      // cm: RMS of R − f over the vertices the robust fit kept
   int envelope_outliers = 0;      // vertices the fit rejected (the bumps)
 };

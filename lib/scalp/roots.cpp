@@ -120,7 +120,10 @@ RootSet make_root_set(const ScalpChart& ch, const ScalpMaps& maps, const RootOpt
     s.normals[i] = surface_normal(ch, sp);
     s.chart[i] = chart_position(ch, sp);
     const double tilt = maps.tilt ? lerp(o.tilt_range, map_value(maps.tilt, s.chart[i])) : o.tilt;
-    s.directions[i] = growth_direction(s.normals[i], ch.down, ch.front, tilt);
+    s.directions[i] = o.tilt_toward == TiltToward::thicker
+                          ? growth_direction_toward_thicker(s.normals[i], o.thickness(s.positions[i]).gradient, ch.down,
+                                                            ch.front, tilt)
+                          : growth_direction(s.normals[i], ch.down, ch.front, tilt);
     s.lengths[i] = maps.length ? lerp(o.length_range, map_value(maps.length, s.chart[i])) : o.length;
     s.heights[i] = height_of(ch, s.positions[i]);
   });
@@ -131,6 +134,8 @@ void check_options(const RootOptions& o) {
   if (!(o.density >= 0) || !std::isfinite(o.density)) throw std::invalid_argument("roots: density must be ≥ 0");
   if (!(o.oversampling >= 1)) throw std::invalid_argument("roots: oversampling must be ≥ 1");
   if (o.threads < 1) throw std::invalid_argument("roots: threads must be ≥ 1");
+  if (o.tilt_toward == TiltToward::thicker && !o.thickness)
+    throw std::invalid_argument("roots: tilting toward the thicker layer needs the layer's thickness field");
 }
 
 std::vector<SurfacePoint> pick(const std::vector<SurfacePoint>& all, const std::vector<int>& kept) {
@@ -140,15 +145,36 @@ std::vector<SurfacePoint> pick(const std::vector<SurfacePoint>& all, const std::
   return out;
 }
 
-}  // namespace
-
-Vec3 growth_direction(const Vec3& normal, const Vec3& down, const Vec3& front, double tilt_degrees) {
+// The unit tangent toward down (or −front, or any) of growth_direction.
+Vec3 tangent_toward_down(const Vec3& normal, const Vec3& down, const Vec3& front) {
   Vec3 tangent = down - down.dot(normal) * normal;
   if (tangent.norm() < 1e-9) tangent = -front + front.dot(normal) * normal;
   if (tangent.norm() < 1e-9) tangent = normal.unitOrthogonal();
-  tangent.normalize();
+  return tangent.normalized();
+}
+
+Vec3 tilted(const Vec3& normal, const Vec3& unit_tangent, double tilt_degrees) {
   const double angle = tilt_degrees * M_PI / 180.0;
-  return (std::cos(angle) * normal + std::sin(angle) * tangent).normalized();
+  return (std::cos(angle) * normal + std::sin(angle) * unit_tangent).normalized();
+}
+
+}  // namespace
+
+Vec3 growth_direction(const Vec3& normal, const Vec3& down, const Vec3& front, double tilt_degrees) {
+  return tilted(normal, tangent_toward_down(normal, down, front), tilt_degrees);
+}
+
+Vec3 growth_direction_toward_thicker(const Vec3& normal, const Vec3& thickness_gradient, const Vec3& down,
+                                     const Vec3& front, double tilt_degrees) {
+  const Vec3 toward_down = tangent_toward_down(normal, down, front);
+  const Vec3 g = thickness_gradient - thickness_gradient.dot(normal) * normal;
+  const double slope = g.norm();
+  if (!(slope > 1e-12)) return tilted(normal, toward_down, tilt_degrees);  // also NaN gradients
+  const double w = std::min(1.0, slope / kFlatLayerGradient);
+  Vec3 tangent = w * (g / slope) + (1.0 - w) * toward_down;
+  // Opposite halves cancel only at w = ½ with ĝ = −down: the gradient decides.
+  tangent = tangent.norm() < 1e-9 ? Vec3(g / slope) : Vec3(tangent.normalized());
+  return tilted(normal, tangent, tilt_degrees);
 }
 
 Roots make_roots(const ScalpChart& ch, const ScalpMaps& maps, const RootOptions& o) {

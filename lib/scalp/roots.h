@@ -2,6 +2,7 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "core/digest.h"
@@ -17,9 +18,23 @@ struct ScalpMaps {
   const GreyMap* length = nullptr;   // black → length_range[0], white → length_range[1]
 };
 
+// Which way the normal tilts at a root: toward down (the scene's default), or up the surface
+// gradient of the hair layer's thickness, so hair at a thin hairline grows into the hair mass.
+enum class TiltToward { down, thicker };
+
+// The hair layer's thickness at a point (cm) and its gradient (world axes), for TiltToward::thicker:
+// the pipeline passes −Φ_volume, the depth below the hair-volume boundary.
+struct LayerThickness {
+  double value = 0.0;
+  Vec3 gradient = Vec3::Zero();
+};
+using ThicknessField = std::function<LayerThickness(const Vec3&)>;
+
 struct RootOptions {
   double density = 200.0;                     // hairs per cm² of 3D scalp area (white density map)
-  double tilt = 0.0;                          // degrees from the normal toward down, without tilt map
+  double tilt = 0.0;                          // degrees from the normal (toward tilt_toward), without tilt map
+  TiltToward tilt_toward = TiltToward::down;
+  ThicknessField thickness;                   // required with TiltToward::thicker
   std::array<double, 2> tilt_range{0.0, 90.0};  // degrees, tilt map black → white
   double length = 25.0;                       // cm, without length map
   std::array<double, 2> length_range{15.0, 35.0};  // cm, length map black → white
@@ -36,7 +51,7 @@ struct RootSet {
   std::vector<SurfacePoint> where;   // triangle and barycentric coordinates on the scalp
   std::vector<Vec3> positions;       // cm
   std::vector<Vec3> normals;         // unit outward surface normal (interpolated vertex normals)
-  std::vector<Vec3> directions;      // unit growth direction: normal tilted toward down
+  std::vector<Vec3> directions;      // unit growth direction: normal tilted toward down (or thicker)
   std::vector<double> lengths;       // cm
   std::vector<Vec2> chart;           // chart coordinates (unit disk)
   std::vector<double> heights;       // [0, 1] along up: 0 lowest scalp vertex, 1 top of the head
@@ -85,6 +100,16 @@ PreguideRoots make_preguide_roots(const ScalpChart& chart, const ScalpMaps& maps
 // onto the tangent plane; where down is (nearly) parallel to the normal, toward −front projected,
 // else any tangent. Never NaN for a unit normal.
 Vec3 growth_direction(const Vec3& normal, const Vec3& down, const Vec3& front, double tilt_degrees);
+
+// Thickness gradients (cm/cm) along the surface below this count as a flat layer.
+constexpr double kFlatLayerGradient = 0.1;
+
+// Unit growth direction for TiltToward::thicker: the normal rotated by `tilt_degrees` toward the
+// tangential part g of `thickness_gradient`; where |g| < kFlatLayerGradient, toward the blend
+// (|g|/k)·ĝ + (1 − |g|/k)·(growth_direction's tangent toward down), so a flat layer falls back to
+// down continuously. Never NaN for a unit normal.
+Vec3 growth_direction_toward_thicker(const Vec3& normal, const Vec3& thickness_gradient, const Vec3& down,
+                                     const Vec3& front, double tilt_degrees);
 
 // Figures for report.json.
 struct ScalpFigures {

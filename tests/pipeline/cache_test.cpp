@@ -105,6 +105,15 @@ TEST_CASE("roots: a new hair density or seed misses roots and what follows") {
   CHECK(missed([](Scene& s) { s.seed = 8; }) == Names{"roots", "preguides", "guides", "strands"});
 }
 
+TEST_CASE("roots: tilting toward the thicker layer makes the roots read the volume's field") {
+  // "down" is the default: writing it out misses nothing, so existing scenes keep their caches.
+  CHECK(missed([](Scene& s) { s.hair.tilt_toward = "down"; }).empty());
+  CHECK(missed([](Scene& s) { s.hair.tilt_toward = "thicker"; }) == Names{"roots", "preguides", "guides", "strands"});
+  Scene thicker = smoke_scene();
+  thicker.hair.tilt_toward = "thicker";
+  CHECK(missed([](Scene& s) { s.fields.voxel = 0.4; }, thicker) == Names{"fields", "roots", "preguides", "guides", "strands"});
+}
+
 TEST_CASE("preguides: a new load cap misses pre-guides and what follows") {
   CHECK(missed([](Scene& s) { s.preguides.max_load = 500; }) == Names{"preguides", "guides", "strands"});
 }
