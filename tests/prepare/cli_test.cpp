@@ -180,13 +180,12 @@ TEST_CASE("bad input: a clear message, exit code 2 and nothing written") {
 }
 
 // The target: the produced scene runs end to end with inside_fraction ≥ 0.99 after
-// cutting. Not met yet (0.987 with the written hair; see README "Known weak"): the written scene
-// tilts roots toward the thicker layer by 90° − atan(T/reach) with hair ⅔ of the reach long, so
-// the grown points stay inside (0.995 of the points after the root), but 139 of the 1272 root
-// points themselves — on the scalp by construction — read as in the head or outside the volume
-// through the interpolated fields near the zero-thickness hairline (1.0 % of all points at 12
-// points per fibre). Marked may_fail so the figure stays visible.
-TEST_CASE("the prepared scene runs end to end with strands inside after cutting" * doctest::may_fail()) {
+// cutting (0.995 today). The written scene tilts roots toward the thicker layer by
+// 90° − atan(T/reach) with hair ⅔ of the reach long; with the old defaults (25 cm along the
+// normal) it was 0.90. The figure counts fibre points after the root: roots lie on the scalp by
+// construction, and 139 of these 1272 read in the head or outside the volume through the
+// interpolated fields at the zero-thickness hairline (spec/reference.md).
+TEST_CASE("the prepared scene runs end to end with strands inside after cutting") {
   const fs::path dir = fresh_dir("inside");
   const fs::path scan = write_bust(dir, 10.0);
   const fs::path out = dir / "scene";
