@@ -464,10 +464,12 @@ class Runner {
     const GridGeometry grid = density_geometry(scene_, inputs_.volume.mesh);
     const std::vector<std::vector<Vec3>> fibres = fibre_lists();
     DensityAccumulator accumulator(grid);
-    accumulator.add_fibres(fibres, options_.threads);
+    std::vector<std::int32_t> segment_counts;  // the histogram's, from the deposit's traversal
+    accumulator.add_fibres(fibres, options_.threads, &segment_counts);
     v.fibre_density = std::make_shared<const DensityGrid>(std::move(accumulator).freeze());
     const Boundary b = boundary();
-    const DensityStatistics s = density_statistics(*v.fibre_density, [&b](const Vec3& p) { return b.acceptable(p); });
+    const DensityStatistics s =
+        density_statistics(*v.fibre_density, [&b](const Vec3& p) { return b.acceptable(p); }, options_.threads);
     const std::vector<double>& values = v.fibre_density->values();
     stage.digest = Digest().add_bytes(values.data(), values.size() * sizeof(double)).hex();
     stage.add("model", scene_.effects.density == DensityModel::binary ? std::string("binary") : std::string("continuous"));
@@ -478,7 +480,7 @@ class Runner {
     stage.add("mean_density", s.mean);
     stage.add("coefficient_of_variation", s.coefficient_of_variation);
     stage.add("empty_share", s.empty_share);
-    histogram_ = segment_histogram(grid, fibres, options_.threads);
+    histogram_ = histogram_of_counts(segment_counts);
     stage.add("max_segments_per_cell",
               static_cast<std::int64_t>(histogram_->cells_with.empty() ? 0 : histogram_->cells_with.size() - 1));
   }
