@@ -410,18 +410,20 @@ class Runner {
     const DistanceFunction volume_distance = [volume](const Vec3& p) { return volume->value(p); };
     StrandOptions o = strand_options(scene_, options_.threads);
     o.progress = loop_progress();
-    Strands s = make_strands(v.guides->curves(), pores(), o, volume_distance, scalp_exit(*v.scalp_field));
+    std::vector<double> beyond_volume;  // from the cutting, when it runs: the counts need not ask again
+    Strands s = make_strands(v.guides->curves(), pores(), o, volume_distance, scalp_exit(*v.scalp_field), &beyond_volume);
     add_widths(s.fibres, scene_.hair.cross_section);
     v.strands = std::make_shared<const Strands>(std::move(s));
     const Curves& fibres = v.strands->fibres;
     stage.digest = Digest().add(fibres.points).hex();
-    // Two field lookups per point: counted per fibre on all threads, then summed (integers, so
-    // the totals do not depend on the thread count).
+    // Field lookups per point (the volume's only without cutting): counted per fibre on all
+    // threads, then summed (integers, so the totals do not depend on the thread count).
     const Boundary b = boundary();
     std::vector<std::array<int, 3>> counts(fibres.count(), {0, 0, 0});  // inside, in head, outside volume
     parallel_for(static_cast<int>(fibres.count()), options_.threads, [&](int c) {
       for (std::size_t k = fibres.offsets[c]; k < fibres.offsets[c + 1]; ++k) {
-        const bool head = b.beyond_scalp(fibres.points[k]) > 0.0, out = b.beyond_volume(fibres.points[k]) > 0.0;
+        const bool head = b.beyond_scalp(fibres.points[k]) > 0.0;
+        const bool out = (beyond_volume.empty() ? b.beyond_volume(fibres.points[k]) : beyond_volume[k]) > 0.0;
         counts[c][0] += !head && !out;
         counts[c][1] += head;
         counts[c][2] += out;

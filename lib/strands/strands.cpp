@@ -147,7 +147,7 @@ std::vector<Vec3> make_fibre(const std::vector<Vec3>& guide, const Vec3& pore, d
 }
 
 Strands make_strands(const Curves& guides, const Pores& pores, const StrandOptions& options, const DistanceFunction& volume,
-                     const HeadExit& out_of_head) {
+                     const HeadExit& out_of_head, std::vector<double>* volume_distances) {
   const int guide_count = static_cast<int>(guides.count());
   std::vector<GuideTrack> tracks;
   tracks.reserve(guide_count);
@@ -165,26 +165,37 @@ Strands make_strands(const Curves& guides, const Pores& pores, const StrandOptio
   }
 
   const int count = static_cast<int>(pores.positions.size());
+  const bool cutting = options.cutting && volume;
   std::vector<std::vector<Vec3>> fibres(count);
+  std::vector<std::vector<double>> distances(cutting && volume_distances ? count : 0);
   std::vector<char> cut(count, 0);
   ProgressCounter progress(options.progress);
   parallel_for(count, options.threads, [&](int i) {
     std::vector<Vec3> fibre = fibre_kept_out(tracks[pores.guide[i]], pores.positions[i], pores.lengths[i],
                                              extent[pores.guide[i]], options, out_of_head);
-    if (options.cutting && volume) {
+    if (cutting) {
       CutResult r = cut_at_exit(fibre, volume, options.cut_threshold);
       cut[i] = r.cut;
       fibre = std::move(r.points);
+      if (!distances.empty()) distances[i] = std::move(r.distances);
     }
     fibres[i] = std::move(fibre);
     progress.item_done();
   });
 
+  // The fibres laid end to end in pore order, each copied on its own thread.
   Strands strands;
-  for (int i = 0; i < count; ++i) {
-    strands.fibres.add(fibres[i], pores.guide[i]);
-    strands.cut_count += cut[i];
-  }
+  Curves& out = strands.fibres;
+  out.offsets.resize(count + 1);
+  for (int i = 0; i < count; ++i) out.offsets[i + 1] = out.offsets[i] + static_cast<std::uint32_t>(fibres[i].size());
+  out.points.resize(out.offsets[count]);
+  out.guide.assign(pores.guide.begin(), pores.guide.end());
+  if (volume_distances) volume_distances->assign(distances.empty() ? 0 : out.points.size(), 0.0);
+  parallel_for(count, options.threads, [&](int i) {
+    std::copy(fibres[i].begin(), fibres[i].end(), out.points.begin() + out.offsets[i]);
+    if (!distances.empty()) std::copy(distances[i].begin(), distances[i].end(), volume_distances->begin() + out.offsets[i]);
+  });
+  for (int i = 0; i < count; ++i) strands.cut_count += cut[i];
   strands.cut = std::move(cut);
   return strands;
 }

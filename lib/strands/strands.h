@@ -44,8 +44,11 @@ using HeadExit = std::function<Vec3(const Vec3&)>;
 // continues along the guide's last tangent. With `out_of_head`, a fibre that would pass behind
 // the scalp (a wisp wider than the guide's clearance, or a guide that dips in) has those points
 // moved out of the head, still with exactly its length. Deterministic for any thread count.
+// With cutting and `volume_distances`, that is set to volume(p) at every point of the fibres (in
+// fibres.points order; the cutting looks them up anyway), else emptied.
 Strands make_strands(const Curves& guides, const Pores& pores, const StrandOptions& options,
-                     const DistanceFunction& volume = nullptr, const HeadExit& out_of_head = nullptr);
+                     const DistanceFunction& volume = nullptr, const HeadExit& out_of_head = nullptr,
+                     std::vector<double>* volume_distances = nullptr);
 
 // One fibre (exposed for tests): the wisp frame is rotation-minimising along the guide.
 std::vector<Vec3> make_fibre(const std::vector<Vec3>& guide, const Vec3& pore, double length, double wisp_extent,

@@ -46,6 +46,11 @@ TEST_CASE("cutting: an excursion under the threshold is kept, one over it is cut
   CHECK(cut.outside_length > outside - 1e-9);
   REQUIRE(cut.points.size() == 3);
   CHECK((cut.points.back() - Vec3(1.5, 0, 0)).norm() < 1e-15);  // the exit crossing
+  // The distances handed back are the function's at the kept points, the crossing's included.
+  for (const CutResult* r : {&kept, &cut}) {
+    REQUIRE(r->distances.size() == r->points.size());
+    for (std::size_t i = 0; i < r->points.size(); ++i) CHECK(r->distances[i] == below_plane(r->points[i]));
+  }
 }
 
 TEST_CASE("cutting: an excursion running to the tip counts to the tip; one from the root is never cut") {
@@ -156,7 +161,10 @@ TEST_CASE("make_strands: one fibre per pore, cutting counted, identical for any 
   Strands reference;
   for (int threads : {1, 2, 4}) {
     o.threads = threads;
-    const Strands s = make_strands(guides, pores, o, slab);
+    std::vector<double> distances{1.0};  // replaced
+    const Strands s = make_strands(guides, pores, o, slab, nullptr, &distances);
+    REQUIRE(distances.size() == s.fibres.points.size());
+    for (std::size_t k = 0; k < distances.size(); ++k) CHECK(distances[k] == slab(s.fibres.points[k]));
     CHECK(s.fibres.count() == 300);
     CHECK(s.cut_count > 0);
     for (std::size_t c = 0; c < s.fibres.count(); ++c) {
