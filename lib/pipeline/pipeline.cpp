@@ -263,10 +263,9 @@ class Runner {
     v.volume_field = std::make_shared<const DistanceField>(
         make_distance_field(inputs_.volume.mesh, field_spec(scene_, scene_.inputs.volume.string()), options_.threads));
     Digest d;
-    for (const DistanceField* f : {v.scalp_field.get(), v.volume_field.get()}) {
-      const NrrdVolume volume = field_to_nrrd(*f);
-      d.add_bytes(volume.data.data(), volume.data.size() * sizeof(float));
-    }
+    std::array<NrrdVolume, 2> volumes{field_to_nrrd(*v.scalp_field, options_.threads), field_to_nrrd(*v.volume_field, options_.threads)};
+    for (const NrrdVolume& volume : volumes) d.add_bytes(volume.data.data(), volume.data.size() * sizeof(float));
+    if (options_.write_outputs) field_volumes_ = std::move(volumes);  // the files hold the same samples
     stage.digest = d.hex();
     stage.add("voxel_cm", scene_.fields.voxel);
     stage.add("scalp_grid", std::to_string(v.scalp_field->dims().x()) + "x" + std::to_string(v.scalp_field->dims().y()) +
@@ -279,8 +278,11 @@ class Runner {
 
   void write_fields() {
     const StageValues& v = result_.values;
-    output("fields/scalp.nrrd", [&](const fs::path& p) { write_nrrd(p, field_to_nrrd(*v.scalp_field)); });
-    output("fields/volume.nrrd", [&](const fs::path& p) { write_nrrd(p, field_to_nrrd(*v.volume_field)); });
+    if (!field_volumes_)  // a cached stage: converted again rather than stored
+      field_volumes_ = {field_to_nrrd(*v.scalp_field, options_.threads), field_to_nrrd(*v.volume_field, options_.threads)};
+    output("fields/scalp.nrrd", [&](const fs::path& p) { write_nrrd(p, (*field_volumes_)[0]); });
+    output("fields/volume.nrrd", [&](const fs::path& p) { write_nrrd(p, (*field_volumes_)[1]); });
+    field_volumes_.reset();
   }
 
   void chart(StageReport& stage) {
@@ -514,6 +516,7 @@ class Runner {
   std::map<std::string, std::string> keys_;
   std::map<std::string, bool> cached_;
   std::optional<SegmentHistogram> histogram_;  // the density stage's, for its file
+  std::optional<std::array<NrrdVolume, 2>> field_volumes_;  // the fields stage's samples (scalp, volume), for its files
   PipelineResult result_;
 };
 
