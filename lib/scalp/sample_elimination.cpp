@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <numeric>
 
 #include "core/parallel.h"
@@ -149,24 +150,24 @@ std::vector<int> eliminate_samples(const std::vector<Vec3>& points, const std::v
   });
   std::vector<int> start(m + 1);
   start[0] = 0;
-  std::vector<int> neighbours;
-  std::vector<double> neighbour_weight;
   {
-    std::size_t total = 0;
-    for (const Block& block : blocks) total += block.neighbour.size();
-    neighbours.reserve(total);
-    neighbour_weight.reserve(total);
     int k = 0;
-    for (Block& block : blocks) {
+    for (const Block& block : blocks)
       for (int c : block.count) {
         start[k + 1] = start[k] + c;
         ++k;
       }
-      neighbours.insert(neighbours.end(), block.neighbour.begin(), block.neighbour.end());
-      neighbour_weight.insert(neighbour_weight.end(), block.weight.begin(), block.weight.end());
-      block = Block();  // free early
-    }
   }
+  // Filled block by block on all threads; not zeroed first (every entry is written).
+  const std::unique_ptr<int[]> neighbours(new int[start[m]]);
+  const std::unique_ptr<double[]> neighbour_weight(new double[start[m]]);
+  parallel_for(static_cast<int>(blocks.size()), threads, [&](int b) {
+    Block& block = blocks[b];
+    const int at = start[grid.cell_begin(b * kCellsPerBlock)];
+    std::copy(block.neighbour.begin(), block.neighbour.end(), neighbours.get() + at);
+    std::copy(block.weight.begin(), block.weight.end(), neighbour_weight.get() + at);
+    block = Block();  // free early
+  });
 
   // Greedy elimination of the most crowded candidate. Weights only decrease, so a lazy max-heap
   // works: an entry whose weight is out of date is refreshed with its current weight when it
