@@ -472,8 +472,10 @@ class Runner {
     accumulator.add_fibres(fibres, options_.threads, &segment_counts);
     v.fibre_density = std::make_shared<const DensityGrid>(std::move(accumulator).freeze());
     const Boundary b = boundary();
-    const DensityStatistics s =
-        density_statistics(*v.fibre_density, [&b](const Vec3& p) { return b.acceptable(p); }, options_.threads);
+    // b.acceptable(p), asking the volume first: most cells of the grid's box lie outside the
+    // volume, and those then need no scalp lookup.
+    const auto acceptable = [&b](const Vec3& p) { return b.beyond_volume(p) <= 0.0 && b.beyond_scalp(p) <= 0.0; };
+    const DensityStatistics s = density_statistics(*v.fibre_density, acceptable, options_.threads);
     const std::vector<double>& values = v.fibre_density->values();
     stage.digest = Digest().add_bytes(values.data(), values.size() * sizeof(double)).hex();
     stage.add("model", scene_.effects.density == DensityModel::binary ? std::string("binary") : std::string("continuous"));
