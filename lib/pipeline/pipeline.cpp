@@ -494,8 +494,9 @@ class Runner {
   std::vector<std::vector<Vec3>> fibre_lists() const {
     const Curves& curves = result_.values.strands->fibres;
     std::vector<std::vector<Vec3>> fibres(curves.count());
-    for (std::size_t c = 0; c < curves.count(); ++c)
+    parallel_for(static_cast<int>(curves.count()), options_.threads, [&](int c) {
       fibres[c].assign(curves.points.begin() + curves.offsets[c], curves.points.begin() + curves.offsets[c + 1]);
+    });
     return fibres;
   }
 
