@@ -26,6 +26,14 @@ void for_each_crossing_in_slab(const GridGeometry& grid, const std::vector<std::
                                int k_end, Visit&& visit) {
   std::vector<CellCrossing> crossings;
   for (const std::vector<Vec3>& fibre : fibres) {
+    if (fibre.size() < 2) continue;
+    // A fibre whose whole z-range misses the slab has no segment in it (z_layers is monotone):
+    // one test instead of one per segment.
+    double z_lo = fibre[0].z(), z_hi = z_lo;
+    for (const Vec3& p : fibre) z_lo = std::min(z_lo, p.z()), z_hi = std::max(z_hi, p.z());
+    int fibre_first, fibre_last;
+    z_layers(grid, z_lo, z_hi, fibre_first, fibre_last);
+    if (fibre_last + 1 < k_begin || fibre_first - 1 >= k_end) continue;
     for (size_t s = 0; s + 1 < fibre.size(); ++s) {
       const Vec3& a = fibre[s];
       const Vec3& b = fibre[s + 1];
