@@ -53,11 +53,12 @@ void add_widths(Curves& curves, double cross_section) {
 // Moves a point behind the scalp (Φ_S < 0) onto it by Newton steps along the field's gradient,
 // to a clearance of 10 µm so that it counts as outside the head.
 HeadExit scalp_exit(const DistanceField& scalp) {
-  return [&scalp](const Vec3& p) {
+  return [&scalp](const Vec3& p, double& value_at_p) {
     constexpr double kClearance = 1e-3;  // cm
     Vec3 q = p;
     for (int step = 0; step < 4; ++step) {
       const FieldValueGradient vg = scalp.value_and_gradient(q);
+      if (step == 0) value_at_p = vg.value;  // = scalp.value(p)
       const double g2 = vg.gradient.squaredNorm();
       if (vg.value >= 0.0 || !(g2 > 1e-12)) break;
       q -= (vg.value - kClearance) / g2 * vg.gradient;
@@ -412,20 +413,21 @@ class Runner {
     const DistanceFunction volume_distance = [volume](const Vec3& p) { return volume->value(p); };
     StrandOptions o = strand_options(scene_, options_.threads);
     o.progress = loop_progress();
-    std::vector<double> beyond_volume;  // from the cutting, when it runs: the counts need not ask again
-    Strands s = make_strands(v.guides->curves(), pores(), o, volume_distance, scalp_exit(*v.scalp_field), &beyond_volume);
+    FibreFieldValues known;  // looked up on the way: the counts need not ask again
+    Strands s = make_strands(v.guides->curves(), pores(), o, volume_distance, scalp_exit(*v.scalp_field), &known);
     add_widths(s.fibres, scene_.hair.cross_section);
     v.strands = std::make_shared<const Strands>(std::move(s));
     const Curves& fibres = v.strands->fibres;
     stage.digest = Digest().add(fibres.points).hex();
-    // Field lookups per point (the volume's only without cutting): counted per fibre on all
-    // threads, then summed (integers, so the totals do not depend on the thread count).
+    // Field values per point (looked up only where make_strands did not): counted per fibre on
+    // all threads, then summed (integers, so the totals do not depend on the thread count).
     const Boundary b = boundary();
     std::vector<std::array<int, 3>> counts(fibres.count(), {0, 0, 0});  // inside, in head, outside volume
     parallel_for(static_cast<int>(fibres.count()), options_.threads, [&](int c) {
       for (std::size_t k = fibres.offsets[c]; k < fibres.offsets[c + 1]; ++k) {
-        const bool head = b.beyond_scalp(fibres.points[k]) > 0.0;
-        const bool out = (beyond_volume.empty() ? b.beyond_volume(fibres.points[k]) : beyond_volume[k]) > 0.0;
+        const bool scalp_known = !known.scalp.empty() && !std::isnan(known.scalp[k]);
+        const bool head = (scalp_known ? -known.scalp[k] : b.beyond_scalp(fibres.points[k])) > 0.0;
+        const bool out = (known.volume.empty() ? b.beyond_volume(fibres.points[k]) : known.volume[k]) > 0.0;
         counts[c][0] += !head && !out;
         counts[c][1] += head;
         counts[c][2] += out;
