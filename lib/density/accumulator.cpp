@@ -6,7 +6,6 @@
 #include <stdexcept>
 
 #include "density/slabs.h"
-#include "density/traversal.h"
 
 namespace hairfit {
 
@@ -22,25 +21,19 @@ void check_fibre(const std::vector<Vec3>& fibre, size_t item) {
   }
 }
 
-// Adds the CDM contributions of the fibres to the cells with k in [k_begin, k_end), in order.
-void deposit_fibres(const GridGeometry& grid, std::vector<double>& values,
+// Adds the CDM contributions of the fibres to the cells with k in [k_begin, k_end), in order,
+// and counts the crossing segments per cell when `counts` is given.
+void deposit_fibres(const GridGeometry& grid, std::vector<double>& values, std::int32_t* counts,
                     const std::vector<std::vector<Vec3>>& fibres, int k_begin, int k_end) {
   const double diagonal = grid.cell_diagonal();
-  std::vector<CellCrossing> crossings;
-  for (const std::vector<Vec3>& fibre : fibres) {
-    for (size_t s = 0; s + 1 < fibre.size(); ++s) {
-      const Vec3& a = fibre[s];
-      const Vec3& b = fibre[s + 1];
-      int k_first, k_last;
-      z_layers(grid, std::min(a.z(), b.z()), std::max(a.z(), b.z()), k_first, k_last);
-      if (k_last + 1 < k_begin || k_first - 1 >= k_end) continue;  // one layer of slack: faces
-      traverse_segment(grid, a, b, crossings);
-      for (const CellCrossing& c : crossings) {
-        if (c.cell.z() < k_begin || c.cell.z() >= k_end) continue;
-        values[grid.index(c.cell.x(), c.cell.y(), c.cell.z())] += c.length / diagonal;
-      }
-    }
-  }
+  if (counts)
+    for_each_crossing_in_slab(grid, fibres, k_begin, k_end, [&](std::int64_t cell, double length) {
+      values[cell] += length / diagonal;
+      ++counts[cell];
+    });
+  else
+    for_each_crossing_in_slab(grid, fibres, k_begin, k_end,
+                              [&](std::int64_t cell, double length) { values[cell] += length / diagonal; });
 }
 
 void occupy_tubes(const GridGeometry& grid, std::vector<double>& values, const std::vector<Tube>& tubes,
@@ -89,14 +82,20 @@ double DensityAccumulator::cell(int i, int j, int k) const {
 void DensityAccumulator::add_fibre(const std::vector<Vec3>& fibre) {
   check_fibre(fibre, 0);
   // A one-element batch, so the single and the batch path are the same code.
-  deposit_fibres(geometry_, *values_, {fibre}, 0, geometry_.dims.z());
+  deposit_fibres(geometry_, *values_, nullptr, {fibre}, 0, geometry_.dims.z());
 }
 
-void DensityAccumulator::add_fibres(const std::vector<std::vector<Vec3>>& fibres, int threads) {
+void DensityAccumulator::add_fibres(const std::vector<std::vector<Vec3>>& fibres, int threads,
+                                    std::vector<std::int32_t>* segment_counts) {
   for (size_t f = 0; f < fibres.size(); ++f) check_fibre(fibres[f], f);
   std::vector<double>& values = *values_;
+  std::int32_t* counts = nullptr;
+  if (segment_counts) {
+    segment_counts->assign(size_t(geometry_.cell_count()), 0);
+    counts = segment_counts->data();
+  }
   for_each_z_slab(geometry_, threads,
-                  [&](int k_begin, int k_end) { deposit_fibres(geometry_, values, fibres, k_begin, k_end); });
+                  [&](int k_begin, int k_end) { deposit_fibres(geometry_, values, counts, fibres, k_begin, k_end); });
 }
 
 void DensityAccumulator::occupy(const Tube& tube, OccupancyShape shape) {

@@ -3,6 +3,7 @@
 // a local of one function and never shared between threads; its batch methods parallelise
 // internally and are bit-identical for any thread count.
 #pragma once
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -29,7 +30,11 @@ class DensityAccumulator {
   // The same for every fibre, in the given order: the result is bit-identical to calling
   // add_fibre on each in turn, for any `threads` (each thread owns a z-slab of cells and adds, in
   // the fibres' order, only to its own cells, so every cell sums in the same order).
-  void add_fibres(const std::vector<std::vector<Vec3>>& fibres, int threads = 1);
+  // With `segment_counts`, also sets it to the number of distinct segments of these fibres that
+  // cross each cell (index order), counted in the same traversal (histogram_of_counts turns it
+  // into segment_histogram's result).
+  void add_fibres(const std::vector<std::vector<Vec3>>& fibres, int threads = 1,
+                  std::vector<std::int32_t>* segment_counts = nullptr);
 
   // BOM (paper §3.5): every cell the tube occupies (frustum_cells per segment) becomes 1.
   void occupy(const Tube& tube, OccupancyShape shape = OccupancyShape::frustum);

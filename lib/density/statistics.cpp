@@ -5,8 +5,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/parallel.h"
 #include "density/slabs.h"
-#include "density/traversal.h"
 
 namespace hairfit {
 
@@ -16,21 +16,14 @@ SegmentHistogram segment_histogram(const GridGeometry& grid, const std::vector<s
   // the number of distinct segments crossing it. Integer counts: any order gives the same result.
   std::vector<int32_t> count(size_t(grid.cell_count()), 0);
   for_each_z_slab(grid, threads, [&](int k_begin, int k_end) {
-    std::vector<CellCrossing> crossings;
-    for (const std::vector<Vec3>& fibre : fibres) {
-      for (size_t s = 0; s + 1 < fibre.size(); ++s) {
-        int k_first, k_last;
-        z_layers(grid, std::min(fibre[s].z(), fibre[s + 1].z()), std::max(fibre[s].z(), fibre[s + 1].z()),
-                 k_first, k_last);
-        if (k_last + 1 < k_begin || k_first - 1 >= k_end) continue;
-        traverse_segment(grid, fibre[s], fibre[s + 1], crossings);
-        for (const CellCrossing& c : crossings)
-          if (c.cell.z() >= k_begin && c.cell.z() < k_end) ++count[grid.index(c.cell.x(), c.cell.y(), c.cell.z())];
-      }
-    }
+    for_each_crossing_in_slab(grid, fibres, k_begin, k_end, [&](int64_t cell, double) { ++count[cell]; });
   });
+  return histogram_of_counts(count);
+}
+
+SegmentHistogram histogram_of_counts(const std::vector<int32_t>& segment_counts) {
   SegmentHistogram h;
-  for (int32_t n : count) {
+  for (int32_t n : segment_counts) {
     if (n <= 0) continue;
     if (size_t(n) >= h.cells_with.size()) h.cells_with.resize(size_t(n) + 1, 0);
     ++h.cells_with[n];
@@ -45,14 +38,15 @@ std::string histogram_csv(const SegmentHistogram& histogram) {
   return out.str();
 }
 
-DensityStatistics density_statistics(const DensityGrid& grid, const CellPredicate& inside) {
+DensityStatistics density_statistics(const DensityGrid& grid, const CellPredicate& inside, int threads) {
   const GridGeometry& g = grid.geometry();
   const std::vector<double>& v = grid.values();
   std::vector<char> in_region(v.size(), 1);
-  if (inside) {
-    for (int k = 0; k < g.dims.z(); ++k)
+  if (inside) {  // one layer of cells per item: each writes only its own flags
+    parallel_for(g.dims.z(), threads, [&](int k) {
       for (int j = 0; j < g.dims.y(); ++j)
         for (int i = 0; i < g.dims.x(); ++i) in_region[g.index(i, j, k)] = inside(g.cell_centre(i, j, k)) ? 1 : 0;
+    });
   }
   DensityStatistics s;
   double sum = 0.0;

@@ -21,6 +21,9 @@ struct SegmentHistogram {
 };
 SegmentHistogram segment_histogram(const GridGeometry& grid, const std::vector<std::vector<Vec3>>& fibres,
                                    int threads = 1);
+// The histogram of per-cell segment counts (DensityAccumulator::add_fibres counts them while it
+// deposits, so a stage that does both traverses the segments once).
+SegmentHistogram histogram_of_counts(const std::vector<int32_t>& segment_counts);
 // "segments_per_cell,cells\n" then one row per n ≥ 1 (rows with 0 cells included, so the
 // abscissa is contiguous), '\n' line ends.
 std::string histogram_csv(const SegmentHistogram& histogram);
@@ -37,7 +40,8 @@ struct DensityStatistics {
   double empty_share = 0.0;      // (region − occupied) / region cells; 0 for an empty region
 };
 // Summed in index order (deterministic). A region without occupied cells gives mean = cv = 0.
-DensityStatistics density_statistics(const DensityGrid& grid, const CellPredicate& inside = {});
+// `inside` is asked on up to `threads` threads at once (it must be safe for that).
+DensityStatistics density_statistics(const DensityGrid& grid, const CellPredicate& inside = {}, int threads = 1);
 
 // A planar slice: values[u + width·v] sampled (trilinearly) at origin + u·u_step + v·v_step.
 struct DensitySlice {

@@ -40,18 +40,22 @@ void traverse_segment(const GridGeometry& grid, const Vec3& a, const Vec3& b, st
 
   // Walk: the exit parameter of each axis comes from the cell index (never accumulated), so
   // long segments do not drift; a tie (a corner) steps one axis and then visits a zero-length
-  // cell, which is not listed.
+  // cell, which is not listed. An axis's exit parameter changes only when the walk steps along
+  // that axis, so it is recomputed then (the same expression), not at every step.
+  auto exit_parameter = [&](int k) {
+    if (d[k] == 0.0) return std::numeric_limits<double>::infinity();  // never the nearest
+    const double face = lo[k] + h * (cell[k] + (d[k] > 0.0 ? 1 : 0));
+    return (face - a[k]) / d[k];
+  };
+  double exit[3] = {exit_parameter(0), exit_parameter(1), exit_parameter(2)};
   const int max_steps = grid.dims.sum() + 8;
   double t = t0;
   for (int step = 0; step < max_steps; ++step) {
     double t_next = t1;
     int axis = -1;
     for (int k = 0; k < 3; ++k) {
-      if (d[k] == 0.0) continue;
-      const double face = lo[k] + h * (cell[k] + (d[k] > 0.0 ? 1 : 0));
-      const double tk = (face - a[k]) / d[k];
-      if (tk < t_next) {
-        t_next = tk;
+      if (exit[k] < t_next) {
+        t_next = exit[k];
         axis = k;
       }
     }
@@ -62,6 +66,7 @@ void traverse_segment(const GridGeometry& grid, const Vec3& a, const Vec3& b, st
     if (axis < 0) break;  // reached t1 inside this cell
     cell[axis] += d[axis] > 0.0 ? 1 : -1;
     if (cell[axis] < 0 || cell[axis] >= grid.dims[axis]) break;
+    exit[axis] = exit_parameter(axis);
   }
 }
 

@@ -5,6 +5,7 @@
 
 namespace hairfit {
 
-NrrdVolume field_to_nrrd(const DistanceField& field);
+// Layers of samples are converted on up to `threads` threads (each writes only its own).
+NrrdVolume field_to_nrrd(const DistanceField& field, int threads = 1);
 
 }  // namespace hairfit

@@ -23,10 +23,6 @@ std::string exact(double v) {
   return buffer;
 }
 
-void put_le32(std::string& out, uint32_t bits) {
-  for (int b = 0; b < 4; ++b) out.push_back(static_cast<char>((bits >> (8 * b)) & 0xff));
-}
-
 std::string trim(const std::string& s) {
   const size_t b = s.find_first_not_of(" \t\r");
   const size_t e = s.find_last_not_of(" \t\r");
@@ -69,19 +65,12 @@ void write_nrrd(const std::filesystem::path& path, const NrrdVolume& v) {
             exact(v.spacing.z()) + ")\n";
   header += "space origin: (" + exact(v.origin.x()) + "," + exact(v.origin.y()) + "," + exact(v.origin.z()) + ")\n";
   header += "kinds: domain domain domain\nendian: little\nencoding: raw\n\n";
+  // The file is little-endian, like the machines hairfit runs on: the floats are written as they
+  // lie in memory.
+  static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "NRRD files are written little-endian");
   write_file_atomically(path, [&](std::ostream& out) {
     out.write(header.data(), header.size());
-    std::string chunk;
-    const size_t block = 1 << 16;
-    for (size_t i = 0; i < v.data.size(); i += block) {
-      chunk.clear();
-      for (size_t j = i; j < std::min(v.data.size(), i + block); ++j) {
-        uint32_t bits;
-        std::memcpy(&bits, &v.data[j], 4);
-        put_le32(chunk, bits);
-      }
-      out.write(chunk.data(), chunk.size());
-    }
+    out.write(reinterpret_cast<const char*>(v.data.data()), std::streamsize(v.data.size() * sizeof(float)));
   });
 }
 

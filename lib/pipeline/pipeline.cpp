@@ -53,11 +53,12 @@ void add_widths(Curves& curves, double cross_section) {
 // Moves a point behind the scalp (Φ_S < 0) onto it by Newton steps along the field's gradient,
 // to a clearance of 10 µm so that it counts as outside the head.
 HeadExit scalp_exit(const DistanceField& scalp) {
-  return [&scalp](const Vec3& p) {
+  return [&scalp](const Vec3& p, double& value_at_p) {
     constexpr double kClearance = 1e-3;  // cm
     Vec3 q = p;
     for (int step = 0; step < 4; ++step) {
       const FieldValueGradient vg = scalp.value_and_gradient(q);
+      if (step == 0) value_at_p = vg.value;  // = scalp.value(p)
       const double g2 = vg.gradient.squaredNorm();
       if (vg.value >= 0.0 || !(g2 > 1e-12)) break;
       q -= (vg.value - kClearance) / g2 * vg.gradient;
@@ -263,10 +264,9 @@ class Runner {
     v.volume_field = std::make_shared<const DistanceField>(
         make_distance_field(inputs_.volume.mesh, field_spec(scene_, scene_.inputs.volume.string()), options_.threads));
     Digest d;
-    for (const DistanceField* f : {v.scalp_field.get(), v.volume_field.get()}) {
-      const NrrdVolume volume = field_to_nrrd(*f);
-      d.add_bytes(volume.data.data(), volume.data.size() * sizeof(float));
-    }
+    std::array<NrrdVolume, 2> volumes{field_to_nrrd(*v.scalp_field, options_.threads), field_to_nrrd(*v.volume_field, options_.threads)};
+    for (const NrrdVolume& volume : volumes) d.add_bytes(volume.data.data(), volume.data.size() * sizeof(float));
+    if (options_.write_outputs) field_volumes_ = std::move(volumes);  // the files hold the same samples
     stage.digest = d.hex();
     stage.add("voxel_cm", scene_.fields.voxel);
     stage.add("scalp_grid", std::to_string(v.scalp_field->dims().x()) + "x" + std::to_string(v.scalp_field->dims().y()) +
@@ -279,8 +279,11 @@ class Runner {
 
   void write_fields() {
     const StageValues& v = result_.values;
-    output("fields/scalp.nrrd", [&](const fs::path& p) { write_nrrd(p, field_to_nrrd(*v.scalp_field)); });
-    output("fields/volume.nrrd", [&](const fs::path& p) { write_nrrd(p, field_to_nrrd(*v.volume_field)); });
+    if (!field_volumes_)  // a cached stage: converted again rather than stored
+      field_volumes_ = {field_to_nrrd(*v.scalp_field, options_.threads), field_to_nrrd(*v.volume_field, options_.threads)};
+    output("fields/scalp.nrrd", [&](const fs::path& p) { write_nrrd(p, (*field_volumes_)[0]); });
+    output("fields/volume.nrrd", [&](const fs::path& p) { write_nrrd(p, (*field_volumes_)[1]); });
+    field_volumes_.reset();
   }
 
   void chart(StageReport& stage) {
@@ -412,20 +415,24 @@ class Runner {
     const DistanceFunction volume_distance = [volume](const Vec3& p) { return volume->value(p); };
     StrandOptions o = strand_options(scene_, options_.threads);
     o.progress = loop_progress();
-    Strands s = make_strands(v.guides->curves(), pores(), o, volume_distance, scalp_exit(*v.scalp_field));
+    FibreFieldValues known;  // looked up on the way: the counts need not ask again
+    Strands s = make_strands(v.guides->curves(), pores(), o, volume_distance, scalp_exit(*v.scalp_field), &known);
     add_widths(s.fibres, scene_.hair.cross_section);
     v.strands = std::make_shared<const Strands>(std::move(s));
     const Curves& fibres = v.strands->fibres;
     stage.digest = Digest().add(fibres.points).hex();
-    // Two field lookups per point after the root: counted per fibre on all threads, then summed
-    // (integers, so the totals do not depend on the thread count). A root is its pore, a point of
-    // the scalp by construction; through the interpolated fields one near a thin hairline reads
-    // either side of it, so roots are not counted (spec/reference.md, report figures).
+    // Field values per point after the root (looked up only where make_strands did not): counted
+    // per fibre on all threads, then summed (integers, so the totals do not depend on the thread
+    // count). A root is its pore, a point of the scalp by construction; through the interpolated
+    // fields one near a thin hairline reads either side of it, so roots are not counted
+    // (spec/reference.md, report figures).
     const Boundary b = boundary();
     std::vector<std::array<int, 3>> counts(fibres.count(), {0, 0, 0});  // inside, in head, outside volume
     parallel_for(static_cast<int>(fibres.count()), options_.threads, [&](int c) {
       for (std::size_t k = fibres.offsets[c] + 1; k < fibres.offsets[c + 1]; ++k) {
-        const bool head = b.beyond_scalp(fibres.points[k]) > 0.0, out = b.beyond_volume(fibres.points[k]) > 0.0;
+        const bool scalp_known = !known.scalp.empty() && !std::isnan(known.scalp[k]);
+        const bool head = (scalp_known ? -known.scalp[k] : b.beyond_scalp(fibres.points[k])) > 0.0;
+        const bool out = (known.volume.empty() ? b.beyond_volume(fibres.points[k]) : known.volume[k]) > 0.0;
         counts[c][0] += !head && !out;
         counts[c][1] += head;
         counts[c][2] += out;
@@ -468,10 +475,14 @@ class Runner {
     const GridGeometry grid = density_geometry(scene_, inputs_.volume.mesh);
     const std::vector<std::vector<Vec3>> fibres = fibre_lists();
     DensityAccumulator accumulator(grid);
-    accumulator.add_fibres(fibres, options_.threads);
+    std::vector<std::int32_t> segment_counts;  // the histogram's, from the deposit's traversal
+    accumulator.add_fibres(fibres, options_.threads, &segment_counts);
     v.fibre_density = std::make_shared<const DensityGrid>(std::move(accumulator).freeze());
     const Boundary b = boundary();
-    const DensityStatistics s = density_statistics(*v.fibre_density, [&b](const Vec3& p) { return b.acceptable(p); });
+    // b.acceptable(p), asking the volume first: most cells of the grid's box lie outside the
+    // volume, and those then need no scalp lookup.
+    const auto acceptable = [&b](const Vec3& p) { return b.beyond_volume(p) <= 0.0 && b.beyond_scalp(p) <= 0.0; };
+    const DensityStatistics s = density_statistics(*v.fibre_density, acceptable, options_.threads);
     const std::vector<double>& values = v.fibre_density->values();
     stage.digest = Digest().add_bytes(values.data(), values.size() * sizeof(double)).hex();
     stage.add("model", scene_.effects.density == DensityModel::binary ? std::string("binary") : std::string("continuous"));
@@ -482,7 +493,7 @@ class Runner {
     stage.add("mean_density", s.mean);
     stage.add("coefficient_of_variation", s.coefficient_of_variation);
     stage.add("empty_share", s.empty_share);
-    histogram_ = segment_histogram(grid, fibres, options_.threads);
+    histogram_ = histogram_of_counts(segment_counts);
     stage.add("max_segments_per_cell",
               static_cast<std::int64_t>(histogram_->cells_with.empty() ? 0 : histogram_->cells_with.size() - 1));
   }
@@ -490,8 +501,9 @@ class Runner {
   std::vector<std::vector<Vec3>> fibre_lists() const {
     const Curves& curves = result_.values.strands->fibres;
     std::vector<std::vector<Vec3>> fibres(curves.count());
-    for (std::size_t c = 0; c < curves.count(); ++c)
+    parallel_for(static_cast<int>(curves.count()), options_.threads, [&](int c) {
       fibres[c].assign(curves.points.begin() + curves.offsets[c], curves.points.begin() + curves.offsets[c + 1]);
+    });
     return fibres;
   }
 
@@ -514,6 +526,7 @@ class Runner {
   std::map<std::string, std::string> keys_;
   std::map<std::string, bool> cached_;
   std::optional<SegmentHistogram> histogram_;  // the density stage's, for its file
+  std::optional<std::array<NrrdVolume, 2>> field_volumes_;  // the fields stage's samples (scalp, volume), for its files
   PipelineResult result_;
 };
 

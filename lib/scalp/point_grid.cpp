@@ -1,6 +1,6 @@
 #include "scalp/point_grid.h"
 
-#include <numeric>
+#include <algorithm>
 #include <stdexcept>
 
 namespace hairfit {
@@ -12,41 +12,68 @@ PointGrid::PointGrid(const std::vector<Vec3>& points, double cell) : cell_(cell)
     origin_ = points.front();
     for (const Vec3& p : points) origin_ = origin_.cwiseMin(p);
   }
-  std::vector<std::uint64_t> keys(points.size());
-  for (std::size_t i = 0; i < points.size(); ++i) keys[i] = key(cell_of(points[i]));
-  // (key, index) pairs sort faster than indices compared through the key array; the order is the
-  // same: by cell key, then by index.
-  std::vector<std::pair<std::uint64_t, int>> keyed(points.size());
-  for (std::size_t i = 0; i < points.size(); ++i) keyed[i] = {keys[i], static_cast<int>(i)};
-  std::sort(keyed.begin(), keyed.end());
-  order_.resize(points.size());
-  sorted_.resize(points.size());
-  for (std::size_t k = 0; k < keyed.size(); ++k) {
-    order_[k] = keyed[k].second;
-    sorted_[k] = points[order_[k]];
+  // The order (cell key, then index) without sorting the points: the occupied cells are found
+  // and counted (in order of first appearance, through the hash table), only they are sorted by
+  // key, and the points are then placed cell by cell in index order.
+  const int n = static_cast<int>(points.size());
+  std::vector<int> point_cell(n);  // cell of each point, numbered by first appearance
+  std::vector<int> count;
+  build_table(std::max<std::size_t>(points.size(), 1));
+  for (int i = 0; i < n; ++i) {
+    const std::uint64_t k = key(cell_of(points[i]));
+    int c = find(k);
+    if (c < 0) {
+      c = static_cast<int>(cell_keys_.size());
+      insert(k, c);
+      cell_keys_.push_back(k);
+      count.push_back(0);
+    }
+    point_cell[i] = c;
+    ++count[c];
   }
-  for (std::size_t k = 0; k < order_.size();) {
-    std::size_t e = k;
-    while (e < order_.size() && keyed[e].first == keyed[k].first) ++e;
-    cell_keys_.push_back(keyed[k].first);
-    cell_begin_.push_back(static_cast<int>(k));
-    const Vec3i c = cell_of(sorted_[k]);
-    cell_coords_.push_back(c);
-    if (k == 0) occupied_lo_ = occupied_hi_ = c;
-    occupied_lo_ = occupied_lo_.cwiseMin(c);
-    occupied_hi_ = occupied_hi_.cwiseMax(c);
-    k = e;
+  const int cells = static_cast<int>(cell_keys_.size());
+  std::vector<std::pair<std::uint64_t, int>> by_key(cells);  // (key, first-appearance number)
+  for (int c = 0; c < cells; ++c) by_key[c] = {cell_keys_[c], c};
+  std::sort(by_key.begin(), by_key.end());
+  std::vector<int> next(cells);  // per first-appearance number: the next free place of its cell
+  cell_begin_.resize(cells + 1);
+  cell_begin_[0] = 0;
+  for (int r = 0; r < cells; ++r) {
+    const int c = by_key[r].second;
+    next[c] = cell_begin_[r];
+    cell_keys_[r] = by_key[r].first;
+    cell_begin_[r + 1] = cell_begin_[r] + count[c];
   }
-  cell_begin_.push_back(static_cast<int>(order_.size()));
+  order_.resize(n);
+  sorted_.resize(n);
+  for (int i = 0; i < n; ++i) {
+    const int k = next[point_cell[i]]++;
+    order_[k] = i;
+    sorted_[k] = points[i];
+  }
+  cell_coords_.resize(cells);
+  for (int c = 0; c < cells; ++c) {
+    const Vec3i at = cell_of(sorted_[cell_begin_[c]]);
+    cell_coords_[c] = at;
+    if (c == 0) occupied_lo_ = occupied_hi_ = at;
+    occupied_lo_ = occupied_lo_.cwiseMin(at);
+    occupied_hi_ = occupied_hi_.cwiseMax(at);
+  }
+  build_table(cell_keys_.size());  // again, sized for the occupied cells, now numbered by key
+  for (int c = 0; c < cells; ++c) insert(cell_keys_[c], c);
+}
+
+void PointGrid::build_table(std::size_t entries) {
   std::size_t capacity = 16;
-  while (capacity < 2 * cell_keys_.size()) capacity *= 2;
+  while (capacity < 2 * entries) capacity *= 2;
   mask_ = capacity - 1;
   table_.assign(capacity, -1);
-  for (int c = 0; c < static_cast<int>(cell_keys_.size()); ++c) {
-    std::size_t slot = mix(cell_keys_[c]) & mask_;
-    while (table_[slot] >= 0) slot = (slot + 1) & mask_;
-    table_[slot] = c;
-  }
+}
+
+void PointGrid::insert(std::uint64_t k, int cell) {
+  std::size_t slot = mix(k) & mask_;
+  while (table_[slot] >= 0) slot = (slot + 1) & mask_;
+  table_[slot] = cell;
 }
 
 std::vector<PointGrid::CellRange> PointGrid::neighbourhood(int k, int reach) const {

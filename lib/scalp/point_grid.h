@@ -83,6 +83,9 @@ class PointGrid {
   double cell_;
   Vec3 origin_;
   std::vector<int> order_;  // point indices sorted by cell key, then index
+  // An empty table with room for `entries` cells (at most half full), and adding one.
+  void build_table(std::size_t entries);
+  void insert(std::uint64_t k, int cell);
   // Occupied cell with this key, or −1: open addressing, linear probing, power-of-two table.
   int find(std::uint64_t k) const {
     for (std::size_t slot = mix(k) & mask_;; slot = (slot + 1) & mask_) {

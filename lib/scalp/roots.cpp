@@ -74,6 +74,9 @@ Candidates make_candidates(const ScalpChart& ch, const GreyMap* map, const std::
     const double whole = std::floor(expected);
     const int count = static_cast<int>(whole) + (rng.uniform() < expected - whole ? 1 : 0);
     Candidates& out = per_triangle[t];
+    out.where.reserve(count);
+    out.positions.reserve(count);
+    out.values.reserve(count);
     for (int k = 0; k < count; ++k) {
       const double r = std::sqrt(rng.uniform()), w = rng.uniform();
       SurfacePoint sp;
@@ -88,12 +91,19 @@ Candidates make_candidates(const ScalpChart& ch, const GreyMap* map, const std::
       out.values.push_back(value);
     }
   });
+  // Laid end to end in triangle order, each triangle's share copied on its own thread.
+  std::vector<std::size_t> first(nf + 1, 0);
+  for (int t = 0; t < nf; ++t) first[t + 1] = first[t] + per_triangle[t].where.size();
   Candidates all;
-  for (Candidates& c : per_triangle) {
-    all.where.insert(all.where.end(), c.where.begin(), c.where.end());
-    all.positions.insert(all.positions.end(), c.positions.begin(), c.positions.end());
-    all.values.insert(all.values.end(), c.values.begin(), c.values.end());
-  }
+  all.where.resize(first[nf]);
+  all.positions.resize(first[nf]);
+  all.values.resize(first[nf]);
+  parallel_for(nf, threads, [&](int t) {
+    const Candidates& c = per_triangle[t];
+    std::copy(c.where.begin(), c.where.end(), all.where.begin() + first[t]);
+    std::copy(c.positions.begin(), c.positions.end(), all.positions.begin() + first[t]);
+    std::copy(c.values.begin(), c.values.end(), all.values.begin() + first[t]);
+  });
   return all;
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <numeric>
 
 #include "core/parallel.h"
@@ -11,15 +12,16 @@ namespace hairfit {
 
 namespace {
 
-// A binary max-heap of (weight, index) entries under the order: larger weight first, then lower
-// index; the keys of the entries only ever decrease, so a changed top sifts down.
+// A binary max-heap of candidates under the order: larger weight first, then lower index; the
+// keys of the entries only ever decrease, so a changed top sifts down. Candidates are named by
+// their grid position (`slot`); the order breaks ties by their index.
 class ElimHeap {
  public:
-  explicit ElimHeap(const std::vector<double>& weight) : entries_(weight.size()) {
-    for (std::size_t i = 0; i < weight.size(); ++i) entries_[i] = {weight[i], static_cast<int>(i)};
+  ElimHeap(const std::vector<double>& weight, const std::vector<int>& index) : entries_(weight.size()) {
+    for (std::size_t k = 0; k < weight.size(); ++k) entries_[k] = {weight[k], index[k], static_cast<int>(k)};
     for (std::size_t k = entries_.size() / 2; k-- > 0;) sift_down(k);
   }
-  int top() const { return entries_.front().index; }
+  int top() const { return entries_.front().slot; }
   double top_weight() const { return entries_.front().weight; }
   void refresh_top(double weight) {
     entries_.front().weight = weight;
@@ -34,7 +36,8 @@ class ElimHeap {
  private:
   struct Entry {
     double weight;
-    int index;
+    int index;  // the candidate's, for ties
+    int slot;   // its grid position
   };
   static bool before(const Entry& a, const Entry& b) { return a.weight > b.weight || (a.weight == b.weight && a.index < b.index); }
   void sift_down(std::size_t k) {
@@ -78,33 +81,42 @@ std::vector<int> eliminate_samples(const std::vector<Vec3>& points, const std::v
     return x4 * x4;
   };
 
+  // From here on candidates are named by their position in the grid's order (cell key, then
+  // index): candidates near in space are near in memory, for the scan and the elimination alike.
+  //
   // Neighbour lists (CSR) with each pair's weight, built in one pass over blocks of cells: each
   // neighbouring cell is looked up once per cell, and points and radii are read in the grid's
-  // order, so the scan walks memory contiguously. A point's list is in the grid's fixed order
-  // (cell key, then index), so the weight sums do not depend on the thread count.
+  // order, so the scan walks memory contiguously. A point's list is in the grid's fixed order,
+  // so the weight sums do not depend on the thread count. Blocks hold consecutive grid
+  // positions, so their lists laid end to end are the CSR arrays.
   const std::vector<int>& order = grid.order();
   const std::vector<Vec3>& sorted = grid.sorted();
   std::vector<double> sorted_radius(m);
   for (int k = 0; k < m; ++k) sorted_radius[k] = radius[order[k]];
   struct Block {
     std::vector<int> count;       // neighbours of each point of the block's cells, in grid order
-    std::vector<int> neighbour;   // their indices, point after point
+    std::vector<int> neighbour;   // their grid positions, point after point
     std::vector<double> weight;   // pair weights, alongside
   };
   constexpr int kCellsPerBlock = 64;
+  // Room for the lists of a block without regrowth in most cases (a point has about 11 partners
+  // at the default oversampling); memory reserved but never written costs nothing.
+  constexpr int kReservedPerPoint = 16;
   const int cells = grid.cell_count();
   std::vector<Block> blocks((cells + kCellsPerBlock - 1) / kCellsPerBlock);
-  std::vector<double> weight(m, 0.0);
+  std::vector<double> weight(m);
   parallel_for(static_cast<int>(blocks.size()), threads, [&](int b) {
     Block& block = blocks[b];
     const int first = b * kCellsPerBlock, last = std::min(cells, first + kCellsPerBlock);
-    block.count.reserve(grid.cell_begin(last) - grid.cell_begin(first));
+    const int points_in_block = grid.cell_begin(last) - grid.cell_begin(first);
+    block.count.reserve(points_in_block);
+    block.neighbour.reserve(static_cast<std::size_t>(kReservedPerPoint) * points_in_block);
+    block.weight.reserve(static_cast<std::size_t>(kReservedPerPoint) * points_in_block);
     for (int cell = first; cell < last; ++cell) {
       double reach_radius = 0.0;
       for (int k = grid.cell_begin(cell); k < grid.cell_begin(cell + 1); ++k) reach_radius = std::max(reach_radius, sorted_radius[k]);
       const auto ranges = grid.neighbourhood(cell, static_cast<int>(std::ceil(2.0 * reach_radius / grid.cell())));
       for (int k = grid.cell_begin(cell); k < grid.cell_begin(cell + 1); ++k) {
-        const int i = order[k];
         const Vec3& p = sorted[k];
         const double r_i = sorted_radius[k];
         const std::size_t before = block.neighbour.size();
@@ -126,35 +138,34 @@ std::vector<int> eliminate_samples(const std::vector<Vec3>& points, const std::v
             const double d2 = (sorted[q] - p).squaredNorm();
             if (q == k || !(d2 < 4.0 * r * r)) continue;
             const double w = pair_weight(r, d2);
-            block.neighbour.push_back(order[q]);
+            block.neighbour.push_back(q);
             block.weight.push_back(w);
             sum += w;
           }
         }
-        weight[i] = sum;
+        weight[k] = sum;
         block.count.push_back(static_cast<int>(block.neighbour.size() - before));
       }
     }
   });
-  std::vector<int> start(m + 1, 0);
+  std::vector<int> start(m + 1);
+  start[0] = 0;
   {
-    int k = 0;  // grid position
+    int k = 0;
     for (const Block& block : blocks)
-      for (int c : block.count) start[order[k++] + 1] = c;
+      for (int c : block.count) {
+        start[k + 1] = start[k] + c;
+        ++k;
+      }
   }
-  for (int i = 0; i < m; ++i) start[i + 1] += start[i];
-  std::vector<int> neighbours(start[m]);
-  std::vector<double> neighbour_weight(start[m]);
+  // Filled block by block on all threads; not zeroed first (every entry is written).
+  const std::unique_ptr<int[]> neighbours(new int[start[m]]);
+  const std::unique_ptr<double[]> neighbour_weight(new double[start[m]]);
   parallel_for(static_cast<int>(blocks.size()), threads, [&](int b) {
     Block& block = blocks[b];
-    int k = grid.cell_begin(b * kCellsPerBlock);
-    std::size_t from = 0;
-    for (int c : block.count) {
-      const int i = order[k++];
-      std::copy_n(block.neighbour.begin() + from, c, neighbours.begin() + start[i]);
-      std::copy_n(block.weight.begin() + from, c, neighbour_weight.begin() + start[i]);
-      from += c;
-    }
+    const int at = start[grid.cell_begin(b * kCellsPerBlock)];
+    std::copy(block.neighbour.begin(), block.neighbour.end(), neighbours.get() + at);
+    std::copy(block.weight.begin(), block.weight.end(), neighbour_weight.get() + at);
     block = Block();  // free early
   });
 
@@ -164,25 +175,27 @@ std::vector<int> eliminate_samples(const std::vector<Vec3>& points, const std::v
   // total order, so the top is always the same entry whatever the heap's layout, and so is the
   // whole sequence of eliminations. A stale top is refreshed in place by one sift-down (not a pop
   // and a push): every alive candidate keeps exactly one entry.
-  ElimHeap heap(weight);
+  ElimHeap heap(weight, order);
   std::vector<char> alive(m, 1);
   for (int remaining = m; remaining > target;) {
-    const int i = heap.top();
-    if (heap.top_weight() != weight[i]) {
-      heap.refresh_top(weight[i]);
+    const int k = heap.top();
+    if (heap.top_weight() != weight[k]) {
+      heap.refresh_top(weight[k]);
       continue;
     }
     heap.pop();
-    alive[i] = 0;
+    alive[k] = 0;
     --remaining;
-    for (int k = start[i]; k < start[i + 1]; ++k) {
-      const int j = neighbours[k];
-      if (alive[j]) weight[j] -= neighbour_weight[k];
+    for (int e = start[k]; e < start[k + 1]; ++e) {
+      const int j = neighbours[e];
+      if (alive[j]) weight[j] -= neighbour_weight[e];
     }
   }
+  std::vector<char> kept_index(m, 0);
+  for (int k = 0; k < m; ++k) kept_index[order[k]] = alive[k];
   kept.reserve(target);
   for (int i = 0; i < m; ++i)
-    if (alive[i]) kept.push_back(i);
+    if (kept_index[i]) kept.push_back(i);
   return kept;
 }
 

@@ -15,13 +15,19 @@ CutResult cut_at_exit(const std::vector<Vec3>& points, const DistanceFunction& d
   std::size_t exit_segment = 0;  // segment in which the current excursion started
   Vec3 exit_point = n > 0 ? points[0] : Vec3::Zero();
   double length_outside = 0.0;
+  auto keep_all = [&]() {
+    result.points = points;
+    result.distances = std::move(d);
+    return result;
+  };
   auto cut_here = [&]() {
     result.points.assign(points.begin(), points.begin() + exit_segment + 1);
-    if ((exit_point - result.points.back()).norm() > 0.0) result.points.push_back(exit_point);
-    if (result.points.size() < 2) {  // left right at a root on the boundary: nothing to keep, keep all
-      result.points = points;
-      return result;
+    result.distances.assign(d.begin(), d.begin() + exit_segment + 1);
+    if ((exit_point - result.points.back()).norm() > 0.0) {
+      result.points.push_back(exit_point);
+      result.distances.push_back(distance(exit_point));
     }
+    if (result.points.size() < 2) return keep_all();  // left right at a root on the boundary: nothing to keep
     result.cut = true;
     result.outside_length = length_outside;
     return result;
@@ -52,8 +58,7 @@ CutResult cut_at_exit(const std::vector<Vec3>& points, const DistanceFunction& d
     }
     if (outside && length_outside > threshold) return cut_here();
   }
-  result.points = points;
-  return result;
+  return keep_all();
 }
 
 }  // namespace hairfit

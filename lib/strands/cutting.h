@@ -13,6 +13,7 @@ using DistanceFunction = std::function<double(const Vec3&)>;
 
 struct CutResult {
   std::vector<Vec3> points;  // the kept part, root first; unchanged when not cut
+  std::vector<double> distances;  // distance(p) at each kept point, so callers need not ask again
   bool cut = false;
   double outside_length = 0.0;  // cm outside the volume in the stretch that caused the cut
 };

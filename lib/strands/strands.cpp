@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "core/parallel.h"
 #include "strands/guide_track.h"
@@ -93,8 +94,9 @@ std::vector<Vec3> fibre_along(const GuideTrack& track, const Vec3& pore, double 
   // gives exactly `length` by the Illinois variant of regula falsi on a bracket.
   auto excess = [&](double reach) {
     sweep(track, layout, root, reach, points);
+    double unused;
     if (out_of_head)
-      for (std::size_t i = 1; i < points.size(); ++i) points[i] = (*out_of_head)(points[i]);
+      for (std::size_t i = 1; i < points.size(); ++i) points[i] = (*out_of_head)(points[i], unused);
     return polyline_length(points) - length;
   };
   double lo = 0.0, f_lo = excess(lo);
@@ -130,12 +132,20 @@ std::vector<Vec3> fibre_along(const GuideTrack& track, const Vec3& pore, double 
 
 // fibre_along, with the points behind the scalp moved out when `out_of_head` is given. Most
 // fibres never enter the head; only those that do pay for field lookups inside the length solve.
+// `scalp` (if given) receives what out_of_head reported at each point of the result (NaN at the
+// root and throughout a moved fibre).
 std::vector<Vec3> fibre_kept_out(const GuideTrack& track, const Vec3& pore, double length, double wisp_extent,
-                                 const StrandOptions& o, const HeadExit& out_of_head) {
+                                 const StrandOptions& o, const HeadExit& out_of_head, std::vector<double>* scalp = nullptr) {
   std::vector<Vec3> fibre = fibre_along(track, pore, length, wisp_extent, o);
-  if (out_of_head)
-    for (std::size_t i = 1; i < fibre.size(); ++i)
-      if (out_of_head(fibre[i]) != fibre[i]) return fibre_along(track, pore, length, wisp_extent, o, &out_of_head);
+  if (!out_of_head) return fibre;
+  std::vector<double> values(fibre.size(), std::numeric_limits<double>::quiet_NaN());
+  for (std::size_t i = 1; i < fibre.size(); ++i)
+    if (out_of_head(fibre[i], values[i]) != fibre[i]) {
+      fibre = fibre_along(track, pore, length, wisp_extent, o, &out_of_head);
+      values.assign(fibre.size(), std::numeric_limits<double>::quiet_NaN());
+      break;
+    }
+  if (scalp) *scalp = std::move(values);
   return fibre;
 }
 
@@ -152,7 +162,7 @@ std::vector<Vec3> make_fibre(const GuideTrack& guide, const Vec3& pore, double l
 }
 
 Strands make_strands(const Curves& guides, const Pores& pores, const StrandOptions& options, const DistanceFunction& volume,
-                     const HeadExit& out_of_head) {
+                     const HeadExit& out_of_head, FibreFieldValues* values) {
   const int guide_count = static_cast<int>(guides.count());
   std::vector<GuideTrack> tracks;
   tracks.reserve(guide_count);
@@ -170,26 +180,47 @@ Strands make_strands(const Curves& guides, const Pores& pores, const StrandOptio
   }
 
   const int count = static_cast<int>(pores.positions.size());
+  const bool cutting = options.cutting && volume;
   std::vector<std::vector<Vec3>> fibres(count);
+  std::vector<std::vector<double>> distances(cutting && values ? count : 0);
+  std::vector<std::vector<double>> scalp(out_of_head && values ? count : 0);
   std::vector<char> cut(count, 0);
   ProgressCounter progress(options.progress);
   parallel_for(count, options.threads, [&](int i) {
     std::vector<Vec3> fibre = fibre_kept_out(tracks[pores.guide[i]], pores.positions[i], pores.lengths[i],
-                                             extent[pores.guide[i]], options, out_of_head);
-    if (options.cutting && volume) {
+                                             extent[pores.guide[i]], options, out_of_head, scalp.empty() ? nullptr : &scalp[i]);
+    if (cutting) {
       CutResult r = cut_at_exit(fibre, volume, options.cut_threshold);
       cut[i] = r.cut;
+      if (!scalp.empty()) {  // a value holds where the kept point is the point it was asked about
+        scalp[i].resize(r.points.size(), std::numeric_limits<double>::quiet_NaN());
+        for (std::size_t k = 0; k < r.points.size(); ++k)
+          if (k >= fibre.size() || r.points[k] != fibre[k]) scalp[i][k] = std::numeric_limits<double>::quiet_NaN();
+      }
       fibre = std::move(r.points);
+      if (!distances.empty()) distances[i] = std::move(r.distances);
     }
     fibres[i] = std::move(fibre);
     progress.item_done();
   });
 
+  // The fibres laid end to end in pore order, each copied on its own thread.
   Strands strands;
-  for (int i = 0; i < count; ++i) {
-    strands.fibres.add(fibres[i], pores.guide[i]);
-    strands.cut_count += cut[i];
+  Curves& out = strands.fibres;
+  out.offsets.resize(count + 1);
+  for (int i = 0; i < count; ++i) out.offsets[i + 1] = out.offsets[i] + static_cast<std::uint32_t>(fibres[i].size());
+  out.points.resize(out.offsets[count]);
+  out.guide.assign(pores.guide.begin(), pores.guide.end());
+  if (values) {
+    values->volume.assign(distances.empty() ? 0 : out.points.size(), 0.0);
+    values->scalp.assign(scalp.empty() ? 0 : out.points.size(), 0.0);
   }
+  parallel_for(count, options.threads, [&](int i) {
+    std::copy(fibres[i].begin(), fibres[i].end(), out.points.begin() + out.offsets[i]);
+    if (!distances.empty()) std::copy(distances[i].begin(), distances[i].end(), values->volume.begin() + out.offsets[i]);
+    if (!scalp.empty()) std::copy(scalp[i].begin(), scalp[i].end(), values->scalp.begin() + out.offsets[i]);
+  });
+  for (int i = 0; i < count; ++i) strands.cut_count += cut[i];
   strands.cut = std::move(cut);
   return strands;
 }

@@ -36,9 +36,18 @@ struct Strands {
   int cut_count = 0;
 };
 
-// Returns a point behind the scalp moved back out of the head, and any other point unchanged
-// (scalp_exit in lib/pipeline builds it from the scalp's distance field).
-using HeadExit = std::function<Vec3(const Vec3&)>;
+// Returns a point behind the scalp moved back out of the head, and any other point unchanged, and
+// sets `scalp` to the scalp's signed distance at the given point (negative inside the head), which
+// make_strands hands on (scalp_exit in lib/pipeline builds it from the scalp's distance field).
+using HeadExit = std::function<Vec3(const Vec3& p, double& scalp)>;
+
+// Field values make_strands looks up anyway, at every point of the fibres (fibres.points order),
+// so that callers need not ask again.
+struct FibreFieldValues {
+  std::vector<double> volume;  // volume(p), with cutting; else empty
+  std::vector<double> scalp;   // as out_of_head reported it, with out_of_head (NaN at points it
+                               // was not asked about: roots, moved points, cut ends); else empty
+};
 
 // `guides` holds one polyline per guide (index = guide id), root first; `volume` is the signed
 // distance to the hair-volume boundary (needed only when options.cutting). Each fibre starts
@@ -46,8 +55,10 @@ using HeadExit = std::function<Vec3(const Vec3&)>;
 // continues along the guide's last tangent. With `out_of_head`, a fibre that would pass behind
 // the scalp (a wisp wider than the guide's clearance, or a guide that dips in) has those points
 // moved out of the head, still with exactly its length. Deterministic for any thread count.
+// With `values`, the field values looked up on the way are handed back there.
 Strands make_strands(const Curves& guides, const Pores& pores, const StrandOptions& options,
-                     const DistanceFunction& volume = nullptr, const HeadExit& out_of_head = nullptr);
+                     const DistanceFunction& volume = nullptr, const HeadExit& out_of_head = nullptr,
+                     FibreFieldValues* values = nullptr);
 
 // One fibre (exposed for tests): the wisp frame is rotation-minimising along the guide.
 std::vector<Vec3> make_fibre(const std::vector<Vec3>& guide, const Vec3& pore, double length, double wisp_extent,

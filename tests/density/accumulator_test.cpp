@@ -112,6 +112,32 @@ TEST_CASE("deposits are byte-identical for 1, 2 and 4 threads and match one-by-o
     const SegmentHistogram one = segment_histogram(g, fibres, 1);
     CHECK(segment_histogram(g, fibres, 2).cells_with == one.cells_with);
     CHECK(segment_histogram(g, fibres, 4).cells_with == one.cells_with);
+    // Counted while depositing: the same histogram and the same deposit as done separately.
+    DensityAccumulator plain(g);
+    plain.add_fibres(fibres, 1);
+    for (int threads : {1, 3}) {
+      DensityAccumulator acc(g);
+      std::vector<std::int32_t> counts{7};  // replaced, not added to
+      acc.add_fibres(fibres, threads, &counts);
+      CHECK(histogram_of_counts(counts).cells_with == one.cells_with);
+      CHECK(bytes_equal(acc.freeze(), plain.freeze()));
+    }
+  }
+  SUBCASE("statistics over a region") {
+    DensityAccumulator acc(g);
+    acc.add_fibres(random_fibres(300, 30, 34), 2);
+    const DensityGrid grid = acc.freeze();
+    const CellPredicate region = [](const Vec3& p) { return p.x() + 0.5 * p.z() < 0.3; };
+    const DensityStatistics one = density_statistics(grid, region, 1);
+    CHECK(one.region_cells > 0);
+    CHECK(one.region_cells < g.cell_count());
+    for (int threads : {2, 4}) {
+      const DensityStatistics s = density_statistics(grid, region, threads);
+      CHECK(s.region_cells == one.region_cells);
+      CHECK(s.occupied_cells == one.occupied_cells);
+      CHECK(s.mean == one.mean);
+      CHECK(s.coefficient_of_variation == one.coefficient_of_variation);
+    }
   }
 }
 

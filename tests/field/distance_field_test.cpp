@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "field/distance_field.h"
+#include "field/field_nrrd.h"
 #include "test_meshes.h"
 
 using namespace hairfit;
@@ -294,4 +295,14 @@ TEST_CASE("the memory limit names the grid and a voxel size that fits") {
   CHECK(plan_field_grid(test::cube(1.0), spec).bytes <= 0.5 * 1073741824.0);
   spec.voxel = suggested * 0.97;
   CHECK(plan_field_grid(test::cube(1.0), spec).bytes > 0.5 * 1073741824.0);
+}
+
+TEST_CASE("field_to_nrrd: every sample in x-fastest order, the same for any thread count") {
+  const DistanceField f = make_distance_field(test::icosphere(2, 1.0), spec_for(0.1, 2, 0.3), 1);
+  const NrrdVolume one = field_to_nrrd(f, 1);
+  REQUIRE(one.data.size() == static_cast<std::size_t>(f.dims().x()) * f.dims().y() * f.dims().z());
+  const int i = f.dims().x() / 3, j = f.dims().y() / 2, k = f.dims().z() - 2;
+  CHECK(one.data[i + static_cast<std::size_t>(f.dims().x()) * (j + static_cast<std::size_t>(f.dims().y()) * k)] ==
+        static_cast<float>(f.sample(i, j, k)));
+  for (int threads : {2, 3}) CHECK(field_to_nrrd(f, threads).data == one.data);
 }

@@ -46,6 +46,11 @@ TEST_CASE("cutting: an excursion under the threshold is kept, one over it is cut
   CHECK(cut.outside_length > outside - 1e-9);
   REQUIRE(cut.points.size() == 3);
   CHECK((cut.points.back() - Vec3(1.5, 0, 0)).norm() < 1e-15);  // the exit crossing
+  // The distances handed back are the function's at the kept points, the crossing's included.
+  for (const CutResult* r : {&kept, &cut}) {
+    REQUIRE(r->distances.size() == r->points.size());
+    for (std::size_t i = 0; i < r->points.size(); ++i) CHECK(r->distances[i] == below_plane(r->points[i]));
+  }
 }
 
 TEST_CASE("cutting: an excursion running to the tip counts to the tip; one from the root is never cut") {
@@ -156,7 +161,28 @@ TEST_CASE("make_strands: one fibre per pore, cutting counted, identical for any 
   Strands reference;
   for (int threads : {1, 2, 4}) {
     o.threads = threads;
-    const Strands s = make_strands(guides, pores, o, slab);
+    FibreFieldValues values;
+    values.volume = {1.0};  // replaced
+    values.scalp = {1.0};   // emptied: no out_of_head
+    const Strands s = make_strands(guides, pores, o, slab, nullptr, &values);
+    REQUIRE(values.volume.size() == s.fibres.points.size());
+    for (std::size_t k = 0; k < values.volume.size(); ++k) CHECK(values.volume[k] == slab(s.fibres.points[k]));
+    CHECK(values.scalp.empty());
+    // With a head (below y = −1, beyond every fibre): the reported values at every point but the
+    // roots, and the same fibres.
+    const HeadExit below = [](const Vec3& p, double& scalp) {
+      scalp = p.y() + 1.0;
+      return p.y() < -1.0 ? Vec3(p.x(), -1.0, p.z()) : p;
+    };
+    const Strands h = make_strands(guides, pores, o, slab, below, &values);
+    CHECK(h.fibres.points == s.fibres.points);
+    REQUIRE(values.scalp.size() == h.fibres.points.size());
+    for (std::size_t c = 0; c < h.fibres.count(); ++c)
+      for (std::size_t k = h.fibres.offsets[c]; k < h.fibres.offsets[c + 1]; ++k) {
+        if (k == h.fibres.offsets[c]) CHECK(std::isnan(values.scalp[k]));  // the root is not asked about
+        else if (h.cut[c] && k + 1 == h.fibres.offsets[c + 1]) CHECK((std::isnan(values.scalp[k]) || values.scalp[k] == h.fibres.points[k].y() + 1.0));
+        else CHECK(values.scalp[k] == h.fibres.points[k].y() + 1.0);
+      }
     CHECK(s.fibres.count() == 300);
     CHECK(s.cut_count > 0);
     for (std::size_t c = 0; c < s.fibres.count(); ++c) {
@@ -180,7 +206,10 @@ TEST_CASE("a fibre that would pass behind the scalp is moved out of the head, ke
   // onto it. The guide hugs the scalp, so a wisp winding about it sends its fibres below.
   std::vector<Vec3> guide;
   for (int i = 0; i <= 40; ++i) guide.emplace_back(0.25 * i, 0.05 * std::sin(M_PI * i / 40.0), 0.0);
-  const HeadExit project = [](const Vec3& p) { return p.y() < 0.0 ? Vec3(p.x(), 0.0, p.z()) : p; };
+  const HeadExit project = [](const Vec3& p, double& scalp) {
+    scalp = p.y();
+    return p.y() < 0.0 ? Vec3(p.x(), 0.0, p.z()) : p;
+  };
   StrandOptions o;
   o.points = 24;
   o.root_radius = 0.5;
