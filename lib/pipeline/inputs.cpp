@@ -77,8 +77,9 @@ void require_integrable_weight(const Scene& scene) {
   throw InputError({Diagnostic{{scene.file.string(), line, column}, text, ""}});
 }
 
-// Shares of (up to ~200 evenly picked) scalp vertices whose winding number in the volume is > ½
-// (inside) and < −½ (inside a volume whose triangles face inward).
+// Shares of (up to ~200 evenly picked) scalp vertices whose winding number in the volume is > ¼
+// (inside, or on its boundary: ½ there) and < −¼ (the same in a volume whose triangles face
+// inward). A prepared scalp shares its hairline with the volume, so those vertices lie on it.
 struct Enclosure {
   double inside = 0.0;
   double inside_inverted = 0.0;
@@ -89,8 +90,8 @@ Enclosure scalp_enclosure(const Mesh& scalp, const Mesh& volume) {
   int inside = 0, inverted = 0, tested = 0;
   for (std::size_t i = 0; i < scalp.positions.size(); i += step, ++tested) {
     const double w = winding_number(volume, scalp.positions[i]);
-    inside += w > 0.5;
-    inverted += w < -0.5;
+    inside += w > 0.25;
+    inverted += w < -0.25;
   }
   if (tested == 0) return {};
   return {static_cast<double>(inside) / tested, static_cast<double>(inverted) / tested};

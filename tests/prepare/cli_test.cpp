@@ -149,15 +149,16 @@ TEST_CASE("bad input: a clear message, exit code 2 and nothing written") {
     CHECK_FALSE(fs::exists(out));
   };
   SUBCASE("a selection that catches nothing") {
-    refused(coloured.string() + " --plane 0,100,0,0,1,0", "catches no triangle");
+    refused(coloured.string() + " --plane 0,100,0,0,1,0", "catches no part of the scan");
   }
   SUBCASE("no connected hair region: a mask painted in scattered specks") {
     BustScan scan = make_bust(BustShape{});
-    // A 3D checkerboard of 1.5 cm cells: hair colour on alternate cells only.
+    // Specks 1 cm across, 1 cm of bare skin apart: hair colour in the middle half of every 2 cm
+    // cell. (Not a checkerboard: cells meeting at a corner are joined by the hairline's level set.)
     for (std::size_t v = 0; v < scan.colors.size(); ++v) {
-      const Vec3 c = (scan.mesh.positions[v] / 1.5).array().floor();
-      const bool odd = (static_cast<long>(c.x() + c.y() + c.z()) & 1) != 0;
-      scan.colors[v] = odd ? Vec3(0.3, 0.18, 0.1) : Vec3(0.92, 0.76, 0.66);
+      const Eigen::Array3d c = scan.mesh.positions[v].array() / 2.0, within = c - c.floor();
+      const bool speck = (within >= 0.25).all() && (within <= 0.75).all();
+      scan.colors[v] = speck ? Vec3(0.3, 0.18, 0.1) : Vec3(0.92, 0.76, 0.66);
     }
     write_obj_mesh(dir / "specks.obj", scan.mesh, {}, scan.colors);
     refused((dir / "specks.obj").string() + " " + kHairMask, "not one connected region");
