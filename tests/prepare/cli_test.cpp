@@ -181,10 +181,11 @@ TEST_CASE("bad input: a clear message, exit code 2 and nothing written") {
 }
 
 // The target: the produced scene runs end to end with inside_fraction ≥ 0.99 after
-// cutting (0.995 today). The written scene tilts roots toward the thicker layer by
+// cutting (0.991 today, hair 10.5 cm; 0.995 when the hairline ran along mesh edges and the hair was
+// 10 cm). The written scene tilts roots toward the thicker layer by
 // 90° − atan(T/reach) with hair ⅔ of the reach long; with the old defaults (25 cm along the
 // normal) it was 0.90. The figure counts fibre points after the root: roots lie on the scalp by
-// construction, and 139 of these 1272 read in the head or outside the volume through the
+// construction, and (edge hairline) 139 of 1272 read in the head or outside the volume through the
 // interpolated fields at the zero-thickness hairline (spec/reference.md).
 TEST_CASE("the prepared scene runs end to end with strands inside after cutting") {
   const fs::path dir = fresh_dir("inside");
