@@ -182,7 +182,8 @@ std::string HairSelection::describe() const {
     std::snprintf(text, sizeof text, "cap about %s, axis %s, half-angle %.4g°", vec_text(centre).c_str(),
                   vec_text(axis).c_str(), half_angle);
   else
-    std::snprintf(text, sizeof text, "mask colour %s within %.4g", vec_text(color).c_str(), tolerance);
+    std::snprintf(text, sizeof text, "mask colour %s within %.4g, smoothed %d times", vec_text(color).c_str(), tolerance,
+                  mask_smoothing);
   return text;
 }
 

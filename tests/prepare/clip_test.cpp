@@ -176,3 +176,24 @@ TEST_CASE("a painted mask: the smoothed paint's hairline runs near the painted b
   CHECK(worst_smooth <= spacing);
   CHECK(smooth < 0.5 * raw);
 }
+
+TEST_CASE("a plane through scan vertices and along scan edges: those vertices are the hairline, nothing degenerate") {
+  // The icosahedron has vertices (±1, 0, ±φ): the plane y = 0 passes through them and through the
+  // subdivided edges between them.
+  const Mesh sphere = icosphere(3, 5.0);
+  int on_plane = 0;
+  for (const Vec3& q : sphere.positions) on_plane += q.y() == 0.0;
+  REQUIRE(on_plane >= 4);
+  for (double snap : {0.0, 0.25}) {
+    HullOptions o;
+    o.clip.snap = snap;
+    const Hull hull = cut_hull(sphere, selection_field(sphere, {}, plane(Vec3::Zero(), Vec3::UnitY()), "sphere"), o, "sphere");
+    CHECK(analyse_topology(hull.mesh).is_disk());
+    for (int v : hull.hairline) CHECK(std::abs(hull.mesh.positions[v].y()) <= 1e-12 * 5.0);
+    double exact = 0.0;
+    for (const Vec3i& f : sphere.triangles)
+      exact += area_above(sphere.positions[f[0]], sphere.positions[f[1]], sphere.positions[f[2]], Vec3::Zero(), Vec3::UnitY());
+    CHECK(surface_area(hull.mesh) == doctest::Approx(exact).epsilon(snap == 0.0 ? 1e-12 : 1e-3));
+    for (int t = 0; t < static_cast<int>(hull.mesh.triangles.size()); ++t) CHECK(triangle_area(hull.mesh, t) > 1e-6);
+  }
+}
