@@ -118,6 +118,21 @@ TEST_CASE("a scan in millimetres with a painted mask becomes a scene that valida
   fs::remove_all(dir);
 }
 
+// Unsmoothed paint cuts every rim triangle, so many scalp vertices lie on the hairline, which lies on
+// the volume's thin rim (winding number near 0 there): validate must not count them as outside.
+TEST_CASE("a scene prepared from unsmoothed paint validates") {
+  const fs::path dir = fresh_dir("raw-mask");
+  const fs::path scan = write_bust(dir, 10.0);
+  const auto r = run_hairfit("prepare " + scan.string() + " --out " + (dir / "scene").string() + " " + kHairMask +
+                             " --units mm --mask-smoothing 0");
+  INFO(r.out << r.err);
+  REQUIRE(r.exit_code == 0);
+  const auto valid = run_hairfit("validate " + (dir / "scene" / "scene.toml").string());
+  INFO(valid.out << valid.err);
+  CHECK(valid.exit_code == 0);
+  fs::remove_all(dir);
+}
+
 TEST_CASE("up and front are detected on a z-up scan, and a declared head height sets the scale") {
   const fs::path dir = fresh_dir("zup");
   Mat3 turn;  // +y → +z, +z (the face) → −y: a z-up export
