@@ -1,7 +1,9 @@
-// hairfit prepare SCAN.obj --out DIR (--plane P|--cap C|--mask RGB) [--units U | --head-height H]
+// hairfit prepare SCAN.obj --out DIR (--plane P|--cap C|--mask RGB [--mask-tolerance D] [--mask-smoothing N])
+//   [--units U | --head-height H]
 //   [--up x,y,z] [--front x,y,z] [--crown-thickness T] [--ramp R] [--max-hole F] [--weld D]
 // From one raw scan to a ready-to-run scene: DIR/volume.obj, DIR/scalp.obj, DIR/scene.toml and
 // DIR/prepare.json (lib/prepare/prepare.h).
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 
@@ -55,6 +57,10 @@ HairSelection selection(const Args& args) {
     s.color = Vec3(v[0], v[1], v[2]);
     s.tolerance = args.number("mask-tolerance", s.tolerance);
     if (!(s.tolerance >= 0.0)) throw UsageError{"--mask-tolerance must be ≥ 0"};
+    const double smoothing = args.number("mask-smoothing", s.mask_smoothing);
+    if (!(smoothing >= 0.0 && smoothing <= 100.0 && smoothing == std::floor(smoothing)))
+      throw UsageError{"--mask-smoothing must be a whole number of rounds from 0 to 100"};
+    s.mask_smoothing = static_cast<int>(smoothing);
   }
   return s;
 }
@@ -63,7 +69,7 @@ HairSelection selection(const Args& args) {
 
 int command_prepare(const Arguments& argv) {
   const Args args(argv,
-                  {"out", "plane", "cap", "mask", "mask-tolerance", "units", "head-height", "up", "front",
+                  {"out", "plane", "cap", "mask", "mask-tolerance", "mask-smoothing", "units", "head-height", "up", "front",
                    "crown-thickness", "ramp", "max-hole", "weld"},
                   {});
   if (args.positionals().size() != 1) throw UsageError{"expected exactly one SCAN.obj"};

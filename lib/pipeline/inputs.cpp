@@ -1,6 +1,7 @@
 #include "pipeline/inputs.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 
@@ -78,17 +79,28 @@ void require_integrable_weight(const Scene& scene) {
 }
 
 // Shares of (up to ~200 evenly picked) scalp vertices whose winding number in the volume is > ½
-// (inside) and < −½ (inside a volume whose triangles face inward).
+// (inside) and < −½ (inside a volume whose triangles face inward). Scalp vertices that are also
+// volume vertices lie on it, neither in nor out (a prepared scene's hairline, on the volume's thin
+// rim, reads a winding number near 0): they are not picked.
 struct Enclosure {
   double inside = 0.0;
   double inside_inverted = 0.0;
 };
 
 Enclosure scalp_enclosure(const Mesh& scalp, const Mesh& volume) {
-  const int step = std::max<int>(1, static_cast<int>(scalp.positions.size()) / 200);
+  std::vector<std::array<double, 3>> on_volume;
+  for (const Vec3& p : volume.positions) on_volume.push_back({p.x(), p.y(), p.z()});
+  std::sort(on_volume.begin(), on_volume.end());
+  std::vector<int> picked;
+  for (std::size_t v = 0; v < scalp.positions.size(); ++v) {
+    const Vec3& p = scalp.positions[v];
+    if (!std::binary_search(on_volume.begin(), on_volume.end(), std::array<double, 3>{p.x(), p.y(), p.z()}))
+      picked.push_back(static_cast<int>(v));
+  }
+  const int step = std::max<int>(1, static_cast<int>(picked.size()) / 200);
   int inside = 0, inverted = 0, tested = 0;
-  for (std::size_t i = 0; i < scalp.positions.size(); i += step, ++tested) {
-    const double w = winding_number(volume, scalp.positions[i]);
+  for (std::size_t i = 0; i < picked.size(); i += step, ++tested) {
+    const double w = winding_number(volume, scalp.positions[picked[i]]);
     inside += w > 0.5;
     inverted += w < -0.5;
   }

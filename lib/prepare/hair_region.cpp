@@ -148,6 +148,30 @@ void orient_consistently(Mesh& mesh, const std::string& file) {
   }
 }
 
+// Clamps the mask's values to ±tolerance (a bare vertex counts as bare however far its colour is)
+// and averages each with its neighbours (Jacobi rounds, so the result does not depend on order).
+void smooth_mask(const Mesh& scan, const HairSelection& s, std::vector<double>& f) {
+  const double limit = std::max(s.tolerance, 1e-12);
+  for (double& x : f) x = std::clamp(x, -limit, limit);
+  if (s.mask_smoothing <= 0) return;
+  std::vector<std::vector<int>> neighbours(f.size());
+  for (const Vec3i& t : scan.triangles)
+    for (int k = 0; k < 3; ++k) neighbours[t[k]].push_back(t[(k + 1) % 3]), neighbours[t[(k + 1) % 3]].push_back(t[k]);
+  for (auto& list : neighbours) {
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+  }
+  for (int round = 0; round < s.mask_smoothing; ++round) {
+    std::vector<double> next(f.size());
+    for (std::size_t v = 0; v < f.size(); ++v) {
+      double sum = f[v];
+      for (int u : neighbours[v]) sum += f[u];
+      next[v] = sum / static_cast<double>(neighbours[v].size() + 1);
+    }
+    f = std::move(next);
+  }
+}
+
 }  // namespace
 
 std::string HairSelection::describe() const {
@@ -158,31 +182,32 @@ std::string HairSelection::describe() const {
     std::snprintf(text, sizeof text, "cap about %s, axis %s, half-angle %.4g°", vec_text(centre).c_str(),
                   vec_text(axis).c_str(), half_angle);
   else
-    std::snprintf(text, sizeof text, "mask colour %s within %.4g", vec_text(color).c_str(), tolerance);
+    std::snprintf(text, sizeof text, "mask colour %s within %.4g, smoothed %d times", vec_text(color).c_str(), tolerance,
+                  mask_smoothing);
   return text;
 }
 
-std::vector<char> select_vertices(const Mesh& scan, const std::vector<Vec3>& colors, const HairSelection& s,
-                                  const std::string& file) {
-  const int n = static_cast<int>(scan.positions.size());
-  std::vector<char> picked(n, 0);
+SelectionField selection_field(const Mesh& scan, const std::vector<Vec3>& colors, const HairSelection& s,
+                               const std::string& file) {
   if (s.kind == HairSelection::Kind::mask && colors.size() != scan.positions.size())
     throw InputError(file, "has no vertex colours, so --mask has nothing to read; paint the hair and export the "
                            "colours (OBJ lines `v x y z r g b`), or select the hair with --plane or --cap");
-  const Vec3 normal = s.normal.normalized(), axis = s.axis.normalized();
-  const double cos_half = std::cos(s.half_angle * M_PI / 180.0);
-  for (int i = 0; i < n; ++i) {
-    const Vec3& p = scan.positions[i];
-    if (s.kind == HairSelection::Kind::plane) {
-      picked[i] = (p - s.point).dot(normal) >= 0.0;
-    } else if (s.kind == HairSelection::Kind::cap) {
-      const Vec3 d = p - s.centre;
-      picked[i] = d.norm() > 0.0 && d.dot(axis) >= cos_half * d.norm();
-    } else {
-      picked[i] = (colors[i] - s.color).norm() <= s.tolerance;
-    }
+  SelectionField field;
+  if (s.kind == HairSelection::Kind::plane) {
+    const Vec3 point = s.point, normal = s.normal.normalized();
+    field.at = [point, normal](const Vec3& p) { return (p - point).dot(normal); };
+  } else if (s.kind == HairSelection::Kind::cap) {
+    const Vec3 centre = s.centre, axis = s.axis.normalized();
+    const double half = s.half_angle * M_PI / 180.0;
+    field.at = [centre, axis, half](const Vec3& p) {
+      const Vec3 d = p - centre;
+      return d.norm() > 0.0 ? half - std::atan2(d.cross(axis).norm(), d.dot(axis)) : -1.0;
+    };
   }
-  return picked;
+  for (std::size_t i = 0; i < scan.positions.size(); ++i)
+    field.values.push_back(field.at ? field.at(scan.positions[i]) : s.tolerance - (colors[i] - s.color).norm());
+  if (!field.at) smooth_mask(scan, s, field.values);
+  return field;
 }
 
 Vec3 fit_sphere_centre(const std::vector<Vec3>& points) {
@@ -196,20 +221,22 @@ Vec3 fit_sphere_centre(const std::vector<Vec3>& points) {
   return x.head<3>();
 }
 
-Hull cut_hull(const Mesh& scan, const std::vector<char>& selected, const HullOptions& options, const std::string& file) {
+Hull cut_hull(const Mesh& scan_mesh, const SelectionField& field, const HullOptions& options, const std::string& file) {
   Hull hull;
-  std::vector<int> kept;
-  for (int t = 0; t < static_cast<int>(scan.triangles.size()); ++t) {
-    const Vec3i& f = scan.triangles[t];
-    if (selected[f[0]] && selected[f[1]] && selected[f[2]]) kept.push_back(t);
-  }
+  // From here on, "the scan" is the clipped scan: whole scan triangles and the parts the hairline cuts.
+  const Clipped clipped = clip_at_level_set(scan_mesh, field, options.clip);
+  const Mesh& scan = clipped.mesh;
+  hull.cut_triangles = clipped.cut_triangles;
+  hull.snapped_vertices = clipped.snapped_vertices;
+  std::vector<int> kept(scan.triangles.size());
+  std::iota(kept.begin(), kept.end(), 0);
   hull.selected_triangles = static_cast<int>(kept.size());
   if (kept.empty()) {
-    const long picked = std::count(selected.begin(), selected.end(), 1);
-    throw InputError(file, "the hair selection catches no triangle of the scan (" + std::to_string(picked) + " of " +
-                               std::to_string(selected.size()) +
-                               " vertices picked, none with all three corners); check the selection's "
-                               "coordinates against the scan's (they are in the scan's own units)");
+    const long picked = std::count_if(field.values.begin(), field.values.end(), [](double f) { return f >= 0.0; });
+    throw InputError(file, "the hair selection catches no part of the scan (" + std::to_string(picked) + " of " +
+                               std::to_string(field.values.size()) +
+                               " vertices picked); check the selection's coordinates against the scan's (they "
+                               "are in the scan's own units)");
   }
   for (int t : kept) hull.selected_area += area_of(scan, scan.triangles[t]);
 
@@ -249,12 +276,12 @@ Hull cut_hull(const Mesh& scan, const std::vector<char>& selected, const HullOpt
     if (local[v] < 0) continue;
     local[v] = static_cast<int>(hull.mesh.positions.size());
     hull.mesh.positions.push_back(scan.positions[v]);
-    hull.scan_vertex.push_back(static_cast<int>(v));
+    hull.scan_vertex.push_back(clipped.scan_vertex[v]);
   }
   for (int t : kept) {
     const Vec3i& f = scan.triangles[t];
     hull.mesh.triangles.emplace_back(local[f[0]], local[f[1]], local[f[2]]);
-    hull.scan_triangle.push_back(t);
+    hull.scan_triangle.push_back(clipped.scan_triangle[t]);
     hull.kept_area += area_of(scan, f);
   }
   MeshTopology topo = analyse_topology(hull.mesh);

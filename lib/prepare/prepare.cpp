@@ -172,7 +172,7 @@ Prepared prepare_scan(const Mesh& raw_scan, const std::vector<Vec3>& colors, con
     for (int old : welded.new_to_old) welded_colors.push_back(colors[old]);
   const Mesh& scan = welded.mesh;
 
-  p.hull = cut_hull(scan, select_vertices(scan, welded_colors, o.selection, file), o.hull, file);
+  p.hull = cut_hull(scan, selection_field(scan, welded_colors, o.selection, file), o.hull, file);
   detect_directions(p.hull, o, p);
   p.scale_to_cm = scale_for(scan, p.up, o, file);
   for (Vec3& x : p.hull.mesh.positions) x *= p.scale_to_cm;
@@ -260,6 +260,8 @@ void write_prepared(const Prepared& p, const std::filesystem::path& scan, const 
   record["hull"] = {{"triangles", p.hull.mesh.triangles.size()},
                     {"area_cm2", p.hull.kept_area},
                     {"selected_triangles", p.hull.selected_triangles},
+                    {"cut_triangles", p.hull.cut_triangles},
+                    {"snapped_vertices", p.hull.snapped_vertices},
                     {"selected_parts", p.hull.parts},
                     {"selected_area_cm2", p.hull.selected_area},
                     {"shaved_triangles", p.hull.shaved_triangles},

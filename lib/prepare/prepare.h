@@ -50,8 +50,8 @@ Prepared prepare_scan(const Mesh& scan, const std::vector<Vec3>& colors, const P
 // lie up to `reach` (ScalpResult::hairline_reach) from the hairline, so hair tilts toward the
 // thicker layer by 90° − atan(T / reach) (rising T over that distance), and is ⅔·reach long
 // (rounded to 0.5 cm): on a disk-like cap, the mean distance from a root to the innermost point,
-// toward which the thicker layer leads. (On the test bust, reach 15.3 cm: hair 10 cm long keeps
-// 0.995 of its grown points inside after cutting, 15.5 cm long 0.987.)
+// toward which the thicker layer leads. (On the test bust, reach 15.5 cm: hair 10.5 cm long keeps
+// 0.991 of its grown points inside after cutting, 10 cm 0.992.)
 struct PreparedHair {
   double tilt = 0.0;    // degrees, whole
   double length = 0.0;  // cm
