@@ -56,9 +56,17 @@ AxisRange fit_range(double low, double high, bool log, double pad) {
 void Axes::draw(Canvas& canvas, const std::string& x_label, const std::string& y_label, bool x_ticks, bool grid) const {
   const Color ink = ink_color(), light = grid_color();
   const double scale = 2.0;
-  // Tick positions: whole decades on log axes (with 2..9 minor ticks), nice steps otherwise.
-  auto ticks = [](const AxisRange& a, std::vector<double>& major, std::vector<double>& minor,
-                  std::vector<std::string>& labels) {
+  // Tick positions: whole decades on log axes (with 2..9 minor ticks), nice steps otherwise, as
+  // many as fit: labels need their width plus a gap along x, 1.6 text heights along y (a small
+  // panel of a contact sheet otherwise runs its labels into one another).
+  const double gap = 10.0, line = 1.6 * Canvas::text_height(scale);
+  auto fits = [&](const std::vector<std::string>& labels, bool along_x) {
+    double need = 0.0;
+    for (const std::string& l : labels) need += along_x ? Canvas::text_width(l, scale) + gap : line;
+    return need <= (along_x ? rect_.x1 - rect_.x0 : rect_.y1 - rect_.y0);
+  };
+  auto ticks = [&](const AxisRange& a, bool along_x, std::vector<double>& major, std::vector<double>& minor,
+                   std::vector<std::string>& labels) {
     if (a.log) {
       const int e0 = static_cast<int>(std::floor(std::log10(a.low) + 1e-9));
       const int e1 = static_cast<int>(std::ceil(std::log10(a.high) - 1e-9));
@@ -69,15 +77,19 @@ void Axes::draw(Canvas& canvas, const std::string& x_label, const std::string& y
           for (int m = 2; m <= 9; ++m) minor.push_back(m * std::pow(10.0, e));
       }
     } else {
-      major = nice_ticks(a.low, a.high, 6);
-      const double step = major.size() > 1 ? major[1] - major[0] : 0.0;
-      for (double v : major) labels.push_back(tick_label(v, step));
+      for (int target = 6; target >= 2; --target) {
+        major = nice_ticks(a.low, a.high, target);
+        const double step = major.size() > 1 ? major[1] - major[0] : 0.0;
+        labels.clear();
+        for (double v : major) labels.push_back(tick_label(v, step));
+        if (fits(labels, along_x)) break;
+      }
     }
   };
   std::vector<double> xs, xm, ys, ym;
   std::vector<std::string> xl, yl;
-  ticks(x_, xs, xm, xl);
-  ticks(y_, ys, ym, yl);
+  ticks(x_, true, xs, xm, xl);
+  ticks(y_, false, ys, ym, yl);
   const PlotRect& r = rect_;
   if (grid) {
     for (double v : ys) {

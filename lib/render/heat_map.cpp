@@ -87,7 +87,7 @@ Image render_heat_map(const HeatMap& map, int width, int height) {
 
   Canvas canvas(width, height, paper_color());
   // The map keeps the world aspect ratio inside the space left by labels and the colour bar.
-  const double ax0 = std::min(100.0, 0.18 * width), ax1 = width - std::min(130.0, 0.22 * width);
+  const double ax0 = std::min(100.0, 0.18 * width), ax1 = width - std::min(130.0, 0.33 * width);
   const double ay0 = 48.0, ay1 = height - std::min(70.0, 0.16 * height);
   const double s = std::min((ax1 - ax0) / x_span, (ay1 - ay0) / y_span);
   const double w = s * x_span, h = s * y_span;
@@ -130,10 +130,14 @@ Image render_heat_map(const HeatMap& map, int width, int height) {
   }
   canvas.stroke_rect(bx0, rect.y0, bx1, rect.y1, ink_color(), 1.0);
   const double step = levels.size() > 1 ? levels[1] - levels[0] : range;
+  // Every level gets a tick; labels on every stride-th level counted from 0, so they never touch.
+  const double per_label = 1.6 * Canvas::text_height(2.0);
+  const int stride = std::max(1, static_cast<int>(std::ceil(levels.size() * per_label / (rect.y1 - rect.y0))));
   double widest = 0.0;
   for (double level : levels) {
     const double y = rect.y1 - (level - low) / (range - low) * (rect.y1 - rect.y0);
     canvas.line({bx1, y}, {bx1 + 4, y}, ink_color(), 1.0);
+    if (static_cast<long>(std::llround(level / step)) % stride != 0) continue;
     const std::string label = tick_label(level, step);
     canvas.text(bx1 + 7, y - 7, label, ink_color(), 2.0);
     widest = std::max(widest, Canvas::text_width(label));
