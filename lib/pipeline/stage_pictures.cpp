@@ -183,7 +183,7 @@ Image render_stage(const std::string& stage, const Scene& scene, const Inputs& i
     for (int c = 0; c < values.clusters->size(); ++c) dots.color_ids.push_back(c);
     drawing.points.push_back(dots);
     drawing.title = "roots: " + std::to_string(values.roots->pores.size()) + " pores, " +
-                    std::to_string(values.clusters->size()) + " guide bases";
+                    std::to_string(values.clusters->size()) + " guides";
   } else if (stage == "preguides") {
     for (const PreGuide& g : values.preguides->items) {
       lines.push_back(g.shape.nodes);
