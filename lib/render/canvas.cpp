@@ -237,7 +237,7 @@ std::vector<double> nice_ticks(double low, double high, int target) {
 }
 
 std::string tick_label(double value, double step) {
-  if (step > 0 && std::abs(value) < 1e-9 * step) return "0";
+  if (std::abs(value) < 1e-9 * (step > 0 ? step : 1.0)) return "0";  // never "-0"
   char text[32];
   std::snprintf(text, sizeof text, "%.4g", value);
   return text;
