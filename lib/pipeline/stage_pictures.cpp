@@ -44,15 +44,20 @@ Polylines polylines(const Curves& curves) {
 namespace {
 
 // Two panels, each drawn at (width/2 or the rest) × height, joined into exactly width × height.
-Image two_panels(const Image& left, const Image& right, int width, int height) {
+// Two pictures side by side (`stacked`: one above the other) in a width × height image.
+Image two_panels(const Image& left, const Image& right, int width, int height, bool stacked = false) {
   Image out = make_image(width, height, 0, 0, 0);
-  auto blit = [&](const Image& panel, int x0) {
-    for (int y = 0; y < std::min(height, panel.height); ++y)
+  auto blit = [&](const Image& panel, int x0, int y0) {
+    for (int y = 0; y < panel.height && y0 + y < height; ++y)
       for (int x = 0; x < panel.width && x0 + x < width; ++x)
-        std::copy(panel.pixel(x, y), panel.pixel(x, y) + 4, &out.rgba[(static_cast<std::size_t>(y) * width + x0 + x) * 4]);
+        std::copy(panel.pixel(x, y), panel.pixel(x, y) + 4,
+                  &out.rgba[(static_cast<std::size_t>(y0 + y) * width + x0 + x) * 4]);
   };
-  blit(left, 0);
-  blit(right, left.width);
+  blit(left, 0, 0);
+  if (stacked)
+    blit(right, 0, left.height);
+  else
+    blit(right, left.width, 0);
   return out;
 }
 
@@ -160,10 +165,15 @@ Image render_stage(const std::string& stage, const Scene& scene, const Inputs& i
     }
     return contact_sheet(tiles, captions, 4);
   }
-  if (stage == "fields")
-    return two_panels(field_slice(*values.scalp_field, scene, "scalp field, mid-sagittal slice", width / 2, height),
-                      field_slice(*values.volume_field, scene, "volume field, mid-sagittal slice", width - width / 2, height),
-                      width, height);
+  if (stage == "fields") {
+    // Side by side, unless that leaves a map too narrow for its labels (a contact sheet's panel).
+    const bool stacked = width < 800;
+    const int w = stacked ? width : width / 2, h = stacked ? height / 2 : height;
+    return two_panels(field_slice(*values.scalp_field, scene, "scalp field, mid-sagittal slice", w, h),
+                      field_slice(*values.volume_field, scene, "volume field, mid-sagittal slice",
+                                  stacked ? width : width - w, stacked ? height - h : height),
+                      width, height, stacked);
+  }
   if (stage == "chart") return chart_picture(values, false, width, height);
   Drawing3D drawing;
   MeshLayer scalp{&inputs.scalp.mesh};

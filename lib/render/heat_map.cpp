@@ -88,7 +88,7 @@ Image render_heat_map(const HeatMap& map, int width, int height) {
   Canvas canvas(width, height, paper_color());
   // The map keeps the world aspect ratio inside the space left by labels and the colour bar.
   const double ax0 = std::min(100.0, 0.18 * width), ax1 = width - std::min(130.0, 0.33 * width);
-  const double ay0 = 48.0, ay1 = height - std::min(70.0, 0.16 * height);
+  const double ay0 = 48.0, ay1 = height - std::min(70.0, std::max(52.0, 0.16 * height));
   const double s = std::min((ax1 - ax0) / x_span, (ay1 - ay0) / y_span);
   const double w = s * x_span, h = s * y_span;
   const PlotRect rect{0.5 * (ax0 + ax1 - w), 0.5 * (ay0 + ay1 - h), 0.5 * (ax0 + ax1 + w), 0.5 * (ay0 + ay1 + h)};
@@ -142,9 +142,12 @@ Image render_heat_map(const HeatMap& map, int width, int height) {
     canvas.text(bx1 + 7, y - 7, label, ink_color(), 2.0);
     widest = std::max(widest, Canvas::text_width(label));
   }
-  if (!map.value_label.empty())
-    canvas.text(std::min(width - 18.0, bx1 + 14 + widest), 0.5 * (rect.y0 + rect.y1), map.value_label, ink_color(), 2.0,
-                TextAlign::centre, true);
+  if (!map.value_label.empty()) {
+    // Smaller type where the label is longer than the bar (a small panel), down to the font's size.
+    const double fits = 2.0 * (rect.y1 - rect.y0) / Canvas::text_width(map.value_label, 2.0);
+    canvas.text(std::min(width - 18.0, bx1 + 14 + widest), 0.5 * (rect.y0 + rect.y1), map.value_label, ink_color(),
+                std::clamp(fits, 1.0, 2.0), TextAlign::centre, true);
+  }
   draw_title(canvas, map.title);
   return canvas.image();
 }
