@@ -134,10 +134,8 @@ void Axes::draw(Canvas& canvas, const std::string& x_label, const std::string& y
 
 void draw_title(Canvas& canvas, const std::string& title) {
   if (title.empty()) return;
-  // Smaller type rather than a title cut at both ends when the picture is narrow (a panel of a
-  // contact sheet); never below the font's own pixel size.
-  const double fits = 2.5 * (canvas.width() - 8) / Canvas::text_width(title, 2.5);
-  canvas.text(0.5 * canvas.width(), 14, title, ink_color(), std::clamp(fits, 1.0, 2.5), TextAlign::centre);
+  canvas.text(0.5 * canvas.width(), 14, title, ink_color(), Canvas::fitting_scale(title, canvas.width() - 8, 2.5),
+              TextAlign::centre);
 }
 
 }  // namespace hairfit

@@ -158,6 +158,10 @@ double Canvas::text_width(const std::string& text, double scale) {
   return scale * stb_easy_font_width(copy.data());
 }
 
+double Canvas::fitting_scale(const std::string& text, double room, double largest) {
+  return std::clamp(largest * room / text_width(text, largest), 1.0, largest);
+}
+
 void Canvas::text(double x, double y, const std::string& text, const Color& color, double scale, TextAlign align,
                   bool vertical) {
   if (text.empty()) return;

@@ -48,6 +48,9 @@ class Canvas {
   void text(double x, double y, const std::string& text, const Color& color, double scale = 2.0,
             TextAlign align = TextAlign::left, bool vertical = false);
   static double text_width(const std::string& text, double scale = 2.0);
+  // The scale, at most `largest` and never below the font's own pixel size (1), at which `text`
+  // fits in `room` pixels: smaller type rather than a label cut off in a small panel.
+  static double fitting_scale(const std::string& text, double room, double largest);
   static double text_height(double scale = 2.0) { return 7.0 * scale; }
 
   // Copies an image with its top-left corner at pixel (x, y), blending by its alpha.
@@ -64,7 +67,7 @@ class Canvas {
 // "Nice" axis tick values covering [low, high]: steps of 1, 2 or 5 × 10^k, about `target` of them.
 std::vector<double> nice_ticks(double low, double high, int target = 6);
 // Short label of a tick value: %g with up to 4 significant digits, "0" for values within
-// 1e-9·step of zero.
+// 1e-9·step of zero (never "-0").
 std::string tick_label(double value, double step = 0.0);
 
 }  // namespace hairfit

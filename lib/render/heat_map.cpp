@@ -143,10 +143,8 @@ Image render_heat_map(const HeatMap& map, int width, int height) {
     widest = std::max(widest, Canvas::text_width(label));
   }
   if (!map.value_label.empty()) {
-    // Smaller type where the label is longer than the bar (a small panel), down to the font's size.
-    const double fits = 2.0 * (rect.y1 - rect.y0) / Canvas::text_width(map.value_label, 2.0);
     canvas.text(std::min(width - 18.0, bx1 + 14 + widest), 0.5 * (rect.y0 + rect.y1), map.value_label, ink_color(),
-                std::clamp(fits, 1.0, 2.0), TextAlign::centre, true);
+                Canvas::fitting_scale(map.value_label, rect.y1 - rect.y0, 2.0), TextAlign::centre, true);
   }
   draw_title(canvas, map.title);
   return canvas.image();

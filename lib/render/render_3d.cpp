@@ -486,12 +486,10 @@ Image render_3d(const Drawing3D& drawing, const Camera& camera, const RenderOpti
       const float* p = &out.rgb[out.at(x, y) * 3];
       canvas.set(x, y, {p[0], p[1], p[2]});
     }
-  // Smaller type rather than a title cut off when the picture is narrow (a panel of a contact
-  // sheet), never below the font's own pixel size.
   if (!drawing.title.empty()) {
     const double margin = std::min(12.0, 0.02 * canvas.width());
-    const double fits = 2.0 * (canvas.width() - 2 * margin) / Canvas::text_width(drawing.title, 2.0);
-    canvas.text(margin, 12, drawing.title, {0.92f, 0.92f, 0.92f}, std::clamp(fits, 1.0, 2.0));
+    canvas.text(margin, 12, drawing.title, {0.92f, 0.92f, 0.92f},
+                Canvas::fitting_scale(drawing.title, canvas.width() - 2 * margin, 2.0));
   }
   return canvas.image();
 }
