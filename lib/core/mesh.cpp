@@ -84,6 +84,20 @@ MeshTopology analyse_topology(const Mesh& mesh) {
   return topo;
 }
 
+std::vector<std::vector<int>> vertex_neighbours(const Mesh& mesh) {
+  std::vector<std::vector<int>> out(mesh.positions.size());
+  for (const Vec3i& t : mesh.triangles)
+    for (int k = 0; k < 3; ++k) {
+      out[t[k]].push_back(t[(k + 1) % 3]);
+      out[t[(k + 1) % 3]].push_back(t[k]);
+    }
+  for (auto& n : out) {
+    std::sort(n.begin(), n.end());
+    n.erase(std::unique(n.begin(), n.end()), n.end());
+  }
+  return out;
+}
+
 double triangle_area(const Mesh& mesh, int triangle) {
   const Vec3i& t = mesh.triangles[triangle];
   const Vec3& a = mesh.positions[t[0]];

@@ -34,6 +34,13 @@ struct MeshTopology {
 
 MeshTopology analyse_topology(const Mesh& mesh);
 
+// Each vertex's neighbours along triangle edges, ascending, without repeats.
+std::vector<std::vector<int>> vertex_neighbours(const Mesh& mesh);
+// One key per undirected edge a–b (vertex indices ≥ 0), for hashing edges.
+inline long long edge_key(int a, int b) {
+  return (static_cast<long long>(a < b ? a : b) << 32) | static_cast<long long>(a < b ? b : a);
+}
+
 double triangle_area(const Mesh& mesh, int triangle);
 double surface_area(const Mesh& mesh);
 // Unit normal of a triangle (zero vector for a degenerate one).

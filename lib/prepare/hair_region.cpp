@@ -20,8 +20,6 @@ std::string vec_text(const Vec3& v) {
   return text;
 }
 
-long long edge_key(int a, int b) { return (static_cast<long long>(std::min(a, b)) << 32) | std::max(a, b); }
-
 // Triangles (indices into `tris`) sharing each undirected edge.
 std::unordered_map<long long, std::vector<int>> edge_triangles(const std::vector<Vec3i>& tris) {
   std::unordered_map<long long, std::vector<int>> edges;
@@ -154,13 +152,7 @@ void smooth_mask(const Mesh& scan, const HairSelection& s, std::vector<double>& 
   const double limit = std::max(s.tolerance, 1e-12);
   for (double& x : f) x = std::clamp(x, -limit, limit);
   if (s.mask_smoothing <= 0) return;
-  std::vector<std::vector<int>> neighbours(f.size());
-  for (const Vec3i& t : scan.triangles)
-    for (int k = 0; k < 3; ++k) neighbours[t[k]].push_back(t[(k + 1) % 3]), neighbours[t[(k + 1) % 3]].push_back(t[k]);
-  for (auto& list : neighbours) {
-    std::sort(list.begin(), list.end());
-    list.erase(std::unique(list.begin(), list.end()), list.end());
-  }
+  const std::vector<std::vector<int>> neighbours = vertex_neighbours(scan);
   for (int round = 0; round < s.mask_smoothing; ++round) {
     std::vector<double> next(f.size());
     for (std::size_t v = 0; v < f.size(); ++v) {

@@ -8,8 +8,6 @@ namespace hairfit {
 
 namespace {
 
-long long edge_key(int a, int b) { return (static_cast<long long>(std::min(a, b)) << 32) | std::max(a, b); }
-
 int sign_of(double f) { return f > 0.0 ? 1 : f < 0.0 ? -1 : 0; }
 
 double smallest_angle(const Vec3& a, const Vec3& b, const Vec3& c) {
@@ -60,13 +58,7 @@ Clipped clip_at_level_set(const Mesh& scan, const SelectionField& field, const C
   const int n = static_cast<int>(scan.positions.size());
   std::vector<double> f = field.values;
   std::vector<Vec3> position = scan.positions;
-  std::vector<std::vector<int>> neighbours(n);
-  for (const Vec3i& t : scan.triangles)
-    for (int k = 0; k < 3; ++k) neighbours[t[k]].push_back(t[(k + 1) % 3]), neighbours[t[(k + 1) % 3]].push_back(t[k]);
-  for (auto& list : neighbours) {
-    std::sort(list.begin(), list.end());
-    list.erase(std::unique(list.begin(), list.end()), list.end());
-  }
+  const std::vector<std::vector<int>> neighbours = vertex_neighbours(scan);
   // Crossings on the scan's own edges (both ends unmoved), computed once per edge from its lower end.
   std::unordered_map<long long, Crossing> crossings;
   auto crossing = [&](int a, int b) -> const Crossing& {

@@ -19,20 +19,6 @@ double smoothstep(double x) {
   return t * t * (3.0 - 2.0 * t);
 }
 
-std::vector<std::vector<int>> neighbours(const Mesh& mesh) {
-  std::vector<std::vector<int>> out(mesh.positions.size());
-  for (const Vec3i& t : mesh.triangles)
-    for (int k = 0; k < 3; ++k) {
-      out[t[k]].push_back(t[(k + 1) % 3]);
-      out[t[(k + 1) % 3]].push_back(t[k]);
-    }
-  for (auto& n : out) {
-    std::sort(n.begin(), n.end());
-    n.erase(std::unique(n.begin(), n.end()), n.end());
-  }
-  return out;
-}
-
 // Shortest distance along the mesh's edges from the sources (Dijkstra), cm.
 std::vector<double> edge_distance(const Mesh& mesh, const std::vector<std::vector<int>>& next,
                                   const std::vector<int>& sources) {
@@ -95,7 +81,7 @@ ScalpResult make_scalp(const Hull& hull, const ScalpOptions& o, const std::strin
   }
   for (int t = 0; t < static_cast<int>(mesh.triangles.size()); ++t)
     for (int k = 0; k < 3; ++k) area[mesh.triangles[t][k]] += triangle_area(mesh, t) / 3.0;
-  const auto next = neighbours(mesh);
+  const auto next = vertex_neighbours(mesh);
 
   ScalpResult r;
   // The ramp: smoothstep of the distance from the hairline, then a few Jacobi passes so the
