@@ -109,6 +109,8 @@ struct SceneDensity {
   double threshold = 0.5;   // BOM: occupancy above which the surcharge applies
   double surcharge = 10.0;  // c_BOM
   double strength = 1.0;    // c_ρ (CDM)
+  int stall_iterations = 3;       // a guide's refinement with F4 stops after this many iterations …
+  double stall_tolerance = 1e-4;  // … that together lowered its cost by less than this share
 };
 
 struct SceneStrands {

@@ -288,6 +288,11 @@ std::vector<SceneKey> build_keys() {
                         "c_BOM of eq. 10."));
   keys.push_back(number("density.strength", REF(density.strength), "", closed(0, 1e6), "density",
                         "c_ρ of eq. 11."));
+  keys.push_back(integer("density.stall_iterations", REF(density.stall_iterations), "", closed(0, 100000), "density",
+                         "A guide's second solve, with F4, stops once this many iterations in a row (accepted or "
+                         "not) lowered its cost by less than density.stall_tolerance of it; 0: never."));
+  keys.push_back(number("density.stall_tolerance", REF(density.stall_tolerance), "", closed(0, 1), "density",
+                        "Share of the cost that density.stall_iterations iterations must lower it by to go on."));
 
   keys.push_back(integer("strands.points", REF(strands.points), "", closed(2, 65536), "strands",
                          "Points per fibre, root to tip."));

@@ -31,10 +31,24 @@ struct DensityTermOptions {
   double outside = 0.0;
 };
 
+// When a Levenberg–Marquardt solve has stopped paying: `iterations` iterations in a row, accepted
+// or rejected, that together lowered the cost by less than `tolerance` of it. 0 iterations: never
+// (then only the relative tolerance and the iteration cap stop the solve).
+struct StallTest {
+  int iterations = 0;
+  double tolerance = 0.0;
+};
+
 struct GuideDensityOptions {
   DensityTermOptions term;
   GridGeometry grid;  // make_density_geometry
   int batch = 64;     // guides per batch
+  // Stops each guide's second solve, the one with F4 (make_guides_with_density). It starts at the
+  // optimum without F4 and F4 rests on a grid of fibre lengths per voxel, rough at the voxel
+  // scale: past its first steps the solve crept by steps the trust region kept rejecting (on the
+  // paper-scale scene 51 evaluations per guide for a cost 2.5 % lower). Stopped at the stall, the
+  // evaluations halve and the density comes out no less even (bench/results/density_stall.md).
+  StallTest stall{3, 1e-4};
   // What a final guide deposits. CDM: the fibres the strand stage will grow from its cluster's
   // pores (make_fibre with the same wisp extent, before cutting and before being moved out of the head); a pore list with no pores for a
   // guide deposits the guide polyline once instead. BOM: a tube along the guide, radius

@@ -128,7 +128,7 @@ double worst_excursion(const FibreShape& shape, const Boundary& boundary) {
 // says (the followed pre-guides' loads, weighted, or straight).
 Guide solve_guide(const RootSet& bases, int b, const PreGuides& preguides, const Boundary& boundary, const GuideOptions& o,
                   const DensityGrid* density = nullptr, const DensityTermOptions& term = {},
-                  const double* seed_start = nullptr) {
+                  const double* seed_start = nullptr, const StallTest& stall = {}) {
   Guide g;
   g.root = bases.positions[b];
   g.normal = bases.normals[b];
@@ -144,7 +144,7 @@ Guide solve_guide(const RootSet& bases, int b, const PreGuides& preguides, const
     std::copy(seed_start, seed_start + 6, start);
   else if (o.warm_start)
     add_weighted_loads(preguides.items, g.neighbours, g.neighbour_weights, start);
-  GuideSolve solve = optimise_guide(targets, start, o.max_iterations, o.tolerance);
+  GuideSolve solve = optimise_guide(targets, start, o.max_iterations, o.tolerance, stall);
   g.shape = solved_shape(targets, solve);
   // Levenberg–Marquardt can stop in a local minimum that runs through the head or out of the
   // volume well past the boundary ramp: then the other start (straight ↔ the neighbours' loads)
@@ -153,7 +153,7 @@ Guide solve_guide(const RootSet& bases, int b, const PreGuides& preguides, const
     double other[6] = {0, 0, 0, 0, 0, 0};
     if (std::all_of(start, start + 6, [](double v) { return v == 0.0; }))
       add_weighted_loads(preguides.items, g.neighbours, g.neighbour_weights, other);
-    GuideSolve retry = optimise_guide(targets, other, o.max_iterations, o.tolerance);
+    GuideSolve retry = optimise_guide(targets, other, o.max_iterations, o.tolerance, stall);
     const int iterations = solve.iterations + retry.iterations, evaluations = solve.evaluations + retry.evaluations;
     if (retry.final_cost < solve.final_cost) {
       solve = std::move(retry);
@@ -199,13 +199,13 @@ Guide solve_guide(const RootSet& bases, int b, const PreGuides& preguides, const
 // Iterations and evaluations count both solves; the rest describes the second.
 Guide solve_guide_with_density(const RootSet& bases, int b, const PreGuides& preguides, const Boundary& boundary,
                                const GuideOptions& o, const Guide& plain, const DensityGrid& density,
-                               const DensityTermOptions& term) {
+                               const DensityTermOptions& term, const StallTest& stall) {
   double start[6];
   for (int a = 0; a < 3; ++a) {
     start[a] = plain.force[a];
     start[3 + a] = plain.root_moment[a];
   }
-  Guide g = solve_guide(bases, b, preguides, boundary, o, &density, term, start);
+  Guide g = solve_guide(bases, b, preguides, boundary, o, &density, term, start, stall);
   g.iterations += plain.iterations;
   g.evaluations += plain.evaluations;
   return g;
@@ -284,7 +284,8 @@ DensityGuides make_guides_with_density(const RootSet& bases, const PreGuides& pr
     term.outside = density_ceiling(frozen, term, options.threads);
     parallel_for(end - begin, options.threads, [&](int i) {
       out.guides.items[begin + i] =
-          solve_guide_with_density(bases, begin + i, preguides, boundary, options, plain[begin + i], frozen, term);
+          solve_guide_with_density(bases, begin + i, preguides, boundary, options, plain[begin + i], frozen, term,
+                                   density.stall);
       progress.item_done();
     });
     if (density.term.model == GuideDensityModel::continuous) {

@@ -363,6 +363,27 @@ std::vector<double> guide_residuals(const GuideTargets& targets, const double et
 
 namespace {
 
+// Ends a solve at a stall (StallTest): from the costs of its iterations, accepted steps or not.
+class StallCallback : public ceres::IterationCallback {
+ public:
+  explicit StallCallback(const StallTest& test) : test_(test) {}
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary& summary) override {
+    costs_.push_back(summary.cost);
+    const std::size_t n = costs_.size(), window = static_cast<std::size_t>(test_.iterations);
+    if (n > window && costs_[n - 1 - window] - summary.cost < test_.tolerance * summary.cost) {
+      stalled_ = true;
+      return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
+    }
+    return ceres::SOLVER_CONTINUE;
+  }
+  bool stalled() const { return stalled_; }
+
+ private:
+  StallTest test_;
+  std::vector<double> costs_;  // at the current point after each iteration
+  bool stalled_ = false;
+};
+
 ceres::Solver::Options solver_options(int max_iterations, double tolerance) {
   ceres::Solver::Options options;
   // Six parameters against a few hundred residuals: the 6×6 normal equations cost a fraction of a
@@ -382,11 +403,11 @@ ceres::Solver::Options solver_options(int max_iterations, double tolerance) {
   return options;
 }
 
-void record(const ceres::Solver::Summary& summary, bool finite, GuideSolve& result) {
+void record(const ceres::Solver::Summary& summary, bool finite, bool stalled, GuideSolve& result) {
   result.iterations = static_cast<int>(summary.iterations.size()) - 1;
   result.evaluations = summary.num_residual_evaluations + summary.num_jacobian_evaluations;
-  result.converged = finite && summary.termination_type == ceres::CONVERGENCE;
-  result.termination = ceres::TerminationTypeToString(summary.termination_type);
+  result.converged = finite && (summary.termination_type == ceres::CONVERGENCE || stalled);
+  result.termination = stalled ? "STALL" : ceres::TerminationTypeToString(summary.termination_type);
   result.initial_cost = summary.initial_cost;
   result.final_cost = finite ? summary.final_cost : summary.initial_cost;
 }
@@ -395,7 +416,7 @@ void record(const ceres::Solver::Summary& summary, bool finite, GuideSolve& resu
 // pre-guide's terminal torque is zero — or, when that load cannot be solved, from the rod hanging
 // under its weight alone. The first solve continues the loads from the unloaded rod.
 GuideSolve optimise_heavy_guide(const GuideTargets& targets, const double start[6], int max_iterations,
-                                double tolerance) {
+                                double tolerance, const StallTest& stall) {
   GuideSolve result;
   result.heavy = true;
   ShootingOptions first;
@@ -415,14 +436,17 @@ GuideSolve optimise_heavy_guide(const GuideTargets& targets, const double start[
     auto* cost = new HeavyGuideCost(targets, at);
     ceres::Problem problem;
     problem.AddResidualBlock(cost, nullptr, x);
+    ceres::Solver::Options options = solver_options(max_iterations, tolerance);
+    StallCallback stall_callback(stall);
+    if (stall.iterations > 0) options.callbacks.push_back(&stall_callback);
     ceres::Solver::Summary summary;
-    ceres::Solve(solver_options(max_iterations, tolerance), &problem, &summary);
+    ceres::Solve(options, &problem, &summary);
     bool finite = true;
     for (double v : x) finite = finite && std::isfinite(v);
     // The pieces at the accepted x (the last evaluation may have been a rejected trial).
     const ShootingResult final_solution = finite ? cost->solve(x) : ShootingResult{};
     if (final_solution.converged) result.solution = final_solution;
-    record(summary, finite && final_solution.converged, result);
+    record(summary, finite && final_solution.converged, stall_callback.stalled(), result);
   }
   const ShootingResult& s = result.solution;
   for (int a = 0; a < 3; ++a) {
@@ -434,8 +458,9 @@ GuideSolve optimise_heavy_guide(const GuideTargets& targets, const double start[
 
 }  // namespace
 
-GuideSolve optimise_guide(const GuideTargets& targets, const double start[6], int max_iterations, double tolerance) {
-  if (targets.model.force_per_length.norm() > kHeavyRod) return optimise_heavy_guide(targets, start, max_iterations, tolerance);
+GuideSolve optimise_guide(const GuideTargets& targets, const double start[6], int max_iterations, double tolerance,
+                          const StallTest& stall) {
+  if (targets.model.force_per_length.norm() > kHeavyRod) return optimise_heavy_guide(targets, start, max_iterations, tolerance, stall);
   GuideSolve result;
   std::copy(start, start + 6, result.eta);
   const LoadCoordinates coordinates(targets.model, targets.rod, start);
@@ -448,13 +473,16 @@ GuideSolve optimise_guide(const GuideTargets& targets, const double start[6], in
   ceres::Problem problem(problem_options);
   problem.AddResidualBlock(new ceres::AutoDiffCostFunction<ReparameterisedCost, ceres::DYNAMIC, 6>(functor, residuals),
                            nullptr, x);
+  ceres::Solver::Options options = solver_options(max_iterations, tolerance);
+  StallCallback stall_callback(stall);
+  if (stall.iterations > 0) options.callbacks.push_back(&stall_callback);
   ceres::Solver::Summary summary;
-  ceres::Solve(solver_options(max_iterations, tolerance), &problem, &summary);
+  ceres::Solve(options, &problem, &summary);
 
   bool finite = true;
   for (double v : x) finite = finite && std::isfinite(v);
   if (finite) coordinates.to_loads(x, result.eta);  // LM only ever accepts steps that lower the cost
-  record(summary, finite, result);
+  record(summary, finite, stall_callback.stalled(), result);
   return result;
 }
 

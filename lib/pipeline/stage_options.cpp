@@ -113,6 +113,7 @@ GuideDensityOptions guide_density_options(const Scene& scene, const GridGeometry
   o.term.surcharge = scene.density.surcharge;
   o.grid = grid;
   o.batch = scene.density.batch;
+  o.stall = StallTest{scene.density.stall_iterations, scene.density.stall_tolerance};
   o.pores = std::move(pores);
   o.strands = strand_options(scene, threads);
   return o;

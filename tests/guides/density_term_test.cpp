@@ -273,3 +273,29 @@ TEST_CASE("F4 jets match central finite differences of the double residuals") {
     CHECK(nonzero > 6);  // the derivatives are not trivially zero
   }
 }
+
+TEST_CASE("a solve stopped at a stall is the capped solve of the same length, and no worse than its start") {
+  const DensityGrid cdm = cdm_grid(grid());
+  GuideTargets t = targets();
+  t.density = &cdm;
+  const GuideSolve full = optimise_guide(t, kEta, 100, 1e-12);
+  REQUIRE(full.iterations > 3);
+  // Every iteration lowers the cost by less than all of it: the first window of one iteration stalls.
+  const GuideSolve one = optimise_guide(t, kEta, 100, 1e-12, StallTest{1, 1.0});
+  CHECK(one.termination == "STALL");
+  CHECK(one.converged);
+  CHECK(one.iterations == 1);
+  // A looser stall stops somewhere in between; Levenberg–Marquardt is deterministic, so the stopped
+  // solve is exactly the solve capped at the same number of iterations.
+  const GuideSolve stalled = optimise_guide(t, kEta, 100, 1e-12, StallTest{2, 1e-2});
+  REQUIRE(stalled.termination == "STALL");
+  CHECK(stalled.iterations < full.iterations);
+  const GuideSolve capped = optimise_guide(t, kEta, stalled.iterations, 1e-12);
+  for (int i = 0; i < 6; ++i) CHECK(stalled.eta[i] == capped.eta[i]);
+  CHECK(stalled.final_cost <= stalled.initial_cost);
+  CHECK(stalled.final_cost >= full.final_cost);
+  // Off (0 iterations), the stall test changes nothing.
+  const GuideSolve off = optimise_guide(t, kEta, 100, 1e-12, StallTest{0, 1.0});
+  CHECK(off.iterations == full.iterations);
+  for (int i = 0; i < 6; ++i) CHECK(off.eta[i] == full.eta[i]);
+}
