@@ -190,8 +190,8 @@ Guide solve_guide(const RootSet& bases, int b, const PreGuides& preguides, const
   return g;
 }
 
-// A guide with the density term, by continuation: first without F4 from the usual start (the
-// pre-guides' loads, or straight), then with F4 from that optimum (`plain`). F4 then perturbs a
+// A guide with the density term, by continuation: first without F4, as make_guides solves it,
+// then with F4 from that optimum (`plain`). F4 then perturbs a
 // shape that already follows the pre-guides inside the acceptable region. Started from the
 // pre-guides' loads directly, Levenberg–Marquardt with F4 on ended in local minima behind the
 // scalp (smoke fixture, CDM: a guide 3.3 cm deep, its wisp leaving density 2.35 cm inside the
@@ -272,9 +272,11 @@ DensityGuides make_guides_with_density(const RootSet& bases, const PreGuides& pr
       const int g = density.pores.guide[i];
       if (g >= 0 && g < count) pores_of[g].push_back(static_cast<int>(i));
     }
-  // The first solves do not see the density: all of them at once, on all threads.
-  std::vector<Guide> plain(count);
-  parallel_for(count, options.threads, [&](int b) { plain[b] = solve_guide(bases, b, preguides, boundary, options); });
+  // The first solves do not see the density: the guides the scene would have without a density
+  // model (make_guides, warm-started from seeds), all at once on all threads.
+  GuideOptions first = options;
+  first.progress = nullptr;
+  const std::vector<Guide> plain = make_guides(bases, preguides, boundary, first).items;
   ProgressCounter progress(options.progress);  // guides finished, after their second solve
   DensityAccumulator accumulator(density.grid);
   for (int begin = 0; begin < count; begin += density.batch) {
