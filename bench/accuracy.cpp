@@ -192,6 +192,7 @@ std::string number(double v) {
 }
 
 const char* const kCdm = "density.voxel (CDM)";
+const char* const kStall = "density.stall_iterations (CDM)";
 
 // The presets the README recommends, from the one-knob rows: preview takes the knobs that save
 // time for little error (fewer rod segments, samples and iterations, a looser tolerance) and
@@ -255,6 +256,8 @@ std::vector<Setting> settings(bool quick) {
   s.push_back({"default (CDM)", "defaults", [](Scene&) {}, true, true});
   for (double v : {0.125, 0.5, 1.0})
     s.push_back({kCdm, number(v), [=](Scene& sc) { sc.density.voxel = v; }, false, true});
+  for (int v : {0, 1, 5})  // 0: off
+    s.push_back({kStall, std::to_string(v), [=](Scene& sc) { sc.density.stall_iterations = v; }, false, true});
   return s;
 }
 
@@ -267,6 +270,7 @@ std::string default_value(const std::string& knob, const Scene& s) {
   if (knob == "guides.tolerance") return number(s.guides.tolerance);
   if (knob == "guides.max_iterations") return std::to_string(s.guides.max_iterations);
   if (knob == kCdm) return number(s.density.voxel);
+  if (knob == kStall) return std::to_string(s.density.stall_iterations);
   if (knob.find("preset") != std::string::npos) return "default";
   return "";
 }
@@ -276,6 +280,7 @@ std::string default_value(const std::string& knob, const Scene& s) {
 double fineness(const std::string& knob, const std::string& value) {
   if (knob.find("preset") != std::string::npos) return value == "preview" ? 0.0 : value == "default" ? 1.0 : 2.0;
   const double v = std::stod(value);
+  if (knob == kStall) return v == 0.0 ? 1e9 : v;  // 0 turns the stall test off: the finest
   return knob.find("voxel") != std::string::npos || knob.find("tolerance") != std::string::npos ? -v : v;
 }
 
@@ -288,6 +293,7 @@ Scene reference_of(Scene s) {
   s.guides.tolerance = 1e-10;
   s.guides.max_iterations = 500;
   s.density.voxel = 0.125;
+  s.density.stall_iterations = 0;  // every density solve to the tolerance
   return s;
 }
 
@@ -446,11 +452,11 @@ int main(int argc, char** argv) {
     md += "`build-bench/bench/bench_accuracy --guides " + std::to_string(guides) + " --threads " +
           std::to_string(threads) + "`, source at " + bench::source_commit() +
           ". Spheroid fixture (`fixtures/spheroid/scene.toml`) with " + std::to_string(guides) +
-          " guides (roots.guides), every other key as shipped, one knob changed per row. The density.voxel rows "
-          "(and their default) run with the continuous density model on (weights 0.35/0.2/0.35/0.1) and are "
+          " guides (roots.guides), every other key as shipped, one knob changed per row. The (CDM) rows "
+          "run with the continuous density model on (weights 0.35/0.2/0.35/0.1) and are "
           "measured against a reference with it; the others without a density model.\n\n";
     md += "Reference: rk4 with 256 segments, fields.voxel 0.0625 (band 16 voxels = 1 cm), guides.samples 64, "
-          "tolerance 1e-10, max_iterations 500, density.voxel 0.125.";
+          "tolerance 1e-10, max_iterations 500, density.voxel 0.125, density.stall_iterations 0 (off).";
     for (const auto& [model, r] : references) {
       const Boundary b{r.result.values.scalp_field.get(), r.result.values.volume_field.get()};
       md += std::string(model ? " With CDM: " : " Without: ") + number(r.total_seconds()) + " s wall, " +
