@@ -195,11 +195,11 @@ Guide solve_guide(const RootSet& bases, int b, const PreGuides& preguides, const
 }
 
 // A guide with the density term, by continuation: first without F4, as make_guides solves it,
-// then with F4 from that optimum (`plain`). F4 then perturbs a
-// shape that already follows the pre-guides inside the acceptable region. Started from the
-// pre-guides' loads directly, Levenberg–Marquardt with F4 on ended in local minima behind the
-// scalp (smoke fixture, CDM: a guide 3.3 cm deep, its wisp leaving density 2.35 cm inside the
-// head; the paper scale, CDM: 3.9 % of guide nodes outside the region against 0.1 % without F4).
+// then with F4 from that optimum (`plain`). F4 then perturbs a shape that already follows the
+// pre-guides inside the acceptable region. Started from the pre-guides' loads directly,
+// Levenberg–Marquardt with F4 on ended in local minima behind the scalp (smoke fixture, CDM: a
+// guide 3.3 cm deep, its wisp leaving density 2.35 cm inside the head; the paper scale, CDM:
+// 3.9 % of guide nodes outside the region against 0.1 % without F4).
 // Iterations and evaluations count both solves; the rest describes the second.
 Guide solve_guide_with_density(const RootSet& bases, int b, const PreGuides& preguides, const Boundary& boundary,
                                const GuideOptions& o, const Guide& plain, const DensityGrid& density,
