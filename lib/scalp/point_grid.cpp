@@ -76,11 +76,10 @@ void PointGrid::insert(std::uint64_t k, int cell) {
   table_[slot] = cell;
 }
 
-std::vector<PointGrid::CellRange> PointGrid::neighbourhood(int k, int reach) const {
-  std::vector<CellRange> ranges;
+void PointGrid::neighbourhood(int k, int reach, std::vector<CellRange>& out) const {
+  out.clear();
   for_each_cell_near(cell_coords_[k], reach,
-                     [&](int cell) { ranges.push_back({cell_begin_[cell], cell_begin_[cell + 1], cell_coords_[cell]}); });
-  return ranges;
+                     [&](int cell) { out.push_back({cell_begin_[cell], cell_begin_[cell + 1], cell_coords_[cell]}); });
 }
 
 int PointGrid::nearest(const Vec3& p, int exclude, double max_radius) const {

@@ -50,7 +50,8 @@ class PointGrid {
     int begin, end;
     Vec3i coords;
   };
-  std::vector<CellRange> neighbourhood(int k, int reach) const;
+  // Fills `out` (cleared first), so a caller looping over cells reuses one buffer.
+  void neighbourhood(int k, int reach, std::vector<CellRange>& out) const;
   // A position in cell units: the cell holding p is the floor of this.
   Vec3 in_cells(const Vec3& p) const { return Vec3((p.x() - origin_.x()) / cell_, (p.y() - origin_.y()) / cell_, (p.z() - origin_.z()) / cell_); }
 
