@@ -18,12 +18,18 @@ PointGrid::PointGrid(const std::vector<Vec3>& points, double cell) : cell_(cell)
   const int n = static_cast<int>(points.size());
   std::vector<int> point_cell(n);  // cell of each point, numbered by first appearance
   std::vector<int> count;
-  build_table(std::max<std::size_t>(points.size(), 1));
+  // The table grows with the cells found (a table sized for one cell per point would be 8 bytes
+  // per point of fresh memory, most of it never used: points share cells).
+  build_table(1024);
   for (int i = 0; i < n; ++i) {
     const std::uint64_t k = key(cell_of(points[i]));
     int c = find(k);
     if (c < 0) {
       c = static_cast<int>(cell_keys_.size());
+      if (2 * (cell_keys_.size() + 1) > table_.size()) {  // keep it at most half full
+        build_table(2 * (cell_keys_.size() + 1));
+        for (int old = 0; old < c; ++old) insert(cell_keys_[old], old);
+      }
       insert(k, c);
       cell_keys_.push_back(k);
       count.push_back(0);

@@ -64,20 +64,37 @@ struct Candidates {
 Candidates make_candidates(const ScalpChart& ch, const GreyMap* map, const std::vector<TriangleDensity>& density,
                            double per_area, bool binary, RandomStage stage, std::uint64_t seed, int threads) {
   const int nf = static_cast<int>(ch.mesh.triangles.size());
-  std::vector<Candidates> per_triangle(nf);
-  parallel_for(nf, threads, [&](int t) {
+  auto reference = [&](int t) {
     const TriangleDensity& d = density[t];
-    const double top = binary ? (d.max > 0 ? 1.0 : 0.0) : d.max;
-    if (!(top > 0)) return;
+    return binary ? (d.max > 0 ? 1.0 : 0.0) : d.max;
+  };
+  // Each triangle's number of draws (the first value of its stream) bounds what it keeps, so the
+  // triangles write straight into one array at those offsets, which is then closed up: one copy
+  // of the candidates in memory instead of per-triangle lists gathered into a second.
+  std::vector<std::size_t> first(nf + 1, 0);
+  for (int t = 0; t < nf; ++t) {
+    int count = 0;
+    if (reference(t) > 0) {
+      Random rng(seed, stage, static_cast<std::uint64_t>(t));
+      const double expected = per_area * triangle_area(ch.mesh, t) * reference(t);
+      const double whole = std::floor(expected);
+      count = static_cast<int>(whole) + (rng.uniform() < expected - whole ? 1 : 0);
+    }
+    first[t + 1] = first[t] + count;
+  }
+  Candidates all;
+  all.where.resize(first[nf]);
+  all.positions.resize(first[nf]);
+  all.values.resize(first[nf]);
+  std::vector<std::size_t> kept(nf, 0);
+  parallel_for(nf, threads, [&](int t) {
+    const double top = reference(t);
+    const std::size_t count = first[t + 1] - first[t];
+    if (count == 0) return;
     Random rng(seed, stage, static_cast<std::uint64_t>(t));
-    const double expected = per_area * triangle_area(ch.mesh, t) * top;
-    const double whole = std::floor(expected);
-    const int count = static_cast<int>(whole) + (rng.uniform() < expected - whole ? 1 : 0);
-    Candidates& out = per_triangle[t];
-    out.where.reserve(count);
-    out.positions.reserve(count);
-    out.values.reserve(count);
-    for (int k = 0; k < count; ++k) {
+    rng.uniform();  // the draw count, above
+    std::size_t at = first[t];
+    for (std::size_t k = 0; k < count; ++k) {
       const double r = std::sqrt(rng.uniform()), w = rng.uniform();
       SurfacePoint sp;
       sp.triangle = t;
@@ -86,24 +103,27 @@ Candidates make_candidates(const ScalpChart& ch, const GreyMap* map, const std::
       const double value = map_value(map, chart_position(ch, sp));
       if (!(value > 0)) continue;  // black: never a root
       if (!binary && accept * top >= value) continue;
-      out.where.push_back(sp);
-      out.positions.push_back(surface_position(ch, sp));
-      out.values.push_back(value);
+      all.where[at] = sp;
+      all.positions[at] = surface_position(ch, sp);
+      all.values[at] = value;
+      ++at;
     }
+    kept[t] = at - first[t];
   });
-  // Laid end to end in triangle order, each triangle's share copied on its own thread.
-  std::vector<std::size_t> first(nf + 1, 0);
-  for (int t = 0; t < nf; ++t) first[t + 1] = first[t] + per_triangle[t].where.size();
-  Candidates all;
-  all.where.resize(first[nf]);
-  all.positions.resize(first[nf]);
-  all.values.resize(first[nf]);
-  parallel_for(nf, threads, [&](int t) {
-    const Candidates& c = per_triangle[t];
-    std::copy(c.where.begin(), c.where.end(), all.where.begin() + first[t]);
-    std::copy(c.positions.begin(), c.positions.end(), all.positions.begin() + first[t]);
-    std::copy(c.values.begin(), c.values.end(), all.values.begin() + first[t]);
-  });
+  // Closed up in triangle order (each share moves toward the front, never over one not yet moved).
+  std::size_t end = 0;
+  for (int t = 0; t < nf; ++t) {
+    if (end != first[t]) {
+      const std::size_t from = first[t], to = first[t] + kept[t];
+      std::copy(all.where.begin() + from, all.where.begin() + to, all.where.begin() + end);
+      std::copy(all.positions.begin() + from, all.positions.begin() + to, all.positions.begin() + end);
+      std::copy(all.values.begin() + from, all.values.begin() + to, all.values.begin() + end);
+    }
+    end += kept[t];
+  }
+  all.where.resize(end);
+  all.positions.resize(end);
+  all.values.resize(end);
   return all;
 }
 
