@@ -5,7 +5,7 @@
 
 namespace hairfit {
 
-PointGrid::PointGrid(const std::vector<Vec3>& points, double cell) : cell_(cell) {
+PointGrid::PointGrid(const std::vector<Vec3>& points, double cell, bool keep_points) : cell_(cell) {
   if (!(cell > 0) || !std::isfinite(cell)) throw std::invalid_argument("PointGrid: cell size must be positive");
   origin_ = Vec3::Zero();
   if (!points.empty()) {
@@ -51,15 +51,14 @@ PointGrid::PointGrid(const std::vector<Vec3>& points, double cell) : cell_(cell)
     cell_begin_[r + 1] = cell_begin_[r] + count[c];
   }
   order_.resize(n);
-  sorted_.resize(n);
-  for (int i = 0; i < n; ++i) {
-    const int k = next[point_cell[i]]++;
-    order_[k] = i;
-    sorted_[k] = points[i];
+  for (int i = 0; i < n; ++i) order_[next[point_cell[i]]++] = i;
+  if (keep_points) {
+    sorted_.resize(n);
+    for (int k = 0; k < n; ++k) sorted_[k] = points[order_[k]];
   }
   cell_coords_.resize(cells);
   for (int c = 0; c < cells; ++c) {
-    const Vec3i at = cell_of(sorted_[cell_begin_[c]]);
+    const Vec3i at = cell_of(points[order_[cell_begin_[c]]]);
     cell_coords_[c] = at;
     if (c == 0) occupied_lo_ = occupied_hi_ = at;
     occupied_lo_ = occupied_lo_.cwiseMin(at);

@@ -15,8 +15,10 @@ namespace hairfit {
 
 class PointGrid {
  public:
-  // cell: edge length of a grid cell (> 0), in the points' unit.
-  PointGrid(const std::vector<Vec3>& points, double cell);
+  // cell: edge length of a grid cell (> 0), in the points' unit. Without keep_points the grid
+  // holds only the order and the cells (for a caller that keeps its own copy of the points in
+  // the grid's order); for_each_within, nearest and sorted() then must not be used.
+  PointGrid(const std::vector<Vec3>& points, double cell, bool keep_points = true);
 
   double cell() const { return cell_; }
 
@@ -40,8 +42,8 @@ class PointGrid {
   int cell_count() const { return static_cast<int>(cell_begin_.size()) - 1; }
   int cell_begin(int k) const { return cell_begin_[k]; }
   const std::vector<int>& order() const { return order_; }
-  // The points in that order (sorted()[k] = points[order()[k]]): scans over a cell read memory
-  // contiguously instead of jumping through the index.
+  // The points in that order (sorted()[k] = points[order()[k]]; empty without keep_points):
+  // scans over a cell read memory contiguously instead of jumping through the index.
   const std::vector<Vec3>& sorted() const { return sorted_; }
   // The occupied cells within `reach` cells of cell k, in the fixed order: their [begin, end)
   // ranges in order() and their integer coordinates (the cell spans coords .. coords + 1 in the
@@ -50,6 +52,7 @@ class PointGrid {
     int begin, end;
     Vec3i coords;
   };
+  Vec3i cell_coords(int k) const { return cell_coords_[k]; }
   // Fills `out` (cleared first), so a caller looping over cells reuses one buffer.
   void neighbourhood(int k, int reach, std::vector<CellRange>& out) const;
   // A position in cell units: the cell holding p is the floor of this.
