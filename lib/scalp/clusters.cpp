@@ -123,9 +123,38 @@ std::vector<double> nearest_neighbour_distances(const std::vector<Vec3>& points,
   const double spread = std::max({extent.x() * extent.y(), extent.y() * extent.z(), extent.z() * extent.x(), 1e-300});
   const double cell = std::max(2.0 * std::sqrt(spread / n), 1e-12 * (1.0 + extent.norm()));
   const PointGrid grid(points, cell);
-  parallel_for(n, threads, [&](int i) {
-    const int j = grid.nearest(points[i], i, 2.0 * extent.norm() + cell);
-    d[i] = j >= 0 ? (points[j] - points[i]).norm() : 0.0;
+  // Cell by cell, so the neighbouring cells are looked up once for the few points of a cell: the
+  // search of PointGrid::nearest's first round (within one cell size, the 27 cells around), which
+  // almost always finds the nearest; it answers the rest. The distance of a nearest point does
+  // not depend on which of equally near points it is.
+  const std::vector<Vec3>& sorted = grid.sorted();
+  const std::vector<int>& order = grid.order();
+  const double r2 = cell * cell;
+  constexpr int kCellsPerBlock = 64;
+  const int cells = grid.cell_count();
+  parallel_for((cells + kCellsPerBlock - 1) / kCellsPerBlock, threads, [&](int b) {
+    std::vector<PointGrid::CellRange> ranges;
+    for (int c = b * kCellsPerBlock; c < std::min(cells, (b + 1) * kCellsPerBlock); ++c) {
+      grid.neighbourhood(c, 1, ranges);
+      for (int k = grid.cell_begin(c); k < grid.cell_begin(c + 1); ++k) {
+        const Vec3 p = sorted[k];
+        double best = INFINITY;
+        for (const PointGrid::CellRange& range : ranges) {
+          for (int q = range.begin; q < range.end; ++q) {
+            const double dx = sorted[q].x() - p.x(), dy = sorted[q].y() - p.y(), dz = sorted[q].z() - p.z();
+            const double d2 = (dx * dx + dy * dy) + dz * dz;  // as Vec3::squaredNorm sums it
+            if (q != k && d2 <= r2 && d2 < best) best = d2;
+          }
+        }
+        const int i = order[k];
+        if (best < INFINITY) {
+          d[i] = std::sqrt(best);
+        } else {
+          const int j = grid.nearest(points[i], i, 2.0 * extent.norm() + cell);
+          d[i] = j >= 0 ? (points[j] - points[i]).norm() : 0.0;
+        }
+      }
+    }
   });
   return d;
 }
