@@ -127,8 +127,8 @@ std::vector<double> nearest_neighbour_distances(const std::vector<Vec3>& points,
   // search of PointGrid::nearest's first round (within one cell size, the 27 cells around), which
   // almost always finds the nearest; it answers the rest. The distance of a nearest point does
   // not depend on which of equally near points it is.
-  const std::vector<Vec3>& sorted = grid.sorted();
-  const std::vector<int>& order = grid.order();
+  const HugeVector<Vec3>& sorted = grid.sorted();
+  const HugeVector<int>& order = grid.order();
   const double r2 = cell * cell;
   constexpr int kCellsPerBlock = 64;
   const int cells = grid.cell_count();

@@ -5,18 +5,17 @@
 
 namespace hairfit {
 
-PointGrid::PointGrid(const std::vector<Vec3>& points, double cell, bool keep_points) : cell_(cell) {
+PointGrid::PointGrid(const Vec3* points, int n, double cell, bool keep_points) : cell_(cell) {
   if (!(cell > 0) || !std::isfinite(cell)) throw std::invalid_argument("PointGrid: cell size must be positive");
   origin_ = Vec3::Zero();
-  if (!points.empty()) {
-    origin_ = points.front();
-    for (const Vec3& p : points) origin_ = origin_.cwiseMin(p);
+  if (n > 0) {
+    origin_ = points[0];
+    for (int i = 1; i < n; ++i) origin_ = origin_.cwiseMin(points[i]);
   }
   // The order (cell key, then index) without sorting the points: the occupied cells are found
   // and counted (in order of first appearance, through the hash table), only they are sorted by
   // key, and the points are then placed cell by cell in index order.
-  const int n = static_cast<int>(points.size());
-  std::vector<int> point_cell(n);  // cell of each point, numbered by first appearance
+  HugeVector<int> point_cell(n);  // cell of each point, numbered by first appearance
   std::vector<int> count;
   // The table grows with the cells found (a table sized for one cell per point would be 8 bytes
   // per point of fresh memory, most of it never used: points share cells).

@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/huge_pages.h"
 #include "core/types.h"
 
 namespace hairfit {
@@ -18,7 +19,9 @@ class PointGrid {
   // cell: edge length of a grid cell (> 0), in the points' unit. Without keep_points the grid
   // holds only the order and the cells (for a caller that keeps its own copy of the points in
   // the grid's order); for_each_within, nearest and sorted() then must not be used.
-  PointGrid(const std::vector<Vec3>& points, double cell, bool keep_points = true);
+  PointGrid(const Vec3* points, int count, double cell, bool keep_points = true);
+  PointGrid(const std::vector<Vec3>& points, double cell, bool keep_points = true)
+      : PointGrid(points.data(), static_cast<int>(points.size()), cell, keep_points) {}
 
   double cell() const { return cell_; }
 
@@ -41,10 +44,10 @@ class PointGrid {
   // not per point): cell k holds the points order()[cell_begin(k) .. cell_begin(k + 1)).
   int cell_count() const { return static_cast<int>(cell_begin_.size()) - 1; }
   int cell_begin(int k) const { return cell_begin_[k]; }
-  const std::vector<int>& order() const { return order_; }
+  const HugeVector<int>& order() const { return order_; }
   // The points in that order (sorted()[k] = points[order()[k]]; empty without keep_points):
   // scans over a cell read memory contiguously instead of jumping through the index.
-  const std::vector<Vec3>& sorted() const { return sorted_; }
+  const HugeVector<Vec3>& sorted() const { return sorted_; }
   // The occupied cells within `reach` cells of cell k, in the fixed order: their [begin, end)
   // ranges in order() and their integer coordinates (the cell spans coords .. coords + 1 in the
   // units of in_cells).
@@ -83,10 +86,11 @@ class PointGrid {
     return f(c.x()) | (f(c.y()) << 21) | (f(c.z()) << 42);
   }
 
-  std::vector<Vec3> sorted_;  // points in cell order
+  // Point-sized arrays in huge pages (core/huge_pages.h): fresh memory is expensive.
+  HugeVector<Vec3> sorted_;  // points in cell order
   double cell_;
   Vec3 origin_;
-  std::vector<int> order_;  // point indices sorted by cell key, then index
+  HugeVector<int> order_;  // point indices sorted by cell key, then index
   // An empty table with room for `entries` cells (at most half full), and adding one.
   void build_table(std::size_t entries);
   void insert(std::uint64_t k, int cell);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/huge_pages.h"
 #include "core/parallel.h"
 #include "core/random.h"
 #include "scalp/sample_elimination.h"
@@ -52,10 +53,11 @@ TriangleDensity triangle_density(const ScalpChart& ch, int t, const GreyMap* map
   return d;
 }
 
+// Candidate-sized arrays live in huge pages (core/huge_pages.h): fresh memory is expensive.
 struct Candidates {
-  std::vector<SurfacePoint> where;
-  std::vector<Vec3> positions;
-  std::vector<double> values;  // map value at each candidate
+  HugeVector<SurfacePoint> where;
+  HugeVector<Vec3> positions;
+  HugeVector<double> values;  // map value at each candidate
 };
 
 // Candidates uniform over the 3D area with `per_area` candidates per cm² where the map is at
@@ -168,7 +170,7 @@ void check_options(const RootOptions& o) {
     throw std::invalid_argument("roots: tilting toward the thicker layer needs the layer's thickness field");
 }
 
-std::vector<SurfacePoint> pick(const std::vector<SurfacePoint>& all, const std::vector<int>& kept) {
+std::vector<SurfacePoint> pick(const HugeVector<SurfacePoint>& all, const std::vector<int>& kept) {
   std::vector<SurfacePoint> out;
   out.reserve(kept.size());
   for (int i : kept) out.push_back(all[i]);
@@ -225,14 +227,15 @@ Roots make_roots(const ScalpChart& ch, const ScalpMaps& maps, const RootOptions&
   // Candidates at oversampling × the local target density; rounded up so a small set still has
   // enough to choose from.
   const double per_area = o.oversampling * o.density * (1.0 + 1.0 / std::sqrt(static_cast<double>(target)));
-  const Candidates c = make_candidates(ch, maps.density, density, per_area, false, RandomStage::roots, o.seed, o.threads);
-  roots.candidates = static_cast<int>(c.positions.size());
-  std::vector<double> radius(c.positions.size());
-  for (std::size_t i = 0; i < radius.size(); ++i) {
-    const double rho = o.density * std::max(c.values[i], top / 16.0);  // hairs/cm² here
-    radius[i] = 1.0 / std::sqrt(2.0 * std::sqrt(3.0) * rho);
+  Candidates c = make_candidates(ch, maps.density, density, per_area, false, RandomStage::roots, o.seed, o.threads);
+  const int count = static_cast<int>(c.positions.size());
+  roots.candidates = count;
+  HugeVector<double>& radius = c.values;  // each value becomes the radius for it, in place
+  for (double& r : radius) {
+    const double rho = o.density * std::max(r, top / 16.0);  // hairs/cm² here
+    r = 1.0 / std::sqrt(2.0 * std::sqrt(3.0) * rho);
   }
-  const std::vector<int> kept = eliminate_samples(c.positions, radius, static_cast<int>(target), o.threads);
+  const std::vector<int> kept = eliminate_samples(c.positions.data(), radius.data(), count, static_cast<int>(target), o.threads);
   roots.pores = make_root_set(ch, maps, o, pick(c.where, kept), o.threads);
   return roots;
 }
@@ -252,7 +255,8 @@ PreguideRoots make_preguide_roots(const ScalpChart& ch, const ScalpMaps& maps, c
   const double per_area = o.oversampling * rho * (1.0 + 1.0 / std::sqrt(static_cast<double>(target)));
   const Candidates c = make_candidates(ch, maps.density, density, per_area, true, RandomStage::preguides, o.seed, o.threads);
   const std::vector<double> radius(c.positions.size(), 1.0 / std::sqrt(2.0 * std::sqrt(3.0) * rho));
-  const std::vector<int> kept = eliminate_samples(c.positions, radius, static_cast<int>(target), o.threads);
+  const std::vector<int> kept =
+      eliminate_samples(c.positions.data(), radius.data(), static_cast<int>(radius.size()), static_cast<int>(target), o.threads);
   pre.roots = make_root_set(ch, maps, o, pick(c.where, kept), o.threads);
   return pre;
 }

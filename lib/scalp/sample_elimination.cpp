@@ -6,6 +6,7 @@
 #include <memory>
 #include <numeric>
 
+#include "core/huge_pages.h"
 #include "core/parallel.h"
 #include "scalp/point_grid.h"
 
@@ -82,20 +83,21 @@ inline int* test_run(const Candidate* points, const PairWeight& pair_weight, int
 }
 
 // Partner lists of consecutive candidates, one after the other, each as its length followed by
-// its partners, in an array written through a raw pointer (std::vector::push_back reloads its end
-// pointer around every store of the scan's inner loop). Memory reserved but never written costs
-// nothing: its pages are never touched.
+// its partners, written through a raw pointer (std::vector::push_back reloads its end pointer
+// around every store of the scan's inner loop). A block's lists go to its own region of a shared
+// buffer, sized for the usual number of partners; a block that needs more moves to memory of its
+// own. Space reserved but never written costs nothing: its pages are never touched.
 class PartnerLists {
  public:
   PartnerLists() = default;
-  explicit PartnerLists(std::size_t capacity) : data_(new int[capacity]), capacity_(capacity) {}
-  const int* data() const { return data_.get(); }
+  PartnerLists(int* region, std::size_t capacity) : data_(region), capacity_(capacity) {}
+  const int* data() const { return data_; }
   // Room for n more entries; write them, then commit the end of what was written.
   int* room(std::size_t n) {
     if (size_ + n > capacity_) grow(size_ + n);
-    return data_.get() + size_;
+    return data_ + size_;
   }
-  void commit(const int* end) { size_ = static_cast<std::size_t>(end - data_.get()); }
+  void commit(const int* end) { size_ = static_cast<std::size_t>(end - data_); }
   std::size_t size() const { return size_; }
   int& operator[](std::size_t i) { return data_[i]; }
 
@@ -103,21 +105,19 @@ class PartnerLists {
   void grow(std::size_t needed) {
     capacity_ = std::max(needed, 2 * capacity_);
     std::unique_ptr<int[]> bigger(new int[capacity_]);
-    std::copy(data_.get(), data_.get() + size_, bigger.get());
-    data_ = std::move(bigger);
+    std::copy(data_, data_ + size_, bigger.get());
+    own_ = std::move(bigger);
+    data_ = own_.get();
   }
-  std::unique_ptr<int[]> data_;
+  int* data_ = nullptr;
   std::size_t size_ = 0, capacity_ = 0;
+  std::unique_ptr<int[]> own_;  // after outgrowing the region
 };
 
 // The partner list (grid positions, ascending) of every candidate of cells [first, last), and
 // its weight sum into weight[k].
-PartnerLists scan_cells(const PointGrid& grid, const Candidate* points, const PairWeight& pair_weight, int first,
-                        int last, double* weight) {
-  // Room for the lists without regrowth in most cases: a point has about 11 partners at the
-  // default oversampling.
-  constexpr int kReservedPerPoint = 16;
-  PartnerLists lists(static_cast<std::size_t>(kReservedPerPoint) * (grid.cell_begin(last) - grid.cell_begin(first)));
+void scan_cells(const PointGrid& grid, const Candidate* points, const PairWeight& pair_weight, int first, int last,
+                double* weight, PartnerLists& lists) {
   std::vector<PointGrid::CellRange> ranges;
   struct Near {  // a neighbouring cell: its points, and its offset from the cell (+ reach) per axis
     int begin, end;
@@ -174,7 +174,6 @@ PartnerLists scan_cells(const PointGrid& grid, const Candidate* points, const Pa
       lists[length_at] = static_cast<int>(lists.size() - length_at - 1);
     }
   }
-  return lists;
 }
 
 // The greedy order of elimination: the alive candidate with the largest key (weight, −index)
@@ -190,12 +189,11 @@ PartnerLists scan_cells(const PointGrid& grid, const Candidate* points, const Pa
 // bucket members in 64-byte chunks, and indices (for ties only) looked up only on ties.
 class CrowdingQueue {
  public:
-  // weight[s] and index[s] per slot s; `weight` is read again by pop() as it changes.
-  CrowdingQueue(const std::vector<double>& weight, const std::vector<int>& index) : weight_(weight), index_(index) {
-    const int m = static_cast<int>(weight.size());
+  // weight[s] and index[s] per slot s < m; `weight` is read again by pop() as it changes.
+  CrowdingQueue(const double* weight, const int* index, int m) : weight_(weight), index_(index) {
     // About 16 candidates per bucket on average: a bucket's heap stays a few cache lines.
     buckets_ = std::max(1, m / 16);
-    const double top = m ? *std::max_element(weight.begin(), weight.end()) : 0.0;
+    const double top = m ? *std::max_element(weight, weight + m) : 0.0;
     scale_ = top > 0 ? buckets_ / top : 0.0;
     head_.assign(buckets_, -1);
     pool_.reserve(static_cast<std::size_t>(m / (kChunkSlots / 2) + buckets_ / 8 + 1));
@@ -314,8 +312,8 @@ class CrowdingQueue {
     heap_[k] = moving;
   }
 
-  const std::vector<double>& weight_;
-  const std::vector<int>& index_;
+  const double* weight_;
+  const int* index_;
   int buckets_ = 1;
   double scale_ = 0.0;
   std::vector<int> head_;  // first chunk of each bucket's member list, −1 for none
@@ -327,9 +325,7 @@ class CrowdingQueue {
 
 }  // namespace
 
-std::vector<int> eliminate_samples(const std::vector<Vec3>& points, const std::vector<double>& radius, int target,
-                                   int threads) {
-  const int m = static_cast<int>(points.size());
+std::vector<int> eliminate_samples(const Vec3* points, const double* radius, int m, int target, int threads) {
   std::vector<int> kept;
   if (target >= m) {
     kept.resize(m);
@@ -340,10 +336,11 @@ std::vector<int> eliminate_samples(const std::vector<Vec3>& points, const std::v
 
   // From here on candidates are named by their position in the grid's order (cell key, then
   // index): candidates near in space are near in memory, for the scan and the elimination alike.
-  const double smallest = *std::min_element(radius.begin(), radius.end());
-  const PointGrid grid(points, 3.0 * smallest, /*keep_points=*/false);
-  const std::vector<int>& order = grid.order();
-  std::vector<Candidate> candidates(m);
+  const double smallest = *std::min_element(radius, radius + m);
+  const PointGrid grid(points, m, 3.0 * smallest, /*keep_points=*/false);
+  const HugeVector<int>& order = grid.order();
+  // Candidate-sized arrays live in huge pages (core/huge_pages.h): fresh memory is expensive.
+  HugeVector<Candidate> candidates(m);
   parallel_for(m, threads, [&](int k) {
     const Vec3& p = points[order[k]];
     candidates[k] = {p.x(), p.y(), p.z(), radius[order[k]]};
@@ -356,14 +353,20 @@ std::vector<int> eliminate_samples(const std::vector<Vec3>& points, const std::v
   // not depend on the thread count. Each block of cells keeps its lists (no copy into one array:
   // fresh pages are expensive); list[k] points to k's length and partners.
   constexpr int kCellsPerBlock = 64;
+  // Room per candidate for its length and the usual number of partners (about 11 at the
+  // default oversampling), so that a block rarely outgrows its region.
+  constexpr std::size_t kReservedPerPoint = 17;
+  const HugeBuffer<int> storage(kReservedPerPoint * m);
   const int cells = grid.cell_count();
   std::vector<PartnerLists> block_lists((cells + kCellsPerBlock - 1) / kCellsPerBlock);
-  std::vector<double> weight(m);
+  HugeVector<double> weight(m);
   parallel_for(static_cast<int>(block_lists.size()), threads, [&](int b) {
     const int first = b * kCellsPerBlock, last = std::min(cells, first + kCellsPerBlock);
-    block_lists[b] = scan_cells(grid, candidates.data(), pair_weight, first, last, weight.data());
+    const std::size_t begin = grid.cell_begin(first), end = grid.cell_begin(last);
+    block_lists[b] = PartnerLists(storage.data() + kReservedPerPoint * begin, kReservedPerPoint * (end - begin));
+    scan_cells(grid, candidates.data(), pair_weight, first, last, weight.data(), block_lists[b]);
   });
-  std::vector<const int*> list(m);
+  HugeVector<const int*> list(m);
   parallel_for(static_cast<int>(block_lists.size()), threads, [&](int b) {
     const int* at = block_lists[b].data();
     const int end = grid.cell_begin(std::min(cells, (b + 1) * kCellsPerBlock));
@@ -379,7 +382,7 @@ std::vector<int> eliminate_samples(const std::vector<Vec3>& points, const std::v
   // a neighbour's state and weight. The neighbours' records are prefetched together, so their
   // cache misses overlap instead of following one another.
   constexpr double kEliminated = -std::numeric_limits<double>::infinity();
-  CrowdingQueue queue(weight, order);
+  CrowdingQueue queue(weight.data(), order.data(), m);
   for (int remaining = m; remaining > target; --remaining) {
     const int k = queue.pop();
     weight[k] = kEliminated;
