@@ -209,10 +209,11 @@ Vec3 growth_direction_toward_thicker(const Vec3& normal, const Vec3& thickness_g
   return tilted(normal, tangent, tilt_degrees);
 }
 
-Roots make_roots(const ScalpChart& ch, const ScalpMaps& maps, const RootOptions& o) {
-  check_options(o);
+namespace {
+
+Roots make_roots(const ScalpChart& ch, const ScalpMaps& maps, const RootOptions& o,
+                 const std::vector<TriangleDensity>& density) {
   Roots roots;
-  const std::vector<TriangleDensity> density = density_of_triangles(ch, maps.density, o.threads);
   double top = 0.0;
   for (int t = 0; t < static_cast<int>(density.size()); ++t) {
     const double area = triangle_area(ch.mesh, t);
@@ -240,12 +241,10 @@ Roots make_roots(const ScalpChart& ch, const ScalpMaps& maps, const RootOptions&
   return roots;
 }
 
-PreguideRoots make_preguide_roots(const ScalpChart& ch, const ScalpMaps& maps, const RootOptions& o) {
-  check_options(o);
-  if (!(o.preguide_spacing > 0)) throw std::invalid_argument("roots: preguide_spacing must be > 0");
+PreguideRoots make_preguide_roots(const ScalpChart& ch, const ScalpMaps& maps, const RootOptions& o,
+                                  const std::vector<TriangleDensity>& density) {
   PreguideRoots pre;
   pre.spacing = o.preguide_spacing;
-  const std::vector<TriangleDensity> density = density_of_triangles(ch, maps.density, o.threads);
   double hair_area = 0.0;
   for (int t = 0; t < static_cast<int>(density.size()); ++t) hair_area += triangle_area(ch.mesh, t) * density[t].nonzero_fraction;
   // Hexagonal packing at spacing s holds one point per (√3/2)s².
@@ -259,6 +258,33 @@ PreguideRoots make_preguide_roots(const ScalpChart& ch, const ScalpMaps& maps, c
       eliminate_samples(c.positions.data(), radius.data(), static_cast<int>(radius.size()), static_cast<int>(target), o.threads);
   pre.roots = make_root_set(ch, maps, o, pick(c.where, kept), o.threads);
   return pre;
+}
+
+void check_preguide_options(const RootOptions& o) {
+  check_options(o);
+  if (!(o.preguide_spacing > 0)) throw std::invalid_argument("roots: preguide_spacing must be > 0");
+}
+
+}  // namespace
+
+Roots make_roots(const ScalpChart& ch, const ScalpMaps& maps, const RootOptions& o) {
+  check_options(o);
+  return make_roots(ch, maps, o, density_of_triangles(ch, maps.density, o.threads));
+}
+
+PreguideRoots make_preguide_roots(const ScalpChart& ch, const ScalpMaps& maps, const RootOptions& o) {
+  check_preguide_options(o);
+  return make_preguide_roots(ch, maps, o, density_of_triangles(ch, maps.density, o.threads));
+}
+
+ScalpRoots make_scalp_roots(const ScalpChart& ch, const ScalpMaps& maps, const RootOptions& o) {
+  check_preguide_options(o);
+  const std::vector<TriangleDensity> density = density_of_triangles(ch, maps.density, o.threads);
+  ScalpRoots r;
+  r.roots = make_roots(ch, maps, o, density);
+  r.clusters = make_clusters(ch, r.roots, o);
+  r.preguides = make_preguide_roots(ch, maps, o, density);
+  return r;
 }
 
 Digest digest(const RootSet& s) {
