@@ -77,9 +77,15 @@ class PointGrid {
         }
   }
 
+  // static_cast<int>(std::floor(x)) without the call into libm (baseline x86-64 has no rounding
+  // instruction): truncation, one down for negative non-integers.
+  static int floor_int(double x) {
+    const int t = static_cast<int>(x);
+    return x < t ? t - 1 : t;
+  }
   Vec3i cell_of(const Vec3& p) const {
     const Vec3 u = in_cells(p);
-    return Vec3i(static_cast<int>(std::floor(u.x())), static_cast<int>(std::floor(u.y())), static_cast<int>(std::floor(u.z())));
+    return Vec3i(floor_int(u.x()), floor_int(u.y()), floor_int(u.z()));
   }
   static std::uint64_t key(const Vec3i& c) {
     const auto f = [](int v) { return static_cast<std::uint64_t>(v + (1 << 20)) & 0x1fffff; };
