@@ -5,6 +5,7 @@
 
 #include "core/parallel.h"
 #include "core/random.h"
+#include "scalp/disk_grid.h"
 #include "scalp/point_grid.h"
 #include "scalp/roots.h"
 #include "scalp/sample_elimination.h"
@@ -12,8 +13,6 @@
 namespace hairfit {
 
 namespace {
-
-Vec3 lift(const Vec2& c) { return Vec3(c.x(), c.y(), 0.0); }
 
 RootSet subset(const RootSet& s, const std::vector<int>& index) {
   RootSet out;
@@ -47,7 +46,7 @@ Clusters make_clusters(const ScalpChart& ch, const Roots& roots, const RootOptio
   const int wanted = static_cast<int>(std::min<double>(np, std::ceil(o.oversampling * ng)));
   if (wanted < np) {
     std::vector<std::uint64_t> key(np);
-    for (int i = 0; i < np; ++i) key[i] = Random(o.seed, RandomStage::clusters, static_cast<std::uint64_t>(i)).next_u64();
+    parallel_for(np, o.threads, [&](int i) { key[i] = Random(o.seed, RandomStage::clusters, static_cast<std::uint64_t>(i)).next_u64(); });
     std::nth_element(candidates.begin(), candidates.begin() + wanted, candidates.end(),
                      [&](int a, int b) { return key[a] != key[b] ? key[a] < key[b] : a < b; });
     candidates.resize(wanted);
@@ -63,12 +62,10 @@ Clusters make_clusters(const ScalpChart& ch, const Roots& roots, const RootOptio
 
   // Nearest centre in the chart for every pore; each circle's covering radius is the farthest of
   // its nearest pores, so the circles (× overlap ≥ 1) cover all pores.
-  std::vector<Vec3> centres(nc);
-  for (int c = 0; c < nc; ++c) centres[c] = lift(cl.bases.chart[c]);
   const double cell = std::sqrt(M_PI / nc);  // about one centre per cell
-  const PointGrid centre_grid(centres, cell);
+  const DiskGrid centre_grid(cl.bases.chart, cell);
   std::vector<int> nearest(np);
-  parallel_for(np, o.threads, [&](int i) { nearest[i] = centre_grid.nearest(lift(pores.chart[i]), -1, 4.0); });
+  parallel_for(np, o.threads, [&](int i) { nearest[i] = centre_grid.nearest(pores.chart[i]); });
   std::vector<double> cover(nc, 0.0);
   for (int i = 0; i < np; ++i)
     cover[nearest[i]] = std::max(cover[nearest[i]], (pores.chart[i] - cl.bases.chart[nearest[i]]).norm());
@@ -76,12 +73,10 @@ Clusters make_clusters(const ScalpChart& ch, const Roots& roots, const RootOptio
   for (int c = 0; c < nc; ++c) cl.radius[c] = o.cluster_overlap * cover[c];
 
   // Pores inside each circle, gathered per circle in parallel, then per pore in circle order.
-  std::vector<Vec3> pore_chart(np);
-  for (int i = 0; i < np; ++i) pore_chart[i] = lift(pores.chart[i]);
-  const PointGrid pore_grid(pore_chart, cell);
+  const DiskGrid pore_grid(pores.chart, cell);
   std::vector<std::vector<int>> inside(nc);
   parallel_for(nc, o.threads, [&](int c) {
-    pore_grid.for_each_within(centres[c], cl.radius[c], [&](int i, double) { inside[c].push_back(i); });
+    pore_grid.for_each_within(cl.bases.chart[c], cl.radius[c], [&](int i) { inside[c].push_back(i); });
     std::sort(inside[c].begin(), inside[c].end());
   });
   std::vector<int> count(np + 1, 0);
