@@ -33,7 +33,7 @@ TEST_CASE("disk grid: nearest and within-radius queries equal brute force, ties 
   // Exact ties: repeated points and a lattice row at equal distances from the query below.
   points.push_back(points[17]);
   const int row = static_cast<int>(points.size());
-  for (int k = 0; k < 5; ++k) points.emplace_back(0.25 + 0.125 * k, -0.875);  // dyadic: distances exact
+  for (int k = 0; k < 5; ++k) points.emplace_back(0.25 + 0.125 * k, -1.25);  // dyadic: distances exact
   for (const double cell : {0.01, 0.05, 0.3, 5.0}) {
     const DiskGrid grid(points, cell);
     for (int q = 0; q < 400; ++q) {
@@ -52,7 +52,7 @@ TEST_CASE("disk grid: nearest and within-radius queries equal brute force, ties 
       CHECK(found == expected);
     }
     CHECK(grid.nearest(points[17]) == 17);              // a point and its copy: the lower index
-    CHECK(grid.nearest(Vec2(0.3125, -0.875)) == row);      // halfway between two row points: the first
+    CHECK(grid.nearest(Vec2(0.3125, -1.25)) == row);  // halfway between two row points: the first
   }
   CHECK(DiskGrid({}, 0.1).nearest(Vec2(0, 0)) == -1);
 }
