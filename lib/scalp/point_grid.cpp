@@ -63,8 +63,20 @@ PointGrid::PointGrid(const Vec3* points, int n, double cell, bool keep_points) :
     occupied_lo_ = occupied_lo_.cwiseMin(at);
     occupied_hi_ = occupied_hi_.cwiseMax(at);
   }
-  build_table(cell_keys_.size());  // again, sized for the occupied cells, now numbered by key
-  for (int c = 0; c < cells; ++c) insert(cell_keys_[c], c);
+  // The row index where the occupied box has at most a few rows per cell; else the hash table,
+  // again, sized for the occupied cells, now numbered by key.
+  rows_y_ = occupied_hi_.y() - occupied_lo_.y() + 1;
+  const long long rows = static_cast<long long>(rows_y_) * (occupied_hi_.z() - occupied_lo_.z() + 1);
+  if (cells > 0 && rows <= 4LL * cells + 4096) {
+    row_start_.assign(rows + 1, 0);
+    for (int c = 0; c < cells; ++c)
+      ++row_start_[(cell_coords_[c].z() - occupied_lo_.z()) * rows_y_ + (cell_coords_[c].y() - occupied_lo_.y()) + 1];
+    for (long long r = 0; r < rows; ++r) row_start_[r + 1] += row_start_[r];
+    table_.clear();
+  } else {
+    build_table(cell_keys_.size());
+    for (int c = 0; c < cells; ++c) insert(cell_keys_[c], c);
+  }
 }
 
 void PointGrid::build_table(std::size_t entries) {
