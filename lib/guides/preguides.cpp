@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "core/parallel.h"
 #include <Eigen/LU>
@@ -52,6 +53,35 @@ FibreShape fibre_shape(const RodModel& model, const Vec3& root, double length, c
 
 namespace {
 
+// The free end of a solved rod in rod units (the root at the origin, lengths in L): position r(1)
+// and tangent d3(1), which is all a load step needs of the shape.
+struct RodEnd {
+  Vec3 position;
+  Vec3 tangent;
+};
+
+// One forward integration from the root (as integrate_rod does it) that keeps the end state.
+template <class T>
+RodState<T> integrate_from_root(const RodModel& model, const RodDiscretisation& rod, const T* force, const T* root_moment) {
+  RodState<T> state;
+  for (int a = 0; a < 3; ++a) {
+    state.position[a] = T(0.0);
+    state.moment[a] = root_moment[a];
+  }
+  for (int a = 0; a < 9; ++a) state.frame[a] = T(model.root_frame.data()[a]);
+  integrate_rod_steps<T>(model, rod.integrator, rod.segments, 0, rod.segments, force, state, RodTrace<T>{});
+  return state;
+}
+
+double value_of(double x) { return x; }
+double value_of(const RodJet3& x) { return x.a; }
+
+template <class T>
+RodEnd end_of(const RodState<T>& state) {
+  return RodEnd{Vec3(value_of(state.position[0]), value_of(state.position[1]), value_of(state.position[2])),
+                Vec3(value_of(state.frame[6]), value_of(state.frame[7]), value_of(state.frame[8]))};
+}
+
 // Natural-parameter continuation of the cantilever m(1; P·b̂, m(0)) = 0 (t_L = 0) in the load P:
 // Newton on m(0) with the 3×3 Jacobian from jets, from a secant predictor. Several equilibria
 // exist at the same load (curled rods); a step is accepted only when Newton lands near the
@@ -65,8 +95,10 @@ class Cantilever {
   // the solution. Single shooting (Newton until |m(1)| ≤ 1e-10·max(1, P)) up to kHeavyRod; beyond,
   // m(1) depends on m(0) like exp(√P) and the rod library's multiple shooting takes over, warm
   // started from the pieces of the nearby solution, which stay a good start where a sweep from
-  // m(0) alone would diverge.
-  bool solve(const RodModel& model, double load, ShootingResult& at, int& solves) const {
+  // m(0) alone would diverge. A single-shooting solution also hands back its rod's end (the
+  // integration that confirmed it traced it), bit for bit what fibre_shape would trace again.
+  bool solve(const RodModel& model, double load, ShootingResult& at, int& solves, std::optional<RodEnd>& end) const {
+    end.reset();
     const Vec3 force = load * bend_;
     if (model.force_per_length.norm() > kHeavyRod || load > kHeavyRod) {
       ShootingOptions options;
@@ -83,32 +115,48 @@ class Cantilever {
     }
     Vec3 m0 = at.root_moment;
     const double tolerance = 1e-10 * std::max(1.0, load);
+    auto converged = [&](const RodEnd& rod_end) {
+      at = ShootingResult{};  // one piece: the shape is one integration from m(0)
+      at.root_moment = m0;
+      at.terminal_force = force;
+      at.force_per_length = model.force_per_length;
+      at.converged = true;
+      end = rod_end;
+      return true;
+    };
+    double residual_before = 0.0, residual_last = 0.0;  // |m(1)| at the last two iterates
     for (int iteration = 0; iteration < 10; ++iteration) {
       ++solves;
-      RodJet3 jet_force[3], moment[3], m1[3];
+      // Where Newton's quadratic convergence (|r'| ≈ C·|r|², C from the last two iterates)
+      // predicts that this iterate meets the tolerance, an integration without jets checks it
+      // first: its m(1) is bit for bit the jets' value part, so the iterates are the same, and
+      // the last one needs no Jacobian (jets cost three times as much).
+      if (residual_before > 0.0 &&
+          residual_last * residual_last * (residual_last / (residual_before * residual_before)) <= tolerance) {
+        const RodState<double> state = integrate_from_root<double>(model, rod_, force.data(), m0.data());
+        const Vec3 residual(state.moment[0], state.moment[1], state.moment[2]);
+        if (!residual.allFinite()) return false;
+        if (residual.norm() <= tolerance) return converged(end_of(state));
+      }
+      RodJet3 jet_force[3], moment[3];
       for (int k = 0; k < 3; ++k) {
         jet_force[k] = RodJet3(force[k]);
         moment[k] = RodJet3(m0[k], k);
       }
-      integrate_rod<RodJet3>(model, rod_.integrator, rod_.segments, jet_force, moment, m1, RodTrace<RodJet3>{});
+      const RodState<RodJet3> state = integrate_from_root<RodJet3>(model, rod_, jet_force, moment);
       Vec3 residual;
       Mat3 jacobian;
       for (int k = 0; k < 3; ++k) {
-        residual[k] = m1[k].a;
-        jacobian.row(k) = m1[k].v.transpose();
+        residual[k] = state.moment[k].a;
+        jacobian.row(k) = state.moment[k].v.transpose();
       }
       if (!residual.allFinite()) return false;
-      if (residual.norm() <= tolerance) {
-        at = ShootingResult{};  // one piece: the shape is one integration from m(0)
-        at.root_moment = m0;
-        at.terminal_force = force;
-        at.force_per_length = model.force_per_length;
-        at.converged = true;
-        return true;
-      }
+      if (residual.norm() <= tolerance) return converged(end_of(state));
       const Vec3 step = jacobian.fullPivLu().solve(-residual);
       if (!step.allFinite()) return false;
       m0 += step;
+      residual_before = residual_last;
+      residual_last = residual.norm();
     }
     return false;
   }
@@ -149,9 +197,15 @@ PreGuide solve_preguide(const RootSet& roots, int i, const Boundary& boundary, c
     ShootingResult solution;  // m(0), and the pieces of a heavy rod
     double miss = 0.0;
     Vec3 tip_tangent = Vec3::Zero();
+    std::optional<RodEnd> end;  // the solution's rod end, when its solve traced it
     const Vec3& m0() const { return solution.root_moment; }
   };
   auto settle = [&](State& st) {
+    if (st.end) {  // the tip as fibre_shape places it: root + length · r(1)
+      st.miss = boundary.volume->value(g.root + g.length * st.end->position) + g.target_depth;
+      st.tip_tangent = st.end->tangent;
+      return;
+    }
     const FibreShape shape = fibre_shape(model, g.root, g.length, o.rod, st.solution);
     st.miss = boundary.volume->value(shape.nodes.back()) + g.target_depth;
     st.tip_tangent = shape.tangents.back();
@@ -171,11 +225,12 @@ PreGuide solve_preguide(const RootSet& roots, int i, const Boundary& boundary, c
       const Vec3 predictor = share > share_prev ? Vec3(current.m0() + (current.m0() - m_prev) * ((next - share) / (share - share_prev)))
                                                 : current.m0();
       ShootingResult trial = predicted(current.solution, predictor);
-      bool accepted = cantilever.solve(scaled, 0.0, trial, g.solves) &&
+      std::optional<RodEnd> end;
+      bool accepted = cantilever.solve(scaled, 0.0, trial, g.solves, end) &&
                       (trial.root_moment - predictor).norm() <= 0.1 * (1.0 + current.m0().norm());
       Vec3 tip = tip_prev;
       if (accepted) {
-        tip = fibre_shape(scaled, g.root, g.length, o.rod, trial).tangents.back();
+        tip = end ? end->tangent : fibre_shape(scaled, g.root, g.length, o.rod, trial).tangents.back();
         accepted = std::acos(std::clamp(tip.dot(tip_prev), -1.0, 1.0)) <= kMaxTipTurn;
       }
       if (!accepted) {
@@ -185,11 +240,15 @@ PreGuide solve_preguide(const RootSet& roots, int i, const Boundary& boundary, c
       m_prev = current.m0();
       share_prev = share;
       current.solution = trial;
+      current.end = end;  // traced under the full weight once share reaches 1, as settle needs it
       tip_prev = tip;
       share = next;
       share_step = std::min(share_step * 1.5, 0.25);
     }
-    if (share < 1.0) current.solution = ShootingResult{};  // could not follow the weight: flagged below by the miss
+    if (share < 1.0) {  // could not follow the weight: flagged below by the miss
+      current.solution = ShootingResult{};
+      current.end.reset();
+    }
     current.solution.force_per_length = model.force_per_length;
   }
   settle(current);
@@ -209,7 +268,7 @@ PreGuide solve_preguide(const RootSet& roots, int i, const Boundary& boundary, c
                                                                                       (current.load - previous.load)))
                                : current.m0();
     next.solution = predicted(current.solution, predictor);
-    bool accepted = cantilever.solve(model, next.load, next.solution, g.solves) &&
+    bool accepted = cantilever.solve(model, next.load, next.solution, g.solves, next.end) &&
                     (next.m0() - predictor).norm() <= 0.1 * (1.0 + current.m0().norm());
     if (accepted) {
       settle(next);
@@ -237,7 +296,7 @@ PreGuide solve_preguide(const RootSet& roots, int i, const Boundary& boundary, c
        ++k) {
     State mid = above;
     mid.load = 0.5 * (above.load + below.load);
-    if (!cantilever.solve(model, mid.load, mid.solution, g.solves)) break;
+    if (!cantilever.solve(model, mid.load, mid.solution, g.solves, mid.end)) break;
     settle(mid);
     if (std::fabs(mid.miss) < std::fabs(best.miss)) best = mid;
     (mid.miss > 0.0 ? above : below) = mid;

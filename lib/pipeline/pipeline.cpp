@@ -308,9 +308,10 @@ class Runner {
     StageValues& v = result_.values;
     RootOptions o = root_options(scene_, options_.threads);
     if (o.tilt_toward == TiltToward::thicker) o.thickness = layer_thickness(*v.volume_field);
-    v.roots = std::make_shared<const Roots>(make_roots(*v.chart, maps(), o));
-    v.clusters = std::make_shared<const Clusters>(make_clusters(*v.chart, *v.roots, o));
-    v.preguide_roots = std::make_shared<const PreguideRoots>(make_preguide_roots(*v.chart, maps(), o));
+    ScalpRoots made = make_scalp_roots(*v.chart, maps(), o);
+    v.roots = std::make_shared<const Roots>(std::move(made.roots));
+    v.clusters = std::make_shared<const Clusters>(std::move(made.clusters));
+    v.preguide_roots = std::make_shared<const PreguideRoots>(std::move(made.preguides));
     stage.digest = Digest().add(digest(*v.roots).hex()).add(digest(*v.clusters).hex()).add(digest(*v.preguide_roots).hex()).hex();
     const ScalpFigures f = scalp_figures(*v.chart, *v.roots, *v.clusters, *v.preguide_roots, options_.threads);
     stage.add("scalp_area_cm2", f.scalp_area);

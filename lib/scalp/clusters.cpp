@@ -5,6 +5,7 @@
 
 #include "core/parallel.h"
 #include "core/random.h"
+#include "scalp/disk_grid.h"
 #include "scalp/point_grid.h"
 #include "scalp/roots.h"
 #include "scalp/sample_elimination.h"
@@ -12,8 +13,6 @@
 namespace hairfit {
 
 namespace {
-
-Vec3 lift(const Vec2& c) { return Vec3(c.x(), c.y(), 0.0); }
 
 RootSet subset(const RootSet& s, const std::vector<int>& index) {
   RootSet out;
@@ -47,7 +46,7 @@ Clusters make_clusters(const ScalpChart& ch, const Roots& roots, const RootOptio
   const int wanted = static_cast<int>(std::min<double>(np, std::ceil(o.oversampling * ng)));
   if (wanted < np) {
     std::vector<std::uint64_t> key(np);
-    for (int i = 0; i < np; ++i) key[i] = Random(o.seed, RandomStage::clusters, static_cast<std::uint64_t>(i)).next_u64();
+    parallel_for(np, o.threads, [&](int i) { key[i] = Random(o.seed, RandomStage::clusters, static_cast<std::uint64_t>(i)).next_u64(); });
     std::nth_element(candidates.begin(), candidates.begin() + wanted, candidates.end(),
                      [&](int a, int b) { return key[a] != key[b] ? key[a] < key[b] : a < b; });
     candidates.resize(wanted);
@@ -63,12 +62,10 @@ Clusters make_clusters(const ScalpChart& ch, const Roots& roots, const RootOptio
 
   // Nearest centre in the chart for every pore; each circle's covering radius is the farthest of
   // its nearest pores, so the circles (× overlap ≥ 1) cover all pores.
-  std::vector<Vec3> centres(nc);
-  for (int c = 0; c < nc; ++c) centres[c] = lift(cl.bases.chart[c]);
   const double cell = std::sqrt(M_PI / nc);  // about one centre per cell
-  const PointGrid centre_grid(centres, cell);
+  const DiskGrid centre_grid(cl.bases.chart, cell);
   std::vector<int> nearest(np);
-  parallel_for(np, o.threads, [&](int i) { nearest[i] = centre_grid.nearest(lift(pores.chart[i]), -1, 4.0); });
+  parallel_for(np, o.threads, [&](int i) { nearest[i] = centre_grid.nearest(pores.chart[i]); });
   std::vector<double> cover(nc, 0.0);
   for (int i = 0; i < np; ++i)
     cover[nearest[i]] = std::max(cover[nearest[i]], (pores.chart[i] - cl.bases.chart[nearest[i]]).norm());
@@ -76,12 +73,10 @@ Clusters make_clusters(const ScalpChart& ch, const Roots& roots, const RootOptio
   for (int c = 0; c < nc; ++c) cl.radius[c] = o.cluster_overlap * cover[c];
 
   // Pores inside each circle, gathered per circle in parallel, then per pore in circle order.
-  std::vector<Vec3> pore_chart(np);
-  for (int i = 0; i < np; ++i) pore_chart[i] = lift(pores.chart[i]);
-  const PointGrid pore_grid(pore_chart, cell);
+  const DiskGrid pore_grid(pores.chart, cell);
   std::vector<std::vector<int>> inside(nc);
   parallel_for(nc, o.threads, [&](int c) {
-    pore_grid.for_each_within(centres[c], cl.radius[c], [&](int i, double) { inside[c].push_back(i); });
+    pore_grid.for_each_within(cl.bases.chart[c], cl.radius[c], [&](int i) { inside[c].push_back(i); });
     std::sort(inside[c].begin(), inside[c].end());
   });
   std::vector<int> count(np + 1, 0);
@@ -123,9 +118,38 @@ std::vector<double> nearest_neighbour_distances(const std::vector<Vec3>& points,
   const double spread = std::max({extent.x() * extent.y(), extent.y() * extent.z(), extent.z() * extent.x(), 1e-300});
   const double cell = std::max(2.0 * std::sqrt(spread / n), 1e-12 * (1.0 + extent.norm()));
   const PointGrid grid(points, cell);
-  parallel_for(n, threads, [&](int i) {
-    const int j = grid.nearest(points[i], i, 2.0 * extent.norm() + cell);
-    d[i] = j >= 0 ? (points[j] - points[i]).norm() : 0.0;
+  // Cell by cell, so the neighbouring cells are looked up once for the few points of a cell: the
+  // search of PointGrid::nearest's first round (within one cell size, the 27 cells around), which
+  // almost always finds the nearest; it answers the rest. The distance of a nearest point does
+  // not depend on which of equally near points it is.
+  const HugeVector<Vec3>& sorted = grid.sorted();
+  const HugeVector<int>& order = grid.order();
+  const double r2 = cell * cell;
+  constexpr int kCellsPerBlock = 64;
+  const int cells = grid.cell_count();
+  parallel_for((cells + kCellsPerBlock - 1) / kCellsPerBlock, threads, [&](int b) {
+    std::vector<PointGrid::CellRange> ranges;
+    for (int c = b * kCellsPerBlock; c < std::min(cells, (b + 1) * kCellsPerBlock); ++c) {
+      grid.neighbourhood(c, 1, ranges);
+      for (int k = grid.cell_begin(c); k < grid.cell_begin(c + 1); ++k) {
+        const Vec3 p = sorted[k];
+        double best = INFINITY;
+        for (const PointGrid::CellRange& range : ranges) {
+          for (int q = range.begin; q < range.end; ++q) {
+            const double dx = sorted[q].x() - p.x(), dy = sorted[q].y() - p.y(), dz = sorted[q].z() - p.z();
+            const double d2 = (dx * dx + dy * dy) + dz * dz;  // as Vec3::squaredNorm sums it
+            if (q != k && d2 <= r2 && d2 < best) best = d2;
+          }
+        }
+        const int i = order[k];
+        if (best < INFINITY) {
+          d[i] = std::sqrt(best);
+        } else {
+          const int j = grid.nearest(points[i], i, 2.0 * extent.norm() + cell);
+          d[i] = j >= 0 ? (points[j] - points[i]).norm() : 0.0;
+        }
+      }
+    }
   });
   return d;
 }

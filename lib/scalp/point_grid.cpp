@@ -5,25 +5,30 @@
 
 namespace hairfit {
 
-PointGrid::PointGrid(const std::vector<Vec3>& points, double cell) : cell_(cell) {
+PointGrid::PointGrid(const Vec3* points, int n, double cell, bool keep_points) : cell_(cell) {
   if (!(cell > 0) || !std::isfinite(cell)) throw std::invalid_argument("PointGrid: cell size must be positive");
   origin_ = Vec3::Zero();
-  if (!points.empty()) {
-    origin_ = points.front();
-    for (const Vec3& p : points) origin_ = origin_.cwiseMin(p);
+  if (n > 0) {
+    origin_ = points[0];
+    for (int i = 1; i < n; ++i) origin_ = origin_.cwiseMin(points[i]);
   }
   // The order (cell key, then index) without sorting the points: the occupied cells are found
   // and counted (in order of first appearance, through the hash table), only they are sorted by
   // key, and the points are then placed cell by cell in index order.
-  const int n = static_cast<int>(points.size());
-  std::vector<int> point_cell(n);  // cell of each point, numbered by first appearance
+  HugeVector<int> point_cell(n);  // cell of each point, numbered by first appearance
   std::vector<int> count;
-  build_table(std::max<std::size_t>(points.size(), 1));
+  // The table grows with the cells found (a table sized for one cell per point would be 8 bytes
+  // per point of fresh memory, most of it never used: points share cells).
+  build_table(1024);
   for (int i = 0; i < n; ++i) {
     const std::uint64_t k = key(cell_of(points[i]));
     int c = find(k);
     if (c < 0) {
       c = static_cast<int>(cell_keys_.size());
+      if (2 * (cell_keys_.size() + 1) > table_.size()) {  // keep it at most half full
+        build_table(2 * (cell_keys_.size() + 1));
+        for (int old = 0; old < c; ++old) insert(cell_keys_[old], old);
+      }
       insert(k, c);
       cell_keys_.push_back(k);
       count.push_back(0);
@@ -45,22 +50,33 @@ PointGrid::PointGrid(const std::vector<Vec3>& points, double cell) : cell_(cell)
     cell_begin_[r + 1] = cell_begin_[r] + count[c];
   }
   order_.resize(n);
-  sorted_.resize(n);
-  for (int i = 0; i < n; ++i) {
-    const int k = next[point_cell[i]]++;
-    order_[k] = i;
-    sorted_[k] = points[i];
+  for (int i = 0; i < n; ++i) order_[next[point_cell[i]]++] = i;
+  if (keep_points) {
+    sorted_.resize(n);
+    for (int k = 0; k < n; ++k) sorted_[k] = points[order_[k]];
   }
   cell_coords_.resize(cells);
   for (int c = 0; c < cells; ++c) {
-    const Vec3i at = cell_of(sorted_[cell_begin_[c]]);
+    const Vec3i at = cell_of(points[order_[cell_begin_[c]]]);
     cell_coords_[c] = at;
     if (c == 0) occupied_lo_ = occupied_hi_ = at;
     occupied_lo_ = occupied_lo_.cwiseMin(at);
     occupied_hi_ = occupied_hi_.cwiseMax(at);
   }
-  build_table(cell_keys_.size());  // again, sized for the occupied cells, now numbered by key
-  for (int c = 0; c < cells; ++c) insert(cell_keys_[c], c);
+  // The row index where the occupied box has at most a few rows per cell; else the hash table,
+  // again, sized for the occupied cells, now numbered by key.
+  rows_y_ = occupied_hi_.y() - occupied_lo_.y() + 1;
+  const long long rows = static_cast<long long>(rows_y_) * (occupied_hi_.z() - occupied_lo_.z() + 1);
+  if (cells > 0 && rows <= 4LL * cells + 4096) {
+    row_start_.assign(rows + 1, 0);
+    for (int c = 0; c < cells; ++c)
+      ++row_start_[(cell_coords_[c].z() - occupied_lo_.z()) * rows_y_ + (cell_coords_[c].y() - occupied_lo_.y()) + 1];
+    for (long long r = 0; r < rows; ++r) row_start_[r + 1] += row_start_[r];
+    table_.clear();
+  } else {
+    build_table(cell_keys_.size());
+    for (int c = 0; c < cells; ++c) insert(cell_keys_[c], c);
+  }
 }
 
 void PointGrid::build_table(std::size_t entries) {
@@ -76,11 +92,10 @@ void PointGrid::insert(std::uint64_t k, int cell) {
   table_[slot] = cell;
 }
 
-std::vector<PointGrid::CellRange> PointGrid::neighbourhood(int k, int reach) const {
-  std::vector<CellRange> ranges;
+void PointGrid::neighbourhood(int k, int reach, std::vector<CellRange>& out) const {
+  out.clear();
   for_each_cell_near(cell_coords_[k], reach,
-                     [&](int cell) { ranges.push_back({cell_begin_[cell], cell_begin_[cell + 1], cell_coords_[cell]}); });
-  return ranges;
+                     [&](int cell) { out.push_back({cell_begin_[cell], cell_begin_[cell + 1], cell_coords_[cell]}); });
 }
 
 int PointGrid::nearest(const Vec3& p, int exclude, double max_radius) const {

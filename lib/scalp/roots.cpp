@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/huge_pages.h"
 #include "core/parallel.h"
 #include "core/random.h"
 #include "scalp/sample_elimination.h"
@@ -52,10 +53,11 @@ TriangleDensity triangle_density(const ScalpChart& ch, int t, const GreyMap* map
   return d;
 }
 
+// Candidate-sized arrays live in huge pages (core/huge_pages.h): fresh memory is expensive.
 struct Candidates {
-  std::vector<SurfacePoint> where;
-  std::vector<Vec3> positions;
-  std::vector<double> values;  // map value at each candidate
+  HugeVector<SurfacePoint> where;
+  HugeVector<Vec3> positions;
+  HugeVector<double> values;  // map value at each candidate
 };
 
 // Candidates uniform over the 3D area with `per_area` candidates per cm² where the map is at
@@ -64,20 +66,37 @@ struct Candidates {
 Candidates make_candidates(const ScalpChart& ch, const GreyMap* map, const std::vector<TriangleDensity>& density,
                            double per_area, bool binary, RandomStage stage, std::uint64_t seed, int threads) {
   const int nf = static_cast<int>(ch.mesh.triangles.size());
-  std::vector<Candidates> per_triangle(nf);
-  parallel_for(nf, threads, [&](int t) {
+  auto reference = [&](int t) {
     const TriangleDensity& d = density[t];
-    const double top = binary ? (d.max > 0 ? 1.0 : 0.0) : d.max;
-    if (!(top > 0)) return;
+    return binary ? (d.max > 0 ? 1.0 : 0.0) : d.max;
+  };
+  // Each triangle's number of draws (the first value of its stream) bounds what it keeps, so the
+  // triangles write straight into one array at those offsets, which is then closed up: one copy
+  // of the candidates in memory instead of per-triangle lists gathered into a second.
+  std::vector<std::size_t> first(nf + 1, 0);
+  for (int t = 0; t < nf; ++t) {
+    int count = 0;
+    if (reference(t) > 0) {
+      Random rng(seed, stage, static_cast<std::uint64_t>(t));
+      const double expected = per_area * triangle_area(ch.mesh, t) * reference(t);
+      const double whole = std::floor(expected);
+      count = static_cast<int>(whole) + (rng.uniform() < expected - whole ? 1 : 0);
+    }
+    first[t + 1] = first[t] + count;
+  }
+  Candidates all;
+  all.where.resize(first[nf]);
+  all.positions.resize(first[nf]);
+  all.values.resize(first[nf]);
+  std::vector<std::size_t> kept(nf, 0);
+  parallel_for(nf, threads, [&](int t) {
+    const double top = reference(t);
+    const std::size_t count = first[t + 1] - first[t];
+    if (count == 0) return;
     Random rng(seed, stage, static_cast<std::uint64_t>(t));
-    const double expected = per_area * triangle_area(ch.mesh, t) * top;
-    const double whole = std::floor(expected);
-    const int count = static_cast<int>(whole) + (rng.uniform() < expected - whole ? 1 : 0);
-    Candidates& out = per_triangle[t];
-    out.where.reserve(count);
-    out.positions.reserve(count);
-    out.values.reserve(count);
-    for (int k = 0; k < count; ++k) {
+    rng.uniform();  // the draw count, above
+    std::size_t at = first[t];
+    for (std::size_t k = 0; k < count; ++k) {
       const double r = std::sqrt(rng.uniform()), w = rng.uniform();
       SurfacePoint sp;
       sp.triangle = t;
@@ -86,24 +105,27 @@ Candidates make_candidates(const ScalpChart& ch, const GreyMap* map, const std::
       const double value = map_value(map, chart_position(ch, sp));
       if (!(value > 0)) continue;  // black: never a root
       if (!binary && accept * top >= value) continue;
-      out.where.push_back(sp);
-      out.positions.push_back(surface_position(ch, sp));
-      out.values.push_back(value);
+      all.where[at] = sp;
+      all.positions[at] = surface_position(ch, sp);
+      all.values[at] = value;
+      ++at;
     }
+    kept[t] = at - first[t];
   });
-  // Laid end to end in triangle order, each triangle's share copied on its own thread.
-  std::vector<std::size_t> first(nf + 1, 0);
-  for (int t = 0; t < nf; ++t) first[t + 1] = first[t] + per_triangle[t].where.size();
-  Candidates all;
-  all.where.resize(first[nf]);
-  all.positions.resize(first[nf]);
-  all.values.resize(first[nf]);
-  parallel_for(nf, threads, [&](int t) {
-    const Candidates& c = per_triangle[t];
-    std::copy(c.where.begin(), c.where.end(), all.where.begin() + first[t]);
-    std::copy(c.positions.begin(), c.positions.end(), all.positions.begin() + first[t]);
-    std::copy(c.values.begin(), c.values.end(), all.values.begin() + first[t]);
-  });
+  // Closed up in triangle order (each share moves toward the front, never over one not yet moved).
+  std::size_t end = 0;
+  for (int t = 0; t < nf; ++t) {
+    if (end != first[t]) {
+      const std::size_t from = first[t], to = first[t] + kept[t];
+      std::copy(all.where.begin() + from, all.where.begin() + to, all.where.begin() + end);
+      std::copy(all.positions.begin() + from, all.positions.begin() + to, all.positions.begin() + end);
+      std::copy(all.values.begin() + from, all.values.begin() + to, all.values.begin() + end);
+    }
+    end += kept[t];
+  }
+  all.where.resize(end);
+  all.positions.resize(end);
+  all.values.resize(end);
   return all;
 }
 
@@ -148,7 +170,7 @@ void check_options(const RootOptions& o) {
     throw std::invalid_argument("roots: tilting toward the thicker layer needs the layer's thickness field");
 }
 
-std::vector<SurfacePoint> pick(const std::vector<SurfacePoint>& all, const std::vector<int>& kept) {
+std::vector<SurfacePoint> pick(const HugeVector<SurfacePoint>& all, const std::vector<int>& kept) {
   std::vector<SurfacePoint> out;
   out.reserve(kept.size());
   for (int i : kept) out.push_back(all[i]);
@@ -187,10 +209,11 @@ Vec3 growth_direction_toward_thicker(const Vec3& normal, const Vec3& thickness_g
   return tilted(normal, tangent, tilt_degrees);
 }
 
-Roots make_roots(const ScalpChart& ch, const ScalpMaps& maps, const RootOptions& o) {
-  check_options(o);
+namespace {
+
+Roots make_roots(const ScalpChart& ch, const ScalpMaps& maps, const RootOptions& o,
+                 const std::vector<TriangleDensity>& density) {
   Roots roots;
-  const std::vector<TriangleDensity> density = density_of_triangles(ch, maps.density, o.threads);
   double top = 0.0;
   for (int t = 0; t < static_cast<int>(density.size()); ++t) {
     const double area = triangle_area(ch.mesh, t);
@@ -205,24 +228,23 @@ Roots make_roots(const ScalpChart& ch, const ScalpMaps& maps, const RootOptions&
   // Candidates at oversampling × the local target density; rounded up so a small set still has
   // enough to choose from.
   const double per_area = o.oversampling * o.density * (1.0 + 1.0 / std::sqrt(static_cast<double>(target)));
-  const Candidates c = make_candidates(ch, maps.density, density, per_area, false, RandomStage::roots, o.seed, o.threads);
-  roots.candidates = static_cast<int>(c.positions.size());
-  std::vector<double> radius(c.positions.size());
-  for (std::size_t i = 0; i < radius.size(); ++i) {
-    const double rho = o.density * std::max(c.values[i], top / 16.0);  // hairs/cm² here
-    radius[i] = 1.0 / std::sqrt(2.0 * std::sqrt(3.0) * rho);
+  Candidates c = make_candidates(ch, maps.density, density, per_area, false, RandomStage::roots, o.seed, o.threads);
+  const int count = static_cast<int>(c.positions.size());
+  roots.candidates = count;
+  HugeVector<double>& radius = c.values;  // each value becomes the radius for it, in place
+  for (double& r : radius) {
+    const double rho = o.density * std::max(r, top / 16.0);  // hairs/cm² here
+    r = 1.0 / std::sqrt(2.0 * std::sqrt(3.0) * rho);
   }
-  const std::vector<int> kept = eliminate_samples(c.positions, radius, static_cast<int>(target), o.threads);
+  const std::vector<int> kept = eliminate_samples(c.positions.data(), radius.data(), count, static_cast<int>(target), o.threads);
   roots.pores = make_root_set(ch, maps, o, pick(c.where, kept), o.threads);
   return roots;
 }
 
-PreguideRoots make_preguide_roots(const ScalpChart& ch, const ScalpMaps& maps, const RootOptions& o) {
-  check_options(o);
-  if (!(o.preguide_spacing > 0)) throw std::invalid_argument("roots: preguide_spacing must be > 0");
+PreguideRoots make_preguide_roots(const ScalpChart& ch, const ScalpMaps& maps, const RootOptions& o,
+                                  const std::vector<TriangleDensity>& density) {
   PreguideRoots pre;
   pre.spacing = o.preguide_spacing;
-  const std::vector<TriangleDensity> density = density_of_triangles(ch, maps.density, o.threads);
   double hair_area = 0.0;
   for (int t = 0; t < static_cast<int>(density.size()); ++t) hair_area += triangle_area(ch.mesh, t) * density[t].nonzero_fraction;
   // Hexagonal packing at spacing s holds one point per (√3/2)s².
@@ -232,9 +254,37 @@ PreguideRoots make_preguide_roots(const ScalpChart& ch, const ScalpMaps& maps, c
   const double per_area = o.oversampling * rho * (1.0 + 1.0 / std::sqrt(static_cast<double>(target)));
   const Candidates c = make_candidates(ch, maps.density, density, per_area, true, RandomStage::preguides, o.seed, o.threads);
   const std::vector<double> radius(c.positions.size(), 1.0 / std::sqrt(2.0 * std::sqrt(3.0) * rho));
-  const std::vector<int> kept = eliminate_samples(c.positions, radius, static_cast<int>(target), o.threads);
+  const std::vector<int> kept =
+      eliminate_samples(c.positions.data(), radius.data(), static_cast<int>(radius.size()), static_cast<int>(target), o.threads);
   pre.roots = make_root_set(ch, maps, o, pick(c.where, kept), o.threads);
   return pre;
+}
+
+void check_preguide_options(const RootOptions& o) {
+  check_options(o);
+  if (!(o.preguide_spacing > 0)) throw std::invalid_argument("roots: preguide_spacing must be > 0");
+}
+
+}  // namespace
+
+Roots make_roots(const ScalpChart& ch, const ScalpMaps& maps, const RootOptions& o) {
+  check_options(o);
+  return make_roots(ch, maps, o, density_of_triangles(ch, maps.density, o.threads));
+}
+
+PreguideRoots make_preguide_roots(const ScalpChart& ch, const ScalpMaps& maps, const RootOptions& o) {
+  check_preguide_options(o);
+  return make_preguide_roots(ch, maps, o, density_of_triangles(ch, maps.density, o.threads));
+}
+
+ScalpRoots make_scalp_roots(const ScalpChart& ch, const ScalpMaps& maps, const RootOptions& o) {
+  check_preguide_options(o);
+  const std::vector<TriangleDensity> density = density_of_triangles(ch, maps.density, o.threads);
+  ScalpRoots r;
+  r.roots = make_roots(ch, maps, o, density);
+  r.clusters = make_clusters(ch, r.roots, o);
+  r.preguides = make_preguide_roots(ch, maps, o, density);
+  return r;
 }
 
 Digest digest(const RootSet& s) {

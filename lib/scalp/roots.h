@@ -96,6 +96,16 @@ Clusters make_clusters(const ScalpChart& chart, const Roots& roots, const RootOp
 // 2/(√3 s²)) wherever the density map is non-zero, with growth directions and lengths.
 PreguideRoots make_preguide_roots(const ScalpChart& chart, const ScalpMaps& maps, const RootOptions& options);
 
+// What the roots stage makes: the pores, their clusters and the pre-guide roots, equal to
+// make_roots, make_clusters and make_preguide_roots called one after the other, with the density
+// map's integral over the triangles (shared by pores and pre-guide roots) computed once.
+struct ScalpRoots {
+  Roots roots;
+  Clusters clusters;
+  PreguideRoots preguides;
+};
+ScalpRoots make_scalp_roots(const ScalpChart& chart, const ScalpMaps& maps, const RootOptions& options);
+
 // Unit growth direction (DESIGN §3): the normal rotated by `tilt_degrees` toward down projected
 // onto the tangent plane; where down is (nearly) parallel to the normal, toward −front projected,
 // else any tangent. Never NaN for a unit normal.

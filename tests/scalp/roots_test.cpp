@@ -191,6 +191,26 @@ TEST_CASE("roots: deterministic for a seed and any thread count; the seed change
   CHECK(digest(make_roots(ch, {&map, nullptr, nullptr}, o)).hex() != first_roots);
 }
 
+TEST_CASE("roots: make_scalp_roots equals make_roots, make_clusters and make_preguide_roots") {
+  const ScalpChart ch = make_scalp_chart(test::head_cap(40, 1.6, 0.03), kFront, kDown, "cap.obj");
+  const GreyMap map = make_map(64, 64, [](int x, int y) { return x + y < 20 ? 0.0f : static_cast<float>(x) / 63.0f; });
+  RootOptions o;
+  o.density = 30.0;
+  o.guides = 40;
+  o.preguide_spacing = 0.4;
+  o.seed = 5;
+  o.threads = 2;
+  const ScalpMaps maps{&map, &map, nullptr};
+  const ScalpRoots together = make_scalp_roots(ch, maps, o);
+  const Roots roots = make_roots(ch, maps, o);
+  CHECK(together.roots.pores.size() > 100);
+  CHECK(digest(together.roots).hex() == digest(roots).hex());
+  CHECK(digest(together.clusters).hex() == digest(make_clusters(ch, roots, o)).hex());
+  CHECK(digest(together.preguides).hex() == digest(make_preguide_roots(ch, maps, o)).hex());
+  o.preguide_spacing = 0.0;
+  CHECK_THROWS_AS(make_scalp_roots(ch, maps, o), std::invalid_argument);
+}
+
 TEST_CASE("roots: growth direction tilts toward down and never yields NaN") {
   const Vec3 down(0, -1, 0), front(0, 0, 1);
   const Vec3 side = Vec3(1, 0.2, 0).normalized();
