@@ -113,37 +113,64 @@ DistanceField make_distance_field(const Mesh& mesh, const FieldSpec& spec, int t
   out.coarse_factor_ = plan.coarse_factor;
   out.coarse_dims_ = far.dims;
   out.coarse_ = std::make_shared<const std::vector<double>>(std::move(far.values));
-  out.fine_ = std::make_shared<const std::vector<double>>(std::move(band.value));
+  out.finish(std::move(band.value), threads);
   return out;
 }
 
-bool DistanceField::in_band(int i, int j, int k) const { return fine(i, j, k) != std::numeric_limits<double>::infinity(); }
-
-double DistanceField::sample(int i, int j, int k) const {
-  const double v = fine(i, j, k);
-  return v != std::numeric_limits<double>::infinity() ? v : far_sample(i, j, k);
+void DistanceField::finish(std::vector<double> band_values, int threads) {
+  upper_ = origin_ + h_ * (dims_ - Vec3i::Ones()).cast<double>();
+  const int nx = dims_.x(), ny = dims_.y(), nz = dims_.z();
+  std::vector<std::uint8_t> in_band(band_values.size(), 0);
+  parallel_for(nz, threads, [&](int k) {
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        const int64_t at = index(i, j, k);
+        if (band_values[at] != std::numeric_limits<double>::infinity()) in_band[at] = kInBand;
+        else band_values[at] = far_sample(i, j, k);
+      }
+  });
+  std::vector<std::uint8_t> flags(in_band.size(), 0);
+  const int64_t dy = nx, dz = int64_t(nx) * ny;
+  parallel_for(nz, threads, [&](int k) {
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        const int64_t at = index(i, j, k);
+        flags[at] = in_band[at];
+        if (i + 1 == nx || j + 1 == ny || k + 1 == nz) continue;  // no cell has this lowest corner
+        const std::uint8_t* c = in_band.data() + at;
+        if (!(c[0] | c[1] | c[dy] | c[dy + 1] | c[dz] | c[dz + 1] | c[dz + dy] | c[dz + dy + 1])) flags[at] |= kCellFar;
+      }
+  });
+  samples_ = std::make_shared<const std::vector<double>>(std::move(band_values));
+  flags_ = std::make_shared<const std::vector<std::uint8_t>>(std::move(flags));
 }
 
+bool DistanceField::in_band(int i, int j, int k) const { return (*flags_)[index(i, j, k)] & kInBand; }
+
+double DistanceField::sample(int i, int j, int k) const { return (*samples_)[index(i, j, k)]; }
+
 int64_t DistanceField::memory_bytes() const {
-  return int64_t(sizeof(double)) * int64_t(fine_->size() + coarse_->size());
+  return int64_t(sizeof(double)) * int64_t(samples_->size() + coarse_->size());
 }
 
 namespace {
 
-// Trilinear interpolation of the 8 corner values c[x + 2y + 4z] at fractions f ∈ [0,1]³, and its
-// derivative with respect to f.
-FieldValueGradient trilinear(const double c[8], const Vec3& f) {
-  const double x0 = 1 - f.x(), y0 = 1 - f.y(), z0 = 1 - f.z();
-  const double c00 = c[0] * x0 + c[1] * f.x(), c10 = c[2] * x0 + c[3] * f.x();
-  const double c01 = c[4] * x0 + c[5] * f.x(), c11 = c[6] * x0 + c[7] * f.x();
-  const double c0 = c00 * y0 + c10 * f.y(), c1 = c01 * y0 + c11 * f.y();
-  FieldValueGradient out;
-  out.value = c0 * z0 + c1 * f.z();
-  out.gradient.z() = c1 - c0;
-  out.gradient.y() = (c10 - c00) * z0 + (c11 - c01) * f.z();
-  const double dx00 = c[1] - c[0], dx10 = c[3] - c[2], dx01 = c[5] - c[4], dx11 = c[7] - c[6];
-  out.gradient.x() = (dx00 * y0 + dx10 * f.y()) * z0 + (dx01 * y0 + dx11 * f.y()) * f.z();
-  return out;
+// Trilinear interpolation of the 8 corner values c[x + 2y + 4z] at fractions f ∈ [0,1]³, and
+// (kGradient) its derivative with respect to f. The value is the same expression either way, so
+// value() and value_and_gradient() agree bit for bit.
+template <bool kGradient>
+void trilinear(const double c[8], const double f[3], double& value, Vec3* gradient) {
+  const double x0 = 1 - f[0], y0 = 1 - f[1], z0 = 1 - f[2];
+  const double c00 = c[0] * x0 + c[1] * f[0], c10 = c[2] * x0 + c[3] * f[0];
+  const double c01 = c[4] * x0 + c[5] * f[0], c11 = c[6] * x0 + c[7] * f[0];
+  const double c0 = c00 * y0 + c10 * f[1], c1 = c01 * y0 + c11 * f[1];
+  value = c0 * z0 + c1 * f[2];
+  if constexpr (kGradient) {
+    gradient->z() = c1 - c0;
+    gradient->y() = (c10 - c00) * z0 + (c11 - c01) * f[2];
+    const double dx00 = c[1] - c[0], dx10 = c[3] - c[2], dx01 = c[5] - c[4], dx11 = c[7] - c[6];
+    gradient->x() = (dx00 * y0 + dx10 * f[1]) * z0 + (dx01 * y0 + dx11 * f[1]) * f[2];
+  }
 }
 
 // Cell index and fraction along one axis for a coordinate u in grid units, clamped to [0, n−1].
@@ -167,41 +194,37 @@ double DistanceField::far_sample(int i, int j, int k) const {
                        int64_t(coarse_dims_.x()) * ((cell[1] + ((q >> 1) & 1)) + int64_t(coarse_dims_.y()) * (cell[2] + (q >> 2)));
     corners[q] = (*coarse_)[at];
   }
-  return trilinear(corners, Vec3(frac[0], frac[1], frac[2])).value;
+  double value;
+  trilinear<false>(corners, frac, value, nullptr);
+  return value;
 }
 
-FieldValueGradient DistanceField::inside_grid(const Vec3& p) const {
+template <bool kGradient>
+void DistanceField::inside_grid(const Vec3& p, double& value, Vec3* gradient) const {
   const Vec3 u = (p - origin_) / h_;
   int cell[3];
   double frac[3];
   for (int d = 0; d < 3; ++d) locate(u[d], dims_[d], cell[d], frac[d]);
-  const Vec3 f(frac[0], frac[1], frac[2]);
-  double corners[8];
-  int finite = 0;
-  for (int q = 0; q < 8; ++q) {
-    corners[q] = fine(cell[0] + (q & 1), cell[1] + ((q >> 1) & 1), cell[2] + (q >> 2));
-    finite += corners[q] != std::numeric_limits<double>::infinity();
-  }
-  if (finite == 0) {
+  const int64_t base = index(cell[0], cell[1], cell[2]);
+  if ((*flags_)[base] & kCellFar) {
     // Every corner is beyond the band: the samples there are the coarse interpolant, which is
     // trilinear over the whole coarse cell, so interpolating it directly gives the same value.
     int cc[3];
     double cf[3];
     for (int d = 0; d < 3; ++d) locate(u[d] / coarse_factor_, coarse_dims_[d], cc[d], cf[d]);
-    for (int q = 0; q < 8; ++q)
-      corners[q] = (*coarse_)[(cc[0] + (q & 1)) + int64_t(coarse_dims_.x()) *
-                                                      ((cc[1] + ((q >> 1) & 1)) + int64_t(coarse_dims_.y()) * (cc[2] + (q >> 2)))];
-    FieldValueGradient out = trilinear(corners, Vec3(cf[0], cf[1], cf[2]));
-    out.gradient /= coarse_factor_ * h_;
-    return out;
+    const int64_t cy = coarse_dims_.x(), cz = int64_t(coarse_dims_.x()) * coarse_dims_.y();
+    const double* s = coarse_->data() + (cc[0] + cy * (cc[1] + int64_t(coarse_dims_.y()) * cc[2]));
+    const double corners[8] = {s[0], s[1], s[cy], s[cy + 1], s[cz], s[cz + 1], s[cz + cy], s[cz + cy + 1]};
+    trilinear<kGradient>(corners, cf, value, gradient);
+    if constexpr (kGradient) *gradient /= coarse_factor_ * h_;
+    return;
   }
-  if (finite < 8)
-    for (int q = 0; q < 8; ++q)
-      if (corners[q] == std::numeric_limits<double>::infinity())
-        corners[q] = far_sample(cell[0] + (q & 1), cell[1] + ((q >> 1) & 1), cell[2] + (q >> 2));
-  FieldValueGradient out = trilinear(corners, f);
-  out.gradient /= h_;
-  return out;
+  // Band samples and far samples alike (samples_ holds both).
+  const int64_t dy = dims_.x(), dz = int64_t(dims_.x()) * dims_.y();
+  const double* s = samples_->data() + base;
+  const double corners[8] = {s[0], s[1], s[dy], s[dy + 1], s[dz], s[dz + 1], s[dz + dy], s[dz + dy + 1]};
+  trilinear<kGradient>(corners, frac, value, gradient);
+  if constexpr (kGradient) *gradient /= h_;
 }
 
 FieldValueGradient DistanceField::value_and_gradient(const Vec3& p) const {
@@ -211,9 +234,10 @@ FieldValueGradient DistanceField::value_and_gradient(const Vec3& p) const {
     const double nan = std::numeric_limits<double>::quiet_NaN();
     return {nan, Vec3::Constant(nan)};
   }
-  const Vec3 hi = origin_ + h_ * (dims_ - Vec3i::Ones()).cast<double>();
-  const Vec3 q = p.cwiseMax(origin_).cwiseMin(hi);
-  FieldValueGradient out = inside_grid(q);
+  const Vec3 q = p.cwiseMax(origin_).cwiseMin(upper_);
+  FieldValueGradient out;
+  inside_grid<true>(q, out.value, &out.gradient);
+  if (q == p) return out;
   const Vec3 outside = p - q;
   const double distance = outside.norm();
   if (distance > 0) {
@@ -227,7 +251,17 @@ FieldValueGradient DistanceField::value_and_gradient(const Vec3& p) const {
   return out;
 }
 
-double DistanceField::value(const Vec3& p) const { return value_and_gradient(p).value; }
+double DistanceField::value(const Vec3& p) const {
+  if (!p.allFinite()) return std::numeric_limits<double>::quiet_NaN();
+  const Vec3 q = p.cwiseMax(origin_).cwiseMin(upper_);
+  double value;
+  inside_grid<false>(q, value, nullptr);
+  if (q == p) return value;
+  const double distance = (p - q).norm();  // as value_and_gradient: the same bits
+  if (distance > 0) value += (value < 0 ? -1.0 : 1.0) * distance;
+  return value;
+}
+
 Vec3 DistanceField::gradient(const Vec3& p) const { return value_and_gradient(p).gradient; }
 
 }  // namespace hairfit
