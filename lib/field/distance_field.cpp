@@ -130,19 +130,55 @@ void DistanceField::finish(std::vector<double> band_values, int threads) {
       }
   });
   std::vector<std::uint8_t> flags(in_band.size(), 0);
-  const int64_t dy = nx, dz = int64_t(nx) * ny;
   parallel_for(nz, threads, [&](int k) {
     for (int j = 0; j < ny; ++j)
       for (int i = 0; i < nx; ++i) {
         const int64_t at = index(i, j, k);
         flags[at] = in_band[at];
-        if (i + 1 == nx || j + 1 == ny || k + 1 == nz) continue;  // no cell has this lowest corner
-        const std::uint8_t* c = in_band.data() + at;
-        if (!(c[0] | c[1] | c[dy] | c[dy + 1] | c[dz] | c[dz + 1] | c[dz + dy] | c[dz + dy + 1])) flags[at] |= kCellFar;
+        if (i + 1 < nx && j + 1 < ny && k + 1 < nz) flags[at] |= cell_side(i, j, k, in_band, band_values);
       }
   });
   samples_ = std::make_shared<const std::vector<double>>(std::move(band_values));
   flags_ = std::make_shared<const std::vector<std::uint8_t>>(std::move(flags));
+}
+
+// kCellFar and the side flags of the cell with lowest node (i, j, k), from the samples its
+// lookups read: its 8 corners, or, when none is in the band, the coarse grid's nodes around it.
+std::uint8_t DistanceField::cell_side(int i, int j, int k, const std::vector<std::uint8_t>& in_band,
+                                      const std::vector<double>& samples) const {
+  constexpr double kTiny = 1e-290;  // products with interpolation weights stay normal numbers
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  bool any_in_band = false;
+  for (int q = 0; q < 8; ++q) {
+    const int64_t at = index(i + (q & 1), j + ((q >> 1) & 1), k + (q >> 2));
+    any_in_band = any_in_band || in_band[at];
+    lo = std::min(lo, samples[at]);
+    hi = std::max(hi, samples[at]);
+  }
+  std::uint8_t flags = 0;
+  if (!any_in_band) {
+    // A lookup in this cell interpolates the coarse cell locate(u / c) picks; u / c rounds, so it
+    // may be the next coarse cell along an axis when the fine cell ends on a coarse node: take
+    // every coarse node of every cell it can pick.
+    flags = kCellFar;
+    const int c = coarse_factor_, idx[3] = {i, j, k};
+    int first[3], last[3];
+    for (int d = 0; d < 3; ++d) {
+      first[d] = std::min(static_cast<int>(double(idx[d]) / c), coarse_dims_[d] - 2);
+      last[d] = std::min(static_cast<int>(double(idx[d] + 1) / c), coarse_dims_[d] - 2) + 1;
+    }
+    lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (int z = first[2]; z <= last[2]; ++z)
+      for (int y = first[1]; y <= last[1]; ++y)
+        for (int x = first[0]; x <= last[0]; ++x) {
+          const double v = (*coarse_)[x + int64_t(coarse_dims_.x()) * (y + int64_t(coarse_dims_.y()) * z)];
+          lo = std::min(lo, v);
+          hi = std::max(hi, v);
+        }
+  }
+  if (lo > kTiny) flags |= kCellPositive;
+  if (hi < -kTiny) flags |= kCellNegative;
+  return flags;
 }
 
 bool DistanceField::in_band(int i, int j, int k) const { return (*flags_)[index(i, j, k)] & kInBand; }
@@ -199,13 +235,17 @@ double DistanceField::far_sample(int i, int j, int k) const {
   return value;
 }
 
+int64_t DistanceField::cell_of(const Vec3& u, double frac[3]) const {
+  int cell[3];
+  for (int d = 0; d < 3; ++d) locate(u[d], dims_[d], cell[d], frac[d]);
+  return index(cell[0], cell[1], cell[2]);
+}
+
 template <bool kGradient>
 void DistanceField::inside_grid(const Vec3& p, double& value, Vec3* gradient) const {
   const Vec3 u = (p - origin_) / h_;
-  int cell[3];
   double frac[3];
-  for (int d = 0; d < 3; ++d) locate(u[d], dims_[d], cell[d], frac[d]);
-  const int64_t base = index(cell[0], cell[1], cell[2]);
+  const int64_t base = cell_of(u, frac);
   if ((*flags_)[base] & kCellFar) {
     // Every corner is beyond the band: the samples there are the coarse interpolant, which is
     // trilinear over the whole coarse cell, so interpolating it directly gives the same value.
@@ -260,6 +300,20 @@ double DistanceField::value(const Vec3& p) const {
   const double distance = (p - q).norm();  // as value_and_gradient: the same bits
   if (distance > 0) value += (value < 0 ? -1.0 : 1.0) * distance;
   return value;
+}
+
+int DistanceField::side(const Vec3& p) const {
+  if (!p.allFinite()) return 0;
+  // The cell inside_grid would read, as cell_of finds it (beyond the grid, value() only adds to
+  // the magnitude): spelled out here without the fractions, as this is the whole cost of side().
+  int64_t at = 0, stride = 1;
+  for (int d = 0; d < 3; ++d) {
+    const double u = std::clamp((std::clamp(p[d], origin_[d], upper_[d]) - origin_[d]) / h_, 0.0, double(dims_[d] - 1));
+    at += stride * std::min(static_cast<int>(u), dims_[d] - 2);
+    stride *= dims_[d];
+  }
+  const std::uint8_t f = (*flags_)[at];
+  return (f & kCellPositive) ? 1 : (f & kCellNegative) ? -1 : 0;
 }
 
 Vec3 DistanceField::gradient(const Vec3& p) const { return value_and_gradient(p).gradient; }

@@ -63,6 +63,11 @@ class DistanceField {
   double value(const Vec3& p) const;
   Vec3 gradient(const Vec3& p) const;
   FieldValueGradient value_and_gradient(const Vec3& p) const;
+  // Which side of the surface p lies on, when the samples alone decide it: +1 where value(p) > 0
+  // and −1 where value(p) < 0 for certain (every sample the interpolation at p reads lies on that
+  // side, beyond 1e-290 cm), 0 where only value(p) can tell (near the surface; non-finite p).
+  // Several times cheaper than value(), for callers that need only the sign.
+  int side(const Vec3& p) const;
 
   // Bytes of the field's samples (fine grid + coarse far-field grid). The lookup flags (one byte
   // per fine node, see below) are not counted: the figure is the one the reports have always shown.
@@ -77,12 +82,16 @@ class DistanceField {
   void finish(std::vector<double> band_values, int threads);
   template <bool kGradient>
   void inside_grid(const Vec3& p, double& value, Vec3* gradient) const;  // p within the grid box
+  int64_t cell_of(const Vec3& u, double frac[3]) const;  // lowest node of the cell at u (grid units, clamped)
+  std::uint8_t cell_side(int i, int j, int k, const std::vector<std::uint8_t>& in_band,
+                         const std::vector<double>& samples) const;  // kCellPositive, kCellNegative or 0
   double far_sample(int i, int j, int k) const;
   int64_t index(int i, int j, int k) const { return i + int64_t(dims_.x()) * (j + int64_t(dims_.y()) * k); }
 
   // flags_ bits: the node is in the band; the cell whose lowest corner is this node has all 8
-  // corners beyond the band (its lookups interpolate the coarse grid directly).
-  static constexpr std::uint8_t kInBand = 1, kCellFar = 2;
+  // corners beyond the band (its lookups interpolate the coarse grid directly); every sample its
+  // lookups read is > 1e-290 (positive) or < −1e-290 (negative), so the value has that sign.
+  static constexpr std::uint8_t kInBand = 1, kCellFar = 2, kCellPositive = 4, kCellNegative = 8;
 
   Vec3 origin_ = Vec3::Zero();
   double h_ = 1.0;

@@ -220,7 +220,7 @@ FieldValueGradient reference_lookup(const DistanceField& f, const Vec3& p) {
   return out;
 }
 
-TEST_CASE("lookups: value() is value_and_gradient()'s value bit for bit, both the interpolant of the samples") {
+TEST_CASE("lookups: value() is value_and_gradient()'s value bit for bit, both the interpolant of the samples; side() its sign") {
   const Mesh mesh = test::messy_sphere(2, 1.0);
   const DistanceField f = make_distance_field(mesh, spec_for(0.05, 2, 1.5), 2);
   const Vec3 upper = f.origin() + f.voxel() * (f.dims() - Vec3i::Ones()).cast<double>();
@@ -229,19 +229,26 @@ TEST_CASE("lookups: value() is value_and_gradient()'s value bit for bit, both th
     state = state * 6364136223846793005ULL + 1442695040888963407ULL;
     return double(state >> 11) / double(1ULL << 53);
   };
-  int exact = 0, all_far = 0;
+  int exact = 0, all_far = 0, decided = 0;
   for (int n = 0; n < 20000; ++n) {
     // Points near the sphere, over the grid and up to a quarter of its size beyond it; every 10th
-    // on a grid node or face (fractions 0 and the clamps' upper edge).
+    // on a grid node or face (fractions 0 and the clamps' upper edge), every 10th just below one
+    // (where u / coarse factor may round up to the next coarse cell).
     Vec3 p;
     for (int d = 0; d < 3; ++d) {
       const double span = upper[d] - f.origin()[d];
       p[d] = n % 2 ? f.origin()[d] - 0.25 * span + 1.5 * span * next() : 2.4 * next() - 1.2;  // half near the sphere
       if (n % 10 == 0) p[d] = f.origin()[d] + f.voxel() * std::floor(next() * f.dims()[d]);
+      if (n % 10 == 5) p[d] = f.origin()[d] + f.voxel() * (std::floor(next() * f.dims()[d]) - 1e-13);  // just below
     }
     const FieldValueGradient fast = f.value_and_gradient(p);
     const double value = f.value(p);
     REQUIRE(std::memcmp(&value, &fast.value, sizeof value) == 0);
+    const int side = f.side(p);
+    if (side != 0) {
+      CHECK(side * value > 0.0);  // strictly on that side
+      ++decided;
+    }
     const FieldValueGradient ref = reference_lookup(f, p);
     // Where no corner of the cell is in the band, the lookup interpolates the coarse grid
     // directly (the same trilinear function, other round-off): equal to ~1e-12 cm, not bit for bit.
@@ -263,6 +270,7 @@ TEST_CASE("lookups: value() is value_and_gradient()'s value bit for bit, both th
   }
   CHECK(exact > 1000);
   CHECK(all_far > 1000);
+  CHECK(decided > 15000);
   const double nan = std::numeric_limits<double>::quiet_NaN();
   CHECK(std::isnan(f.value(Vec3(nan, 0, 0))));
   CHECK(std::isnan(f.value_and_gradient(Vec3(0, std::numeric_limits<double>::infinity(), 0)).value));
