@@ -484,10 +484,9 @@ class Runner {
   void density(StageReport& stage) {
     StageValues& v = result_.values;
     const GridGeometry grid = density_geometry(scene_, inputs_.volume.mesh);
-    const std::vector<std::vector<Vec3>> fibres = fibre_lists();
     DensityAccumulator accumulator(grid);
     std::vector<std::int32_t> segment_counts;  // the histogram's, from the deposit's traversal
-    accumulator.add_fibres(fibres, options_.threads, &segment_counts);
+    accumulator.add_fibres(v.strands->fibres, options_.threads, &segment_counts);
     v.fibre_density = std::make_shared<const DensityGrid>(std::move(accumulator).freeze());
     // Boundary::acceptable(p), asking the volume first (most cells of the grid's box lie outside
     // it, and those then need no scalp lookup) and each field's side() before its value (the
@@ -516,18 +515,10 @@ class Runner {
               static_cast<std::int64_t>(histogram_->cells_with.empty() ? 0 : histogram_->cells_with.size() - 1));
   }
 
-  std::vector<std::vector<Vec3>> fibre_lists() const {
-    const Curves& curves = result_.values.strands->fibres;
-    std::vector<std::vector<Vec3>> fibres(curves.count());
-    parallel_for(static_cast<int>(curves.count()), options_.threads, [&](int c) {
-      fibres[c].assign(curves.points.begin() + curves.offsets[c], curves.points.begin() + curves.offsets[c + 1]);
-    });
-    return fibres;
-  }
-
   void write_density() {
     if (!histogram_)  // a cached stage: recomputed from the fibres rather than stored
-      histogram_ = segment_histogram(density_geometry(scene_, inputs_.volume.mesh), fibre_lists(), options_.threads);
+      histogram_ = segment_histogram_of_curves(density_geometry(scene_, inputs_.volume.mesh),
+                                               result_.values.strands->fibres, options_.threads);
     output("density/histogram.csv", [&](const fs::path& p) { write_text_file_atomically(p, histogram_csv(*histogram_)); });
     // Centre sagittal slice (Fig. 6): normal = the head's left–right axis = front × up.
     const Vec3 up = -scene_.units.down;
