@@ -3,6 +3,7 @@
 #include <tiny_obj_loader.h>
 
 #include <array>
+#include <charconv>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -12,6 +13,7 @@
 
 #include "core/error.h"
 #include "io/atomic_file.h"
+#include "io/number_text.h"
 
 namespace hairfit {
 
@@ -184,32 +186,38 @@ LoadedMesh load_obj_mesh(const std::filesystem::path& path, double scale_to_cm) 
 
 void write_obj_mesh(const std::filesystem::path& path, const Mesh& mesh,
                     const std::vector<Vec2>& texture_coordinates, const std::vector<Vec3>& colors) {
-  write_file_atomically(path, [&](std::ostream& out) {
-    char buffer[160];
-    const bool with_colors = colors.size() == mesh.positions.size();
-    for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
-      const Vec3& p = mesh.positions[i];
-      if (with_colors)
-        std::snprintf(buffer, sizeof buffer, "v %.9g %.9g %.9g %.4g %.4g %.4g\n", p.x(), p.y(), p.z(), colors[i].x(),
-                      colors[i].y(), colors[i].z());
-      else
-        std::snprintf(buffer, sizeof buffer, "v %.9g %.9g %.9g\n", p.x(), p.y(), p.z());
-      out << buffer;
+  // Built in memory and written once; numbers as printf's %.9g / %.4g / %d would write them.
+  std::string text;
+  char buffer[48];
+  auto number = [&](double v, int precision) { text.append(buffer, format_general(buffer, v, precision)); };
+  auto index = [&](int i) { text.append(buffer, std::to_chars(buffer, buffer + sizeof buffer, i).ptr); };
+  const bool with_colors = colors.size() == mesh.positions.size();
+  for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+    const Vec3& p = mesh.positions[i];
+    text += "v";
+    for (int k = 0; k < 3; ++k) text += ' ', number(p[k], 9);
+    if (with_colors)
+      for (int k = 0; k < 3; ++k) text += ' ', number(colors[i][k], 4);
+    text += '\n';
+  }
+  for (const Vec2& uv : texture_coordinates) {
+    text += "vt ";
+    number(uv.x(), 9);
+    text += ' ';
+    number(uv.y(), 9);
+    text += '\n';
+  }
+  const bool with_uv = texture_coordinates.size() == mesh.positions.size();
+  for (const Vec3i& t : mesh.triangles) {
+    text += 'f';
+    for (int k = 0; k < 3; ++k) {
+      text += ' ';
+      index(t[k] + 1);
+      if (with_uv) text += '/', index(t[k] + 1);
     }
-    for (const Vec2& uv : texture_coordinates) {
-      std::snprintf(buffer, sizeof buffer, "vt %.9g %.9g\n", uv.x(), uv.y());
-      out << buffer;
-    }
-    const bool with_uv = texture_coordinates.size() == mesh.positions.size();
-    for (const Vec3i& t : mesh.triangles) {
-      if (with_uv)
-        std::snprintf(buffer, sizeof buffer, "f %d/%d %d/%d %d/%d\n", t[0] + 1, t[0] + 1, t[1] + 1,
-                      t[1] + 1, t[2] + 1, t[2] + 1);
-      else
-        std::snprintf(buffer, sizeof buffer, "f %d %d %d\n", t[0] + 1, t[1] + 1, t[2] + 1);
-      out << buffer;
-    }
-  });
+    text += '\n';
+  }
+  write_text_file_atomically(path, text);
 }
 
 }  // namespace hairfit
