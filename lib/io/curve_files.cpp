@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/parallel.h"
 #include "io/atomic_file.h"
 #include "io/number_text.h"
 
@@ -162,24 +163,37 @@ Curves read_hair_file(const std::filesystem::path& path) {
   return curves;
 }
 
-void write_obj_curves(const std::filesystem::path& path, const Curves& curves) {
+void write_obj_curves(const std::filesystem::path& path, const Curves& curves, int threads) {
   require_finite(curves, path);
-  write_file_atomically(path, [&](std::ostream& out) {
-    Text text;
-    text << "# hairfit curves: ";
-    text.integer(curves.count()) << " curves, ";
-    text.integer(curves.points.size()) << " points\n";
-    for (const Vec3& p : curves.points) {
-      text << "v ";
-      text.point(p, " ") << "\n";
+  // The `v` lines in blocks of points, then the `l` lines in blocks of curves, each block's text
+  // formatted on its own (in parallel) and written in order.
+  constexpr std::size_t kPoints = 8192, kCurves = 2048;
+  const std::size_t point_blocks = (curves.points.size() + kPoints - 1) / kPoints;
+  const std::size_t curve_blocks = (curves.count() + kCurves - 1) / kCurves;
+  std::vector<Text> blocks(1 + point_blocks + curve_blocks);
+  blocks[0] << "# hairfit curves: ";
+  blocks[0].integer(curves.count()) << " curves, ";
+  blocks[0].integer(curves.points.size()) << " points\n";
+  parallel_for(static_cast<int>(point_blocks + curve_blocks), threads, [&](int b) {
+    Text& text = blocks[1 + b];
+    if (static_cast<std::size_t>(b) < point_blocks) {
+      const std::size_t end = std::min(curves.points.size(), (b + 1) * kPoints);
+      for (std::size_t i = b * kPoints; i < end; ++i) {
+        text << "v ";
+        text.point(curves.points[i], " ") << "\n";
+      }
+      return;
     }
-    for (std::size_t c = 0; c < curves.count(); ++c)
+    const std::size_t first = (b - point_blocks) * kCurves, last = std::min(curves.count(), first + kCurves);
+    for (std::size_t c = first; c < last; ++c)
       for (std::uint32_t i = curves.offsets[c]; i + 1 < curves.offsets[c + 1]; ++i) {
         text << "l ";
         text.integer(i + 1) << " ";
         text.integer(i + 2) << "\n";
       }
-    text.write_to(out);
+  });
+  write_file_atomically(path, [&](std::ostream& out) {
+    for (const Text& text : blocks) text.write_to(out);
   });
 }
 

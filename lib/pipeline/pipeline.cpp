@@ -357,7 +357,7 @@ class Runner {
     const PreGuides& preguides = *result_.values.preguides;
     Curves curves;
     for (int i = 0; i < preguides.size(); ++i) curves.add(preguides.items[i].shape.nodes, i);
-    output("preguides.obj", [&](const fs::path& p) { write_obj_curves(p, curves); });
+    output("preguides.obj", [&](const fs::path& p) { write_obj_curves(p, curves, options_.threads); });
   }
 
   // The fibres' pores: one fibre per pore, grown along its cluster's guide.
@@ -411,7 +411,7 @@ class Runner {
 
   void write_guides() {
     const Guides& guides = *result_.values.guides;
-    output("guides.obj", [&](const fs::path& p) { write_obj_curves(p, guides.curves()); });
+    output("guides.obj", [&](const fs::path& p) { write_obj_curves(p, guides.curves(), options_.threads); });
     output("guides.csv", [&](const fs::path& p) { write_guides_csv(p, guides); });
   }
 
@@ -468,7 +468,7 @@ class Runner {
       auto write = [&](const std::string& base, const Curves& curves) {
         output(base + "." + format, [&](const fs::path& p) {
           if (format == "hair") write_hair_file(p, curves, "hairfit " + base);
-          else if (format == "obj") write_obj_curves(p, curves);
+          else if (format == "obj") write_obj_curves(p, curves, options_.threads);
           else if (format == "usda") write_usda_curves(p, curves, 0.007, -scene_.units.down);
           else write_ply_curves(p, curves);
         });

@@ -109,7 +109,7 @@ TEST_CASE("OBJ curves: one v per point and one two-index l per segment, root fir
   CHECK(text.find("v 1 0 0\n") != std::string::npos);  // the first root, exactly
 }
 
-TEST_CASE("OBJ curves: every byte as printf writes it, also for files far larger than a buffer") {
+TEST_CASE("OBJ curves: every byte as printf writes it, for large files and any thread count") {
   // 40 000 points (over a megabyte of text, so the in-memory text grows many times).
   Curves c;
   for (int k = 0; k < 2000; ++k) {
@@ -118,7 +118,6 @@ TEST_CASE("OBJ curves: every byte as printf writes it, also for files far larger
       pts.emplace_back(std::cos(0.37 * i + k) * (k + 1) * 1e-3, 1e4 * std::sin(0.11 * i * k), -0.5 * i + 1e-7 * k);
     c.add(pts, k);
   }
-  write_obj_curves(temp("big.obj"), c);
   std::string expected = "# hairfit curves: 2000 curves, 40000 points\n";
   char line[128];
   for (const Vec3& p : c.points) {
@@ -130,7 +129,10 @@ TEST_CASE("OBJ curves: every byte as printf writes it, also for files far larger
       std::snprintf(line, sizeof line, "l %u %u\n", i + 1, i + 2);
       expected += line;
     }
-  CHECK(slurp(temp("big.obj")) == expected);
+  for (int threads : {1, 2, 3}) {  // formatted in blocks on several threads: the same bytes
+    write_obj_curves(temp("big.obj"), c, threads);
+    CHECK(slurp(temp("big.obj")) == expected);
+  }
 }
 
 TEST_CASE("USDA: linear BasisCurves whose counts, points, widths and extent match the curves") {
