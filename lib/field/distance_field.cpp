@@ -117,78 +117,6 @@ DistanceField make_distance_field(const Mesh& mesh, const FieldSpec& spec, int t
   return out;
 }
 
-void DistanceField::finish(std::vector<double> band_values, int threads) {
-  upper_ = origin_ + h_ * (dims_ - Vec3i::Ones()).cast<double>();
-  const int nx = dims_.x(), ny = dims_.y(), nz = dims_.z();
-  std::vector<std::uint8_t> in_band(band_values.size(), 0);
-  parallel_for(nz, threads, [&](int k) {
-    for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i) {
-        const int64_t at = index(i, j, k);
-        if (band_values[at] != std::numeric_limits<double>::infinity()) in_band[at] = kInBand;
-        else band_values[at] = far_sample(i, j, k);
-      }
-  });
-  std::vector<std::uint8_t> flags(in_band.size(), 0);
-  parallel_for(nz, threads, [&](int k) {
-    for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i) {
-        const int64_t at = index(i, j, k);
-        flags[at] = in_band[at];
-        if (i + 1 < nx && j + 1 < ny && k + 1 < nz) flags[at] |= cell_side(i, j, k, in_band, band_values);
-      }
-  });
-  samples_ = std::make_shared<const std::vector<double>>(std::move(band_values));
-  flags_ = std::make_shared<const std::vector<std::uint8_t>>(std::move(flags));
-}
-
-// kCellFar and the side flags of the cell with lowest node (i, j, k), from the samples its
-// lookups read: its 8 corners, or, when none is in the band, the coarse grid's nodes around it.
-std::uint8_t DistanceField::cell_side(int i, int j, int k, const std::vector<std::uint8_t>& in_band,
-                                      const std::vector<double>& samples) const {
-  constexpr double kTiny = 1e-290;  // products with interpolation weights stay normal numbers
-  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-  bool any_in_band = false;
-  for (int q = 0; q < 8; ++q) {
-    const int64_t at = index(i + (q & 1), j + ((q >> 1) & 1), k + (q >> 2));
-    any_in_band = any_in_band || in_band[at];
-    lo = std::min(lo, samples[at]);
-    hi = std::max(hi, samples[at]);
-  }
-  std::uint8_t flags = 0;
-  if (!any_in_band) {
-    // A lookup in this cell interpolates the coarse cell locate(u / c) picks; u / c rounds, so it
-    // may be the next coarse cell along an axis when the fine cell ends on a coarse node: take
-    // every coarse node of every cell it can pick.
-    flags = kCellFar;
-    const int c = coarse_factor_, idx[3] = {i, j, k};
-    int first[3], last[3];
-    for (int d = 0; d < 3; ++d) {
-      first[d] = std::min(static_cast<int>(double(idx[d]) / c), coarse_dims_[d] - 2);
-      last[d] = std::min(static_cast<int>(double(idx[d] + 1) / c), coarse_dims_[d] - 2) + 1;
-    }
-    lo = std::numeric_limits<double>::infinity(), hi = -lo;
-    for (int z = first[2]; z <= last[2]; ++z)
-      for (int y = first[1]; y <= last[1]; ++y)
-        for (int x = first[0]; x <= last[0]; ++x) {
-          const double v = (*coarse_)[x + int64_t(coarse_dims_.x()) * (y + int64_t(coarse_dims_.y()) * z)];
-          lo = std::min(lo, v);
-          hi = std::max(hi, v);
-        }
-  }
-  if (lo > kTiny) flags |= kCellPositive;
-  if (hi < -kTiny) flags |= kCellNegative;
-  return flags;
-}
-
-bool DistanceField::in_band(int i, int j, int k) const { return (*flags_)[index(i, j, k)] & kInBand; }
-
-double DistanceField::sample(int i, int j, int k) const { return (*samples_)[index(i, j, k)]; }
-
-int64_t DistanceField::memory_bytes() const {
-  return int64_t(sizeof(double)) * int64_t(samples_->size() + coarse_->size());
-}
-
 namespace {
 
 // Trilinear interpolation of the 8 corner values c[x + 2y + 4z] at fractions f ∈ [0,1]³, and
@@ -218,22 +146,110 @@ void locate(double u, int n, int& cell, double& frac) {
 
 }  // namespace
 
-double DistanceField::far_sample(int i, int j, int k) const {
+void DistanceField::finish(std::vector<double> values, int threads) {
+  upper_ = origin_ + h_ * (dims_ - Vec3i::Ones()).cast<double>();
+  const int nx = dims_.x(), ny = dims_.y(), nz = dims_.z();
+  const int64_t dy = nx, dz = int64_t(nx) * ny;
   const int c = coarse_factor_;
-  int cell[3];
-  double frac[3];
-  const int idx[3] = {i, j, k};
-  for (int d = 0; d < 3; ++d) locate(double(idx[d]) / c, coarse_dims_[d], cell[d], frac[d]);
-  double corners[8];
-  for (int q = 0; q < 8; ++q) {
-    const int64_t at = (cell[0] + (q & 1)) +
-                       int64_t(coarse_dims_.x()) * ((cell[1] + ((q >> 1) & 1)) + int64_t(coarse_dims_.y()) * (cell[2] + (q >> 2)));
-    corners[q] = (*coarse_)[at];
+  const int64_t cdx = coarse_dims_.x(), cdy = coarse_dims_.y();
+  const std::vector<double>& coarse = *coarse_;
+  // Per axis and fine index: the coarse cell and fraction at which the node interpolates the
+  // coarse grid (locate(index / c)), and the coarse cells a lookup in the fine cell from this index
+  // may read (index / c rounds, so also the next one where the fine cell ends on a coarse node).
+  struct Axis {
+    std::vector<int> cell, first;
+    std::vector<char> one;  // the first candidate is the only one
+    std::vector<double> frac;
+  } axes[3];
+  for (int d = 0; d < 3; ++d) {
+    Axis& a = axes[d];
+    a.cell.resize(dims_[d]), a.frac.resize(dims_[d]), a.first.resize(dims_[d]), a.one.resize(dims_[d]);
+    for (int n = 0; n < dims_[d]; ++n) {
+      locate(double(n) / c, coarse_dims_[d], a.cell[n], a.frac[n]);
+      a.first[n] = std::min(static_cast<int>(double(n) / c), coarse_dims_[d] - 2);
+      a.one[n] = std::min(static_cast<int>(double(n + 1) / c), coarse_dims_[d] - 2) == a.first[n];
+    }
   }
-  double value;
-  trilinear<false>(corners, frac, value, nullptr);
-  return value;
+  // Beyond the band: the trilinear interpolation of the coarse grid at the node.
+  std::vector<std::uint8_t> in_band(values.size(), 0);
+  parallel_for(nz, threads, [&](int k) {
+    const double fz = axes[2].frac[k];
+    for (int j = 0; j < ny; ++j) {
+      const double fy = axes[1].frac[j];
+      const int64_t row = index(0, j, k), coarse_yz = cdx * (axes[1].cell[j] + cdy * axes[2].cell[k]);
+      for (int i = 0; i < nx; ++i) {
+        if (values[row + i] != std::numeric_limits<double>::infinity()) {
+          in_band[row + i] = kInBand;
+          continue;
+        }
+        const double* s = coarse.data() + coarse_yz + axes[0].cell[i];
+        const double corners[8] = {s[0], s[1], s[cdx], s[cdx + 1], s[cdx * cdy], s[cdx * cdy + 1], s[cdx * cdy + cdx],
+                                   s[cdx * cdy + cdx + 1]};
+        const double frac[3] = {axes[0].frac[i], fy, fz};
+        trilinear<false>(corners, frac, values[row + i], nullptr);
+      }
+    }
+  });
+  // The lowest and highest node of every coarse cell, and of every block of 2×2×2 coarse cells
+  // (clamped to the grid): a far fine cell reads the coarse cell at its first candidate, or, where
+  // it ends on a coarse node, possibly the next one, within the block.
+  const int64_t cdz = coarse_dims_.z();
+  std::vector<double> cell_lo(coarse.size()), cell_hi(coarse.size()), block_lo(coarse.size()), block_hi(coarse.size());
+  for (int64_t z = 0; z < cdz; ++z)
+    for (int64_t y = 0; y < cdy; ++y)
+      for (int64_t x = 0; x < cdx; ++x)
+        for (int64_t reach : {1, 2}) {
+          double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+          for (int64_t cz = z; cz <= std::min(z + reach, cdz - 1); ++cz)
+            for (int64_t cy = y; cy <= std::min(y + reach, cdy - 1); ++cy)
+              for (int64_t cx = x; cx <= std::min(x + reach, cdx - 1); ++cx) {
+                lo = std::min(lo, coarse[cx + cdx * (cy + cdy * cz)]);
+                hi = std::max(hi, coarse[cx + cdx * (cy + cdy * cz)]);
+              }
+          (reach == 1 ? cell_lo : block_lo)[x + cdx * (y + cdy * z)] = lo;
+          (reach == 1 ? cell_hi : block_hi)[x + cdx * (y + cdy * z)] = hi;
+        }
+  // Flags of each cell (lowest node (i, j, k)), from the samples its lookups read: its 8 corners,
+  // or, when none is in the band, (a superset of) the coarse nodes it may interpolate.
+  constexpr double kTiny = 1e-290;  // products with interpolation weights stay normal numbers
+  std::vector<std::uint8_t> flags(in_band.size(), 0);
+  parallel_for(nz, threads, [&](int k) {
+    for (int j = 0; j < ny; ++j) {
+      const int64_t row = index(0, j, k);
+      for (int i = 0; i < nx; ++i) flags[row + i] = in_band[row + i];
+      if (j + 1 == ny || k + 1 == nz) continue;  // no cell has these lowest nodes
+      for (int i = 0; i + 1 < nx; ++i) {
+        const int64_t at = row + i;
+        const std::uint8_t* b = in_band.data() + at;
+        double lo, hi;
+        if (b[0] | b[1] | b[dy] | b[dy + 1] | b[dz] | b[dz + 1] | b[dz + dy] | b[dz + dy + 1]) {
+          const double* s = values.data() + at;
+          lo = std::min({s[0], s[1], s[dy], s[dy + 1], s[dz], s[dz + 1], s[dz + dy], s[dz + dy + 1]});
+          hi = std::max({s[0], s[1], s[dy], s[dy + 1], s[dz], s[dz + 1], s[dz + dy], s[dz + dy + 1]});
+        } else {
+          flags[at] |= kCellFar;
+          const int64_t first = axes[0].first[i] + cdx * (axes[1].first[j] + cdy * axes[2].first[k]);
+          const bool one = axes[0].one[i] && axes[1].one[j] && axes[2].one[k];
+          lo = (one ? cell_lo : block_lo)[first];
+          hi = (one ? cell_hi : block_hi)[first];
+        }
+        if (lo > kTiny) flags[at] |= kCellPositive;
+        if (hi < -kTiny) flags[at] |= kCellNegative;
+      }
+    }
+  });
+  samples_ = std::make_shared<const std::vector<double>>(std::move(values));
+  flags_ = std::make_shared<const std::vector<std::uint8_t>>(std::move(flags));
 }
+
+bool DistanceField::in_band(int i, int j, int k) const { return (*flags_)[index(i, j, k)] & kInBand; }
+
+double DistanceField::sample(int i, int j, int k) const { return (*samples_)[index(i, j, k)]; }
+
+int64_t DistanceField::memory_bytes() const {
+  return int64_t(sizeof(double)) * int64_t(samples_->size() + coarse_->size());
+}
+
 
 int64_t DistanceField::cell_of(const Vec3& u, double frac[3]) const {
   int cell[3];

@@ -77,15 +77,13 @@ class DistanceField {
   friend DistanceField make_distance_field(const Mesh&, const FieldSpec&, int);
   friend struct StageCodecAccess;  // the stage cache (lib/pipeline/stage_codec.cpp) stores and restores it
   DistanceField() = default;  // built only by make_distance_field
-  // Fills every node beyond the band with far_sample() and sets the flags (the band's samples are
-  // given, +infinity elsewhere); `upper_` from the geometry. Called once the rest is set.
+  // Fills every node beyond the band with the coarse grid's interpolant and sets the flags (the
+  // band's samples are given, +infinity elsewhere); `upper_` from the geometry. Called once the
+  // rest is set.
   void finish(std::vector<double> band_values, int threads);
   template <bool kGradient>
   void inside_grid(const Vec3& p, double& value, Vec3* gradient) const;  // p within the grid box
   int64_t cell_of(const Vec3& u, double frac[3]) const;  // lowest node of the cell at u (grid units, clamped)
-  std::uint8_t cell_side(int i, int j, int k, const std::vector<std::uint8_t>& in_band,
-                         const std::vector<double>& samples) const;  // kCellPositive, kCellNegative or 0
-  double far_sample(int i, int j, int k) const;
   int64_t index(int i, int j, int k) const { return i + int64_t(dims_.x()) * (j + int64_t(dims_.y()) * k); }
 
   // flags_ bits: the node is in the band; the cell whose lowest corner is this node has all 8
@@ -99,7 +97,7 @@ class DistanceField {
   double band_cm_ = 0.0;
   int64_t band_voxels_ = 0;
   Vec3 upper_ = Vec3::Zero();  // the grid's far corner, origin + h·(dims − 1)
-  // Fine samples: the signed distance in the band, the coarse interpolant (far_sample) elsewhere,
+  // Fine samples: the signed distance in the band, the coarse grid's interpolant elsewhere,
   // so that a lookup reads its 8 corners without asking which kind each is.
   std::shared_ptr<const std::vector<double>> samples_;
   std::shared_ptr<const std::vector<std::uint8_t>> flags_;
