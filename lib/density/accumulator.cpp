@@ -11,9 +11,9 @@ namespace hairfit {
 
 namespace {
 
-void check_fibre(const std::vector<Vec3>& fibre, size_t item) {
-  for (size_t p = 0; p < fibre.size(); ++p) {
-    if (!fibre[p].allFinite()) {
+void check_fibre(const FibreSpan& fibre, size_t item) {
+  for (size_t p = 0; p < fibre.size; ++p) {
+    if (!fibre.points[p].allFinite()) {
       std::ostringstream m;
       m << "density: fibre " << item << " point " << p << " is not finite";
       throw std::invalid_argument(m.str());
@@ -24,15 +24,15 @@ void check_fibre(const std::vector<Vec3>& fibre, size_t item) {
 // Adds the CDM contributions of the fibres to the cells with k in [k_begin, k_end), in order,
 // and counts the crossing segments per cell when `counts` is given.
 void deposit_fibres(const GridGeometry& grid, std::vector<double>& values, std::int32_t* counts,
-                    const std::vector<std::vector<Vec3>>& fibres, int k_begin, int k_end) {
+                    const std::vector<FibreSpan>& fibres, const std::vector<FibreLayers>& layers, int k_begin, int k_end) {
   const double diagonal = grid.cell_diagonal();
   if (counts)
-    for_each_crossing_in_slab(grid, fibres, k_begin, k_end, [&](std::int64_t cell, double length) {
+    for_each_crossing_in_slab(grid, fibres, layers, k_begin, k_end, [&](std::int64_t cell, double length) {
       values[cell] += length / diagonal;
       ++counts[cell];
     });
   else
-    for_each_crossing_in_slab(grid, fibres, k_begin, k_end,
+    for_each_crossing_in_slab(grid, fibres, layers, k_begin, k_end,
                               [&](std::int64_t cell, double length) { values[cell] += length / diagonal; });
 }
 
@@ -80,22 +80,32 @@ double DensityAccumulator::cell(int i, int j, int k) const {
 }
 
 void DensityAccumulator::add_fibre(const std::vector<Vec3>& fibre) {
-  check_fibre(fibre, 0);
   // A one-element batch, so the single and the batch path are the same code.
-  deposit_fibres(geometry_, *values_, nullptr, {fibre}, 0, geometry_.dims.z());
+  add_spans({FibreSpan{fibre.data(), fibre.size()}}, 1, nullptr);
 }
 
 void DensityAccumulator::add_fibres(const std::vector<std::vector<Vec3>>& fibres, int threads,
                                     std::vector<std::int32_t>* segment_counts) {
+  add_spans(fibre_spans(fibres), threads, segment_counts);
+}
+
+void DensityAccumulator::add_fibres(const Curves& fibres, int threads, std::vector<std::int32_t>* segment_counts) {
+  add_spans(fibre_spans(fibres), threads, segment_counts);
+}
+
+void DensityAccumulator::add_spans(const std::vector<FibreSpan>& fibres, int threads,
+                                   std::vector<std::int32_t>* segment_counts) {
   for (size_t f = 0; f < fibres.size(); ++f) check_fibre(fibres[f], f);
+  const std::vector<FibreLayers> layers = fibre_layers(geometry_, fibres, threads);
   std::vector<double>& values = *values_;
   std::int32_t* counts = nullptr;
   if (segment_counts) {
     segment_counts->assign(size_t(geometry_.cell_count()), 0);
     counts = segment_counts->data();
   }
-  for_each_z_slab(geometry_, threads,
-                  [&](int k_begin, int k_end) { deposit_fibres(geometry_, values, counts, fibres, k_begin, k_end); });
+  for_each_z_slab(geometry_, threads, [&](int k_begin, int k_end) {
+    deposit_fibres(geometry_, values, counts, fibres, layers, k_begin, k_end);
+  });
 }
 
 void DensityAccumulator::occupy(const Tube& tube, OccupancyShape shape) {

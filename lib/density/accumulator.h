@@ -8,7 +8,9 @@
 #include <vector>
 
 #include "core/types.h"
+#include "core/curves.h"
 #include "density/grid.h"
+#include "density/slabs.h"
 #include "density/voxelise.h"
 
 namespace hairfit {
@@ -35,6 +37,8 @@ class DensityAccumulator {
   // into segment_histogram's result).
   void add_fibres(const std::vector<std::vector<Vec3>>& fibres, int threads = 1,
                   std::vector<std::int32_t>* segment_counts = nullptr);
+  // The same for curves stored end to end (Curves::points), read in place.
+  void add_fibres(const Curves& fibres, int threads = 1, std::vector<std::int32_t>* segment_counts = nullptr);
 
   // BOM (paper §3.5): every cell the tube occupies (frustum_cells per segment) becomes 1.
   void occupy(const Tube& tube, OccupancyShape shape = OccupancyShape::frustum);
@@ -49,6 +53,8 @@ class DensityAccumulator {
   DensityGrid freeze() &&;
 
  private:
+  void add_spans(const std::vector<FibreSpan>& fibres, int threads, std::vector<std::int32_t>* segment_counts);
+
   GridGeometry geometry_;
   std::shared_ptr<std::vector<double>> values_;
 };

@@ -28,4 +28,28 @@ void z_layers(const GridGeometry& grid, double z_lo, double z_hi, int& k_first, 
   k_last = int(std::min(std::max(b, -1.0), lim));
 }
 
+std::vector<FibreSpan> fibre_spans(const std::vector<std::vector<Vec3>>& fibres) {
+  std::vector<FibreSpan> spans(fibres.size());
+  for (std::size_t f = 0; f < fibres.size(); ++f) spans[f] = {fibres[f].data(), fibres[f].size()};
+  return spans;
+}
+
+std::vector<FibreSpan> fibre_spans(const Curves& fibres) {
+  std::vector<FibreSpan> spans(fibres.count());
+  for (std::size_t f = 0; f < spans.size(); ++f) spans[f] = {fibres.points.data() + fibres.offsets[f], fibres.size(f)};
+  return spans;
+}
+
+std::vector<FibreLayers> fibre_layers(const GridGeometry& grid, const std::vector<FibreSpan>& fibres, int threads) {
+  std::vector<FibreLayers> layers(fibres.size(), FibreLayers{0, -1});
+  parallel_for(static_cast<int>(fibres.size()), threads, [&](int f) {
+    const FibreSpan& fibre = fibres[f];
+    if (fibre.size == 0) return;
+    double z_lo = fibre.points[0].z(), z_hi = z_lo;
+    for (std::size_t p = 1; p < fibre.size; ++p) z_lo = std::min(z_lo, fibre.points[p].z()), z_hi = std::max(z_hi, fibre.points[p].z());
+    z_layers(grid, z_lo, z_hi, layers[f].first, layers[f].last);
+  });
+  return layers;
+}
+
 }  // namespace hairfit

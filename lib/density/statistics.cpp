@@ -10,15 +10,28 @@
 
 namespace hairfit {
 
-SegmentHistogram segment_histogram(const GridGeometry& grid, const std::vector<std::vector<Vec3>>& fibres,
-                                   int threads) {
+namespace {
+
+SegmentHistogram histogram_of_spans(const GridGeometry& grid, const std::vector<FibreSpan>& fibres, int threads) {
   // Each segment visits a cell at most once (traverse_segment), so a per-cell count of visits is
   // the number of distinct segments crossing it. Integer counts: any order gives the same result.
   std::vector<int32_t> count(size_t(grid.cell_count()), 0);
+  const std::vector<FibreLayers> layers = fibre_layers(grid, fibres, threads);
   for_each_z_slab(grid, threads, [&](int k_begin, int k_end) {
-    for_each_crossing_in_slab(grid, fibres, k_begin, k_end, [&](int64_t cell, double) { ++count[cell]; });
+    for_each_crossing_in_slab(grid, fibres, layers, k_begin, k_end, [&](int64_t cell, double) { ++count[cell]; });
   });
   return histogram_of_counts(count);
+}
+
+}  // namespace
+
+SegmentHistogram segment_histogram(const GridGeometry& grid, const std::vector<std::vector<Vec3>>& fibres,
+                                   int threads) {
+  return histogram_of_spans(grid, fibre_spans(fibres), threads);
+}
+
+SegmentHistogram segment_histogram_of_curves(const GridGeometry& grid, const Curves& fibres, int threads) {
+  return histogram_of_spans(grid, fibre_spans(fibres), threads);
 }
 
 SegmentHistogram histogram_of_counts(const std::vector<int32_t>& segment_counts) {

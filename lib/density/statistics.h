@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/curves.h"
 #include "core/types.h"
 #include "density/grid.h"
 #include "io/nrrd.h"
@@ -21,6 +22,8 @@ struct SegmentHistogram {
 };
 SegmentHistogram segment_histogram(const GridGeometry& grid, const std::vector<std::vector<Vec3>>& fibres,
                                    int threads = 1);
+// The same for curves stored end to end (Curves::points), read in place.
+SegmentHistogram segment_histogram_of_curves(const GridGeometry& grid, const Curves& fibres, int threads = 1);
 // The histogram of per-cell segment counts (DensityAccumulator::add_fibres counts them while it
 // deposits, so a stage that does both traverses the segments once).
 SegmentHistogram histogram_of_counts(const std::vector<int32_t>& segment_counts);

@@ -1,73 +1,10 @@
 #include "density/traversal.h"
 
-#include <algorithm>
-#include <cmath>
-#include <limits>
-
 namespace hairfit {
 
 void traverse_segment(const GridGeometry& grid, const Vec3& a, const Vec3& b, std::vector<CellCrossing>& out) {
   out.clear();
-  const Vec3 d = b - a;
-  const double length = d.norm();
-  if (!(length > 0.0) || !std::isfinite(length) || grid.cell_count() == 0) return;
-  const Vec3 lo = grid.origin, hi = grid.upper();
-  const double h = grid.voxel;
-
-  // Clip the parameter range [0, 1] to the grid box (slab method).
-  double t0 = 0.0, t1 = 1.0;
-  for (int k = 0; k < 3; ++k) {
-    if (d[k] == 0.0) {
-      if (a[k] < lo[k] || a[k] > hi[k]) return;
-      continue;
-    }
-    double ta = (lo[k] - a[k]) / d[k], tb = (hi[k] - a[k]) / d[k];
-    if (ta > tb) std::swap(ta, tb);
-    t0 = std::max(t0, ta);
-    t1 = std::min(t1, tb);
-  }
-  if (!(t0 < t1)) return;
-
-  // Start cell: the one the segment is in just after t0. Moving down an axis from exactly a cell
-  // face means being in the lower cell; clamping absorbs round-off at the box faces.
-  Vec3i cell;
-  for (int k = 0; k < 3; ++k) {
-    const double q = (a[k] + t0 * d[k] - lo[k]) / h;
-    double fl = std::floor(q);
-    if (d[k] < 0.0 && fl == q) fl -= 1.0;
-    cell[k] = int(std::min(std::max(fl, 0.0), double(grid.dims[k] - 1)));
-  }
-
-  // Walk: the exit parameter of each axis comes from the cell index (never accumulated), so
-  // long segments do not drift; a tie (a corner) steps one axis and then visits a zero-length
-  // cell, which is not listed. An axis's exit parameter changes only when the walk steps along
-  // that axis, so it is recomputed then (the same expression), not at every step.
-  auto exit_parameter = [&](int k) {
-    if (d[k] == 0.0) return std::numeric_limits<double>::infinity();  // never the nearest
-    const double face = lo[k] + h * (cell[k] + (d[k] > 0.0 ? 1 : 0));
-    return (face - a[k]) / d[k];
-  };
-  double exit[3] = {exit_parameter(0), exit_parameter(1), exit_parameter(2)};
-  const int max_steps = grid.dims.sum() + 8;
-  double t = t0;
-  for (int step = 0; step < max_steps; ++step) {
-    double t_next = t1;
-    int axis = -1;
-    for (int k = 0; k < 3; ++k) {
-      if (exit[k] < t_next) {
-        t_next = exit[k];
-        axis = k;
-      }
-    }
-    if (t_next > t) {
-      out.push_back({cell, (t_next - t) * length});
-      t = t_next;
-    }
-    if (axis < 0) break;  // reached t1 inside this cell
-    cell[axis] += d[axis] > 0.0 ? 1 : -1;
-    if (cell[axis] < 0 || cell[axis] >= grid.dims[axis]) break;
-    exit[axis] = exit_parameter(axis);
-  }
+  for_each_cell_crossing(grid, a, b, [&out](const Vec3i& cell, double length) { out.push_back({cell, length}); });
 }
 
 std::vector<CellCrossing> traverse_segment(const GridGeometry& grid, const Vec3& a, const Vec3& b) {

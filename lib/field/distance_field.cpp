@@ -113,37 +113,28 @@ DistanceField make_distance_field(const Mesh& mesh, const FieldSpec& spec, int t
   out.coarse_factor_ = plan.coarse_factor;
   out.coarse_dims_ = far.dims;
   out.coarse_ = std::make_shared<const std::vector<double>>(std::move(far.values));
-  out.fine_ = std::make_shared<const std::vector<double>>(std::move(band.value));
+  out.finish(std::move(band.value), threads);
   return out;
-}
-
-bool DistanceField::in_band(int i, int j, int k) const { return fine(i, j, k) != std::numeric_limits<double>::infinity(); }
-
-double DistanceField::sample(int i, int j, int k) const {
-  const double v = fine(i, j, k);
-  return v != std::numeric_limits<double>::infinity() ? v : far_sample(i, j, k);
-}
-
-int64_t DistanceField::memory_bytes() const {
-  return int64_t(sizeof(double)) * int64_t(fine_->size() + coarse_->size());
 }
 
 namespace {
 
-// Trilinear interpolation of the 8 corner values c[x + 2y + 4z] at fractions f ∈ [0,1]³, and its
-// derivative with respect to f.
-FieldValueGradient trilinear(const double c[8], const Vec3& f) {
-  const double x0 = 1 - f.x(), y0 = 1 - f.y(), z0 = 1 - f.z();
-  const double c00 = c[0] * x0 + c[1] * f.x(), c10 = c[2] * x0 + c[3] * f.x();
-  const double c01 = c[4] * x0 + c[5] * f.x(), c11 = c[6] * x0 + c[7] * f.x();
-  const double c0 = c00 * y0 + c10 * f.y(), c1 = c01 * y0 + c11 * f.y();
-  FieldValueGradient out;
-  out.value = c0 * z0 + c1 * f.z();
-  out.gradient.z() = c1 - c0;
-  out.gradient.y() = (c10 - c00) * z0 + (c11 - c01) * f.z();
-  const double dx00 = c[1] - c[0], dx10 = c[3] - c[2], dx01 = c[5] - c[4], dx11 = c[7] - c[6];
-  out.gradient.x() = (dx00 * y0 + dx10 * f.y()) * z0 + (dx01 * y0 + dx11 * f.y()) * f.z();
-  return out;
+// Trilinear interpolation of the 8 corner values c[x + 2y + 4z] at fractions f ∈ [0,1]³, and
+// (kGradient) its derivative with respect to f. The value is the same expression either way, so
+// value() and value_and_gradient() agree bit for bit.
+template <bool kGradient>
+void trilinear(const double c[8], const double f[3], double& value, Vec3* gradient) {
+  const double x0 = 1 - f[0], y0 = 1 - f[1], z0 = 1 - f[2];
+  const double c00 = c[0] * x0 + c[1] * f[0], c10 = c[2] * x0 + c[3] * f[0];
+  const double c01 = c[4] * x0 + c[5] * f[0], c11 = c[6] * x0 + c[7] * f[0];
+  const double c0 = c00 * y0 + c10 * f[1], c1 = c01 * y0 + c11 * f[1];
+  value = c0 * z0 + c1 * f[2];
+  if constexpr (kGradient) {
+    gradient->z() = c1 - c0;
+    gradient->y() = (c10 - c00) * z0 + (c11 - c01) * f[2];
+    const double dx00 = c[1] - c[0], dx10 = c[3] - c[2], dx01 = c[5] - c[4], dx11 = c[7] - c[6];
+    gradient->x() = (dx00 * y0 + dx10 * f[1]) * z0 + (dx01 * y0 + dx11 * f[1]) * f[2];
+  }
 }
 
 // Cell index and fraction along one axis for a coordinate u in grid units, clamped to [0, n−1].
@@ -155,53 +146,141 @@ void locate(double u, int n, int& cell, double& frac) {
 
 }  // namespace
 
-double DistanceField::far_sample(int i, int j, int k) const {
+void DistanceField::finish(std::vector<double> values, int threads) {
+  upper_ = origin_ + h_ * (dims_ - Vec3i::Ones()).cast<double>();
+  const int nx = dims_.x(), ny = dims_.y(), nz = dims_.z();
+  const int64_t dy = nx, dz = int64_t(nx) * ny;
   const int c = coarse_factor_;
-  int cell[3];
-  double frac[3];
-  const int idx[3] = {i, j, k};
-  for (int d = 0; d < 3; ++d) locate(double(idx[d]) / c, coarse_dims_[d], cell[d], frac[d]);
-  double corners[8];
-  for (int q = 0; q < 8; ++q) {
-    const int64_t at = (cell[0] + (q & 1)) +
-                       int64_t(coarse_dims_.x()) * ((cell[1] + ((q >> 1) & 1)) + int64_t(coarse_dims_.y()) * (cell[2] + (q >> 2)));
-    corners[q] = (*coarse_)[at];
+  const int64_t cdx = coarse_dims_.x(), cdy = coarse_dims_.y();
+  const std::vector<double>& coarse = *coarse_;
+  // Per axis and fine index: the coarse cell and fraction at which the node interpolates the
+  // coarse grid (locate(index / c)), and the coarse cells a lookup in the fine cell from this index
+  // may read (index / c rounds, so also the next one where the fine cell ends on a coarse node).
+  struct Axis {
+    std::vector<int> cell, first;
+    std::vector<char> one;  // the first candidate is the only one
+    std::vector<double> frac;
+  } axes[3];
+  for (int d = 0; d < 3; ++d) {
+    Axis& a = axes[d];
+    a.cell.resize(dims_[d]), a.frac.resize(dims_[d]), a.first.resize(dims_[d]), a.one.resize(dims_[d]);
+    for (int n = 0; n < dims_[d]; ++n) {
+      locate(double(n) / c, coarse_dims_[d], a.cell[n], a.frac[n]);
+      a.first[n] = std::min(static_cast<int>(double(n) / c), coarse_dims_[d] - 2);
+      a.one[n] = std::min(static_cast<int>(double(n + 1) / c), coarse_dims_[d] - 2) == a.first[n];
+    }
   }
-  return trilinear(corners, Vec3(frac[0], frac[1], frac[2])).value;
+  // Beyond the band: the trilinear interpolation of the coarse grid at the node.
+  std::vector<std::uint8_t> in_band(values.size(), 0);
+  parallel_for(nz, threads, [&](int k) {
+    const double fz = axes[2].frac[k];
+    for (int j = 0; j < ny; ++j) {
+      const double fy = axes[1].frac[j];
+      const int64_t row = index(0, j, k), coarse_yz = cdx * (axes[1].cell[j] + cdy * axes[2].cell[k]);
+      for (int i = 0; i < nx; ++i) {
+        if (values[row + i] != std::numeric_limits<double>::infinity()) {
+          in_band[row + i] = kInBand;
+          continue;
+        }
+        const double* s = coarse.data() + coarse_yz + axes[0].cell[i];
+        const double corners[8] = {s[0], s[1], s[cdx], s[cdx + 1], s[cdx * cdy], s[cdx * cdy + 1], s[cdx * cdy + cdx],
+                                   s[cdx * cdy + cdx + 1]};
+        const double frac[3] = {axes[0].frac[i], fy, fz};
+        trilinear<false>(corners, frac, values[row + i], nullptr);
+      }
+    }
+  });
+  // The lowest and highest node of every coarse cell, and of every block of 2×2×2 coarse cells
+  // (clamped to the grid): a far fine cell reads the coarse cell at its first candidate, or, where
+  // it ends on a coarse node, possibly the next one, within the block.
+  const int64_t cdz = coarse_dims_.z();
+  std::vector<double> cell_lo(coarse.size()), cell_hi(coarse.size()), block_lo(coarse.size()), block_hi(coarse.size());
+  for (int64_t z = 0; z < cdz; ++z)
+    for (int64_t y = 0; y < cdy; ++y)
+      for (int64_t x = 0; x < cdx; ++x)
+        for (int64_t reach : {1, 2}) {
+          double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+          for (int64_t cz = z; cz <= std::min(z + reach, cdz - 1); ++cz)
+            for (int64_t cy = y; cy <= std::min(y + reach, cdy - 1); ++cy)
+              for (int64_t cx = x; cx <= std::min(x + reach, cdx - 1); ++cx) {
+                lo = std::min(lo, coarse[cx + cdx * (cy + cdy * cz)]);
+                hi = std::max(hi, coarse[cx + cdx * (cy + cdy * cz)]);
+              }
+          (reach == 1 ? cell_lo : block_lo)[x + cdx * (y + cdy * z)] = lo;
+          (reach == 1 ? cell_hi : block_hi)[x + cdx * (y + cdy * z)] = hi;
+        }
+  // Flags of each cell (lowest node (i, j, k)), from the samples its lookups read: its 8 corners,
+  // or, when none is in the band, (a superset of) the coarse nodes it may interpolate.
+  constexpr double kTiny = 1e-290;  // products with interpolation weights stay normal numbers
+  std::vector<std::uint8_t> flags(in_band.size(), 0);
+  parallel_for(nz, threads, [&](int k) {
+    for (int j = 0; j < ny; ++j) {
+      const int64_t row = index(0, j, k);
+      for (int i = 0; i < nx; ++i) flags[row + i] = in_band[row + i];
+      if (j + 1 == ny || k + 1 == nz) continue;  // no cell has these lowest nodes
+      for (int i = 0; i + 1 < nx; ++i) {
+        const int64_t at = row + i;
+        const std::uint8_t* b = in_band.data() + at;
+        double lo, hi;
+        if (b[0] | b[1] | b[dy] | b[dy + 1] | b[dz] | b[dz + 1] | b[dz + dy] | b[dz + dy + 1]) {
+          const double* s = values.data() + at;
+          lo = std::min({s[0], s[1], s[dy], s[dy + 1], s[dz], s[dz + 1], s[dz + dy], s[dz + dy + 1]});
+          hi = std::max({s[0], s[1], s[dy], s[dy + 1], s[dz], s[dz + 1], s[dz + dy], s[dz + dy + 1]});
+        } else {
+          flags[at] |= kCellFar;
+          const int64_t first = axes[0].first[i] + cdx * (axes[1].first[j] + cdy * axes[2].first[k]);
+          const bool one = axes[0].one[i] && axes[1].one[j] && axes[2].one[k];
+          lo = (one ? cell_lo : block_lo)[first];
+          hi = (one ? cell_hi : block_hi)[first];
+        }
+        if (lo > kTiny) flags[at] |= kCellPositive;
+        if (hi < -kTiny) flags[at] |= kCellNegative;
+      }
+    }
+  });
+  samples_ = std::make_shared<const std::vector<double>>(std::move(values));
+  flags_ = std::make_shared<const std::vector<std::uint8_t>>(std::move(flags));
 }
 
-FieldValueGradient DistanceField::inside_grid(const Vec3& p) const {
-  const Vec3 u = (p - origin_) / h_;
+bool DistanceField::in_band(int i, int j, int k) const { return (*flags_)[index(i, j, k)] & kInBand; }
+
+double DistanceField::sample(int i, int j, int k) const { return (*samples_)[index(i, j, k)]; }
+
+int64_t DistanceField::memory_bytes() const {
+  return int64_t(sizeof(double)) * int64_t(samples_->size() + coarse_->size());
+}
+
+
+int64_t DistanceField::cell_of(const Vec3& u, double frac[3]) const {
   int cell[3];
-  double frac[3];
   for (int d = 0; d < 3; ++d) locate(u[d], dims_[d], cell[d], frac[d]);
-  const Vec3 f(frac[0], frac[1], frac[2]);
-  double corners[8];
-  int finite = 0;
-  for (int q = 0; q < 8; ++q) {
-    corners[q] = fine(cell[0] + (q & 1), cell[1] + ((q >> 1) & 1), cell[2] + (q >> 2));
-    finite += corners[q] != std::numeric_limits<double>::infinity();
-  }
-  if (finite == 0) {
+  return index(cell[0], cell[1], cell[2]);
+}
+
+template <bool kGradient>
+void DistanceField::inside_grid(const Vec3& p, double& value, Vec3* gradient) const {
+  const Vec3 u = (p - origin_) / h_;
+  double frac[3];
+  const int64_t base = cell_of(u, frac);
+  if ((*flags_)[base] & kCellFar) {
     // Every corner is beyond the band: the samples there are the coarse interpolant, which is
     // trilinear over the whole coarse cell, so interpolating it directly gives the same value.
     int cc[3];
     double cf[3];
     for (int d = 0; d < 3; ++d) locate(u[d] / coarse_factor_, coarse_dims_[d], cc[d], cf[d]);
-    for (int q = 0; q < 8; ++q)
-      corners[q] = (*coarse_)[(cc[0] + (q & 1)) + int64_t(coarse_dims_.x()) *
-                                                      ((cc[1] + ((q >> 1) & 1)) + int64_t(coarse_dims_.y()) * (cc[2] + (q >> 2)))];
-    FieldValueGradient out = trilinear(corners, Vec3(cf[0], cf[1], cf[2]));
-    out.gradient /= coarse_factor_ * h_;
-    return out;
+    const int64_t cy = coarse_dims_.x(), cz = int64_t(coarse_dims_.x()) * coarse_dims_.y();
+    const double* s = coarse_->data() + (cc[0] + cy * (cc[1] + int64_t(coarse_dims_.y()) * cc[2]));
+    const double corners[8] = {s[0], s[1], s[cy], s[cy + 1], s[cz], s[cz + 1], s[cz + cy], s[cz + cy + 1]};
+    trilinear<kGradient>(corners, cf, value, gradient);
+    if constexpr (kGradient) *gradient /= coarse_factor_ * h_;
+    return;
   }
-  if (finite < 8)
-    for (int q = 0; q < 8; ++q)
-      if (corners[q] == std::numeric_limits<double>::infinity())
-        corners[q] = far_sample(cell[0] + (q & 1), cell[1] + ((q >> 1) & 1), cell[2] + (q >> 2));
-  FieldValueGradient out = trilinear(corners, f);
-  out.gradient /= h_;
-  return out;
+  // Band samples and far samples alike (samples_ holds both).
+  const int64_t dy = dims_.x(), dz = int64_t(dims_.x()) * dims_.y();
+  const double* s = samples_->data() + base;
+  const double corners[8] = {s[0], s[1], s[dy], s[dy + 1], s[dz], s[dz + 1], s[dz + dy], s[dz + dy + 1]};
+  trilinear<kGradient>(corners, frac, value, gradient);
+  if constexpr (kGradient) *gradient /= h_;
 }
 
 FieldValueGradient DistanceField::value_and_gradient(const Vec3& p) const {
@@ -211,9 +290,10 @@ FieldValueGradient DistanceField::value_and_gradient(const Vec3& p) const {
     const double nan = std::numeric_limits<double>::quiet_NaN();
     return {nan, Vec3::Constant(nan)};
   }
-  const Vec3 hi = origin_ + h_ * (dims_ - Vec3i::Ones()).cast<double>();
-  const Vec3 q = p.cwiseMax(origin_).cwiseMin(hi);
-  FieldValueGradient out = inside_grid(q);
+  const Vec3 q = p.cwiseMax(origin_).cwiseMin(upper_);
+  FieldValueGradient out;
+  inside_grid<true>(q, out.value, &out.gradient);
+  if (q == p) return out;
   const Vec3 outside = p - q;
   const double distance = outside.norm();
   if (distance > 0) {
@@ -227,7 +307,31 @@ FieldValueGradient DistanceField::value_and_gradient(const Vec3& p) const {
   return out;
 }
 
-double DistanceField::value(const Vec3& p) const { return value_and_gradient(p).value; }
+double DistanceField::value(const Vec3& p) const {
+  if (!p.allFinite()) return std::numeric_limits<double>::quiet_NaN();
+  const Vec3 q = p.cwiseMax(origin_).cwiseMin(upper_);
+  double value;
+  inside_grid<false>(q, value, nullptr);
+  if (q == p) return value;
+  const double distance = (p - q).norm();  // as value_and_gradient: the same bits
+  if (distance > 0) value += (value < 0 ? -1.0 : 1.0) * distance;
+  return value;
+}
+
+int DistanceField::side(const Vec3& p) const {
+  if (!p.allFinite()) return 0;
+  // The cell inside_grid would read, as cell_of finds it (beyond the grid, value() only adds to
+  // the magnitude): spelled out here without the fractions, as this is the whole cost of side().
+  int64_t at = 0, stride = 1;
+  for (int d = 0; d < 3; ++d) {
+    const double u = std::clamp((std::clamp(p[d], origin_[d], upper_[d]) - origin_[d]) / h_, 0.0, double(dims_[d] - 1));
+    at += stride * std::min(static_cast<int>(u), dims_[d] - 2);
+    stride *= dims_[d];
+  }
+  const std::uint8_t f = (*flags_)[at];
+  return (f & kCellPositive) ? 1 : (f & kCellNegative) ? -1 : 0;
+}
+
 Vec3 DistanceField::gradient(const Vec3& p) const { return value_and_gradient(p).gradient; }
 
 }  // namespace hairfit

@@ -63,26 +63,44 @@ class DistanceField {
   double value(const Vec3& p) const;
   Vec3 gradient(const Vec3& p) const;
   FieldValueGradient value_and_gradient(const Vec3& p) const;
+  // Which side of the surface p lies on, when the samples alone decide it: +1 where value(p) > 0
+  // and −1 where value(p) < 0 for certain (every sample the interpolation at p reads lies on that
+  // side, beyond 1e-290 cm), 0 where only value(p) can tell (near the surface; non-finite p).
+  // Several times cheaper than value(), for callers that need only the sign.
+  int side(const Vec3& p) const;
 
-  // Bytes held by the field (fine band samples + coarse far-field grid).
+  // Bytes of the field's samples (fine grid + coarse far-field grid). The lookup flags (one byte
+  // per fine node, see below) are not counted: the figure is the one the reports have always shown.
   int64_t memory_bytes() const;
 
  private:
   friend DistanceField make_distance_field(const Mesh&, const FieldSpec&, int);
   friend struct StageCodecAccess;  // the stage cache (lib/pipeline/stage_codec.cpp) stores and restores it
   DistanceField() = default;  // built only by make_distance_field
-  FieldValueGradient inside_grid(const Vec3& p) const;  // p within the grid box
-  double far_sample(int i, int j, int k) const;
-  double fine(int i, int j, int k) const { return (*fine_)[index(i, j, k)]; }
+  // Fills every node beyond the band with the coarse grid's interpolant and sets the flags (the
+  // band's samples are given, +infinity elsewhere); `upper_` from the geometry. Called once the
+  // rest is set.
+  void finish(std::vector<double> band_values, int threads);
+  template <bool kGradient>
+  void inside_grid(const Vec3& p, double& value, Vec3* gradient) const;  // p within the grid box
+  int64_t cell_of(const Vec3& u, double frac[3]) const;  // lowest node of the cell at u (grid units, clamped)
   int64_t index(int i, int j, int k) const { return i + int64_t(dims_.x()) * (j + int64_t(dims_.y()) * k); }
+
+  // flags_ bits: the node is in the band; the cell whose lowest corner is this node has all 8
+  // corners beyond the band (its lookups interpolate the coarse grid directly); every sample its
+  // lookups read is > 1e-290 (positive) or < −1e-290 (negative), so the value has that sign.
+  static constexpr std::uint8_t kInBand = 1, kCellFar = 2, kCellPositive = 4, kCellNegative = 8;
 
   Vec3 origin_ = Vec3::Zero();
   double h_ = 1.0;
   Vec3i dims_ = Vec3i::Zero();
   double band_cm_ = 0.0;
   int64_t band_voxels_ = 0;
-  // Fine samples: the signed distance in the band, +infinity (internal marker only) elsewhere.
-  std::shared_ptr<const std::vector<double>> fine_;
+  Vec3 upper_ = Vec3::Zero();  // the grid's far corner, origin + h·(dims − 1)
+  // Fine samples: the signed distance in the band, the coarse grid's interpolant elsewhere,
+  // so that a lookup reads its 8 corners without asking which kind each is.
+  std::shared_ptr<const std::vector<double>> samples_;
+  std::shared_ptr<const std::vector<std::uint8_t>> flags_;
   // Coarse far-field grid: node (I,J,K) at fine node c·(I,J,K).
   int coarse_factor_ = 1;
   Vec3i coarse_dims_ = Vec3i::Zero();

@@ -17,7 +17,8 @@ Curves read_hair_file(const std::filesystem::path& path);
 
 // OBJ: `v` lines, then one `l a b` line per segment (Blender, tinyobjloader and MeshLab read only
 // two indices of a longer `l` line); an `o` group per guide is not used, to keep files small.
-void write_obj_curves(const std::filesystem::path& path, const Curves& curves);
+// The text is formatted on up to `threads` threads (the bytes do not depend on it).
+void write_obj_curves(const std::filesystem::path& path, const Curves& curves, int threads = 1);
 
 // USD ASCII with one BasisCurves prim: type "linear", non-periodic, widths per vertex, extent,
 // metersPerUnit 0.01 (cm). `default_width` in cm is used when the curves carry no widths.

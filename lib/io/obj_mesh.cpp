@@ -3,51 +3,89 @@
 #include <tiny_obj_loader.h>
 
 #include <array>
+#include <charconv>
 #include <cmath>
 #include <cstring>
 #include <fstream>
 #include <map>
-#include <regex>
-#include <sstream>
+#include <string_view>
 
 #include "core/error.h"
 #include "io/atomic_file.h"
+#include "io/number_text.h"
 
 namespace hairfit {
 
 namespace {
 
+// Whitespace as `istream >> std::string` skips it in the C locale.
+bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\v' || c == '\f' || c == '\r'; }
+
+// The next whitespace-separated token of `line` from `at` (empty at the end), as `>>` reads it.
+std::string_view next_token(std::string_view line, std::size_t& at) {
+  while (at < line.size() && is_space(line[at])) ++at;
+  const std::size_t begin = at;
+  while (at < line.size() && !is_space(line[at])) ++at;
+  return line.substr(begin, at - begin);
+}
+
+// -?[0-9]+ from s[i]; advances i past it when it is there.
+bool integer_at(std::string_view s, std::size_t& i) {
+  std::size_t j = i + (i < s.size() && s[i] == '-');
+  const std::size_t digits = j;
+  while (j < s.size() && s[j] >= '0' && s[j] <= '9') ++j;
+  if (j == digits) return false;
+  i = j;
+  return true;
+}
+
+// The whole token is v, v/vt, v//vn or v/vt/vn with integers: -?[0-9]+(/(-?[0-9]+)?(/-?[0-9]+)?)?
+bool is_face_token(std::string_view s) {
+  std::size_t i = 0;
+  if (!integer_at(s, i)) return false;
+  if (i == s.size()) return true;
+  if (s[i++] != '/') return false;
+  integer_at(s, i);  // optional
+  if (i == s.size()) return true;
+  if (s[i++] != '/') return false;
+  return integer_at(s, i) && i == s.size();
+}
+
 // Line-level checks tinyobjloader does not make: it reads "nan" as a number silently and has no
-// line numbers in its messages. Returns the vertex count.
+// line numbers in its messages. Returns the vertex count. (A scan of the text in place: the
+// string streams and the regular expression it used took 9 000 instructions a line.)
 int check_obj_text(const std::filesystem::path& path, const std::string& text, int& faces) {
   const std::string file = path.string();
   const std::size_t probe = std::min<std::size_t>(text.size(), 4096);
   if (std::memchr(text.data(), '\0', probe) != nullptr)
     throw InputError(file, "is a binary file, not an OBJ text file; export the mesh as Wavefront OBJ");
 
-  std::istringstream lines(text);
-  std::string line;
+  const std::string_view all(text);
   int line_number = 0, vertices = 0;
   faces = 0;
-  std::vector<std::pair<int, std::string>> face_lines;
-  while (std::getline(lines, line)) {
+  std::vector<std::pair<int, std::string_view>> face_lines;
+  for (std::size_t begin = 0; begin < all.size();) {
+    std::size_t end = all.find('\n', begin);
+    if (end == std::string_view::npos) end = all.size();
+    const std::string_view line = all.substr(begin, end - begin);
+    begin = end + 1;
     ++line_number;
     if (line.size() >= 2 && line[0] == 'v' && (line[1] == ' ' || line[1] == '\t')) {
       ++vertices;
-      std::istringstream fields(line.substr(2));
+      std::size_t at = 2;
       for (int axis = 0; axis < 3; ++axis) {
-        std::string token;
-        fields >> token;
-        char* end = nullptr;
-        const double value = std::strtod(token.c_str(), &end);
-        if (token.empty() || *end != '\0' || !std::isfinite(value)) {
-          const int column = static_cast<int>(line.find(token.empty() ? std::string("v") : token)) + 1;
+        const std::string token(next_token(line, at));
+        char* number_end = nullptr;
+        const double value = std::strtod(token.c_str(), &number_end);
+        if (token.empty() || *number_end != '\0' || !std::isfinite(value)) {
+          const std::string whole(line);
+          const int column = static_cast<int>(whole.find(token.empty() ? std::string("v") : token)) + 1;
           throw InputError({Diagnostic{{file, line_number, column},
                                        "vertex " + std::to_string(vertices) + " has " +
                                            (token.empty() ? std::string("fewer than 3 coordinates")
                                                           : "a non-finite or unreadable coordinate \"" + token + "\"") +
                                            "; every vertex needs three finite numbers",
-                                       line}});
+                                       whole}});
         }
       }
     } else if (line.size() >= 2 && line[0] == 'f' && (line[1] == ' ' || line[1] == '\t')) {
@@ -56,24 +94,27 @@ int check_obj_text(const std::filesystem::path& path, const std::string& text, i
     }
   }
   for (const auto& [number, face] : face_lines) {
-    std::istringstream fields(face.substr(2));
-    std::string token;
-    while (fields >> token) {
+    std::size_t at = 2;
+    for (std::string_view entry = next_token(face, at); !entry.empty(); entry = next_token(face, at)) {
       // v, v/vt, v//vn or v/vt/vn: integers only (tinyobjloader reads other text as index 0).
-      static const std::regex kFaceToken("-?[0-9]+(/(-?[0-9]+)?(/-?[0-9]+)?)?");
-      if (!std::regex_match(token, kFaceToken))
-        throw InputError({Diagnostic{{file, number, static_cast<int>(face.find(token)) + 1},
+      const std::string token(entry);
+      if (!is_face_token(entry)) {
+        const std::string whole(face);
+        throw InputError({Diagnostic{{file, number, static_cast<int>(whole.find(token)) + 1},
                                      "face entry \"" + token + "\" is not a vertex index (write v, v/vt, v//vn or v/vt/vn "
                                      "with integers)",
-                                     face}});
+                                     whole}});
+      }
       const long index = std::strtol(token.c_str(), nullptr, 10);
       const long resolved = index < 0 ? vertices + index + 1 : index;
-      if (index == 0 || resolved < 1 || resolved > vertices)
-        throw InputError({Diagnostic{{file, number, static_cast<int>(face.find(token)) + 1},
+      if (index == 0 || resolved < 1 || resolved > vertices) {
+        const std::string whole(face);
+        throw InputError({Diagnostic{{file, number, static_cast<int>(whole.find(token)) + 1},
                                      "face refers to vertex " + std::to_string(index) + " but the file has " +
                                          std::to_string(vertices) + " vertices (valid: 1.." +
                                          std::to_string(vertices) + " or negative relative indices)",
-                                     face}});
+                                     whole}});
+      }
     }
   }
   return vertices;
@@ -184,32 +225,38 @@ LoadedMesh load_obj_mesh(const std::filesystem::path& path, double scale_to_cm) 
 
 void write_obj_mesh(const std::filesystem::path& path, const Mesh& mesh,
                     const std::vector<Vec2>& texture_coordinates, const std::vector<Vec3>& colors) {
-  write_file_atomically(path, [&](std::ostream& out) {
-    char buffer[160];
-    const bool with_colors = colors.size() == mesh.positions.size();
-    for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
-      const Vec3& p = mesh.positions[i];
-      if (with_colors)
-        std::snprintf(buffer, sizeof buffer, "v %.9g %.9g %.9g %.4g %.4g %.4g\n", p.x(), p.y(), p.z(), colors[i].x(),
-                      colors[i].y(), colors[i].z());
-      else
-        std::snprintf(buffer, sizeof buffer, "v %.9g %.9g %.9g\n", p.x(), p.y(), p.z());
-      out << buffer;
+  // Built in memory and written once; numbers as printf's %.9g / %.4g / %d would write them.
+  std::string text;
+  char buffer[48];
+  auto number = [&](double v, int precision) { text.append(buffer, format_general(buffer, v, precision)); };
+  auto index = [&](int i) { text.append(buffer, std::to_chars(buffer, buffer + sizeof buffer, i).ptr); };
+  const bool with_colors = colors.size() == mesh.positions.size();
+  for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+    const Vec3& p = mesh.positions[i];
+    text += "v";
+    for (int k = 0; k < 3; ++k) text += ' ', number(p[k], 9);
+    if (with_colors)
+      for (int k = 0; k < 3; ++k) text += ' ', number(colors[i][k], 4);
+    text += '\n';
+  }
+  for (const Vec2& uv : texture_coordinates) {
+    text += "vt ";
+    number(uv.x(), 9);
+    text += ' ';
+    number(uv.y(), 9);
+    text += '\n';
+  }
+  const bool with_uv = texture_coordinates.size() == mesh.positions.size();
+  for (const Vec3i& t : mesh.triangles) {
+    text += 'f';
+    for (int k = 0; k < 3; ++k) {
+      text += ' ';
+      index(t[k] + 1);
+      if (with_uv) text += '/', index(t[k] + 1);
     }
-    for (const Vec2& uv : texture_coordinates) {
-      std::snprintf(buffer, sizeof buffer, "vt %.9g %.9g\n", uv.x(), uv.y());
-      out << buffer;
-    }
-    const bool with_uv = texture_coordinates.size() == mesh.positions.size();
-    for (const Vec3i& t : mesh.triangles) {
-      if (with_uv)
-        std::snprintf(buffer, sizeof buffer, "f %d/%d %d/%d %d/%d\n", t[0] + 1, t[0] + 1, t[1] + 1,
-                      t[1] + 1, t[2] + 1, t[2] + 1);
-      else
-        std::snprintf(buffer, sizeof buffer, "f %d %d %d\n", t[0] + 1, t[1] + 1, t[2] + 1);
-      out << buffer;
-    }
-  });
+    text += '\n';
+  }
+  write_text_file_atomically(path, text);
 }
 
 }  // namespace hairfit

@@ -7,6 +7,7 @@
 
 #include "io/png_map.h"
 #include "pipeline/stage_options.h"
+#include "pipeline/winding.h"
 #include "scalp/chart.h"
 
 namespace hairfit {
@@ -100,7 +101,7 @@ Enclosure scalp_enclosure(const Mesh& scalp, const Mesh& volume) {
   const int step = std::max<int>(1, static_cast<int>(picked.size()) / 200);
   int inside = 0, inverted = 0, tested = 0;
   for (std::size_t i = 0; i < picked.size(); i += step, ++tested) {
-    const double w = winding_number(volume, scalp.positions[picked[i]]);
+    const double w = closed_winding_number(volume, scalp.positions[picked[i]]);  // the volume is closed (checked)
     inside += w > 0.5;
     inverted += w < -0.5;
   }

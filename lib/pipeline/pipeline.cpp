@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <optional>
 
@@ -40,20 +41,25 @@ namespace {
 
 
 // Diameters along a fibre: a hair of section A at the root, tapering to half at the tip.
-void add_widths(Curves& curves, double cross_section) {
+void add_widths(Curves& curves, double cross_section, int threads) {
   const double root = 2.0 * std::sqrt(cross_section / M_PI);
   curves.widths.resize(curves.points.size());
-  for (std::size_t c = 0; c < curves.count(); ++c) {
+  parallel_for(static_cast<int>(curves.count()), threads, [&](int c) {
     const std::size_t n = curves.size(c);
     for (std::size_t i = 0; i < n; ++i)
       curves.widths[curves.offsets[c] + i] = static_cast<float>(root * (1.0 - 0.5 * i / std::max<std::size_t>(1, n - 1)));
-  }
+  });
 }
 
 // Moves a point behind the scalp (Φ_S < 0) onto it by Newton steps along the field's gradient,
-// to a clearance of 10 µm so that it counts as outside the head.
+// to a clearance of 10 µm so that it counts as outside the head. Most points are well in front of
+// the scalp, which the field's side() tells without interpolating (reported as +infinity).
 HeadExit scalp_exit(const DistanceField& scalp) {
   return [&scalp](const Vec3& p, double& value_at_p) {
+    if (scalp.side(p) > 0) {
+      value_at_p = std::numeric_limits<double>::infinity();
+      return p;
+    }
     constexpr double kClearance = 1e-3;  // cm
     Vec3 q = p;
     for (int step = 0; step < 4; ++step) {
@@ -352,7 +358,7 @@ class Runner {
     const PreGuides& preguides = *result_.values.preguides;
     Curves curves;
     for (int i = 0; i < preguides.size(); ++i) curves.add(preguides.items[i].shape.nodes, i);
-    output("preguides.obj", [&](const fs::path& p) { write_obj_curves(p, curves); });
+    output("preguides.obj", [&](const fs::path& p) { write_obj_curves(p, curves, options_.threads); });
   }
 
   // The fibres' pores: one fibre per pore, grown along its cluster's guide.
@@ -406,7 +412,7 @@ class Runner {
 
   void write_guides() {
     const Guides& guides = *result_.values.guides;
-    output("guides.obj", [&](const fs::path& p) { write_obj_curves(p, guides.curves()); });
+    output("guides.obj", [&](const fs::path& p) { write_obj_curves(p, guides.curves(), options_.threads); });
     output("guides.csv", [&](const fs::path& p) { write_guides_csv(p, guides); });
   }
 
@@ -414,11 +420,16 @@ class Runner {
     StageValues& v = result_.values;
     const DistanceField* volume = v.volume_field.get();
     const DistanceFunction volume_distance = [volume](const Vec3& p) { return volume->value(p); };
+    const DistanceFunction volume_quick = [volume](const Vec3& p) {  // the sign alone where the cell tells it
+      const int side = volume->side(p);
+      return side != 0 ? side * std::numeric_limits<double>::infinity() : volume->value(p);
+    };
     StrandOptions o = strand_options(scene_, options_.threads);
     o.progress = loop_progress();
-    FibreFieldValues known;  // looked up on the way: the counts need not ask again
-    Strands s = make_strands(v.guides->curves(), pores(), o, volume_distance, scalp_exit(*v.scalp_field), &known);
-    add_widths(s.fibres, scene_.hair.cross_section);
+    FibrePointSides known;  // looked up on the way: the counts need not ask again
+    Strands s = make_strands(v.guides->curves(), pores(), o, volume_distance, scalp_exit(*v.scalp_field), &known,
+                             volume_quick);
+    add_widths(s.fibres, scene_.hair.cross_section, options_.threads);
     v.strands = std::make_shared<const Strands>(std::move(s));
     const Curves& fibres = v.strands->fibres;
     stage.digest = Digest().add(fibres.points).hex();
@@ -431,9 +442,9 @@ class Runner {
     std::vector<std::array<int, 3>> counts(fibres.count(), {0, 0, 0});  // inside, in head, outside volume
     parallel_for(static_cast<int>(fibres.count()), options_.threads, [&](int c) {
       for (std::size_t k = fibres.offsets[c] + 1; k < fibres.offsets[c + 1]; ++k) {
-        const bool scalp_known = !known.scalp.empty() && !std::isnan(known.scalp[k]);
-        const bool head = (scalp_known ? -known.scalp[k] : b.beyond_scalp(fibres.points[k])) > 0.0;
-        const bool out = (known.volume.empty() ? b.beyond_volume(fibres.points[k]) : known.volume[k]) > 0.0;
+        const bool head = !known.in_head.empty() && known.in_head[k] >= 0 ? known.in_head[k] == 1
+                                                                          : b.beyond_scalp(fibres.points[k]) > 0.0;
+        const bool out = known.outside_volume.empty() ? b.beyond_volume(fibres.points[k]) > 0.0 : known.outside_volume[k] == 1;
         counts[c][0] += !head && !out;
         counts[c][1] += head;
         counts[c][2] += out;
@@ -453,12 +464,12 @@ class Runner {
   void write_strands() {
     const Curves& fibres = result_.values.strands->fibres;
     Curves guide_curves = result_.values.guides->curves();
-    add_widths(guide_curves, scene_.hair.cross_section);
+    add_widths(guide_curves, scene_.hair.cross_section, options_.threads);
     for (const std::string& format : scene_.output.strands) {
       auto write = [&](const std::string& base, const Curves& curves) {
         output(base + "." + format, [&](const fs::path& p) {
           if (format == "hair") write_hair_file(p, curves, "hairfit " + base);
-          else if (format == "obj") write_obj_curves(p, curves);
+          else if (format == "obj") write_obj_curves(p, curves, options_.threads);
           else if (format == "usda") write_usda_curves(p, curves, 0.007, -scene_.units.down);
           else write_ply_curves(p, curves);
         });
@@ -474,15 +485,21 @@ class Runner {
   void density(StageReport& stage) {
     StageValues& v = result_.values;
     const GridGeometry grid = density_geometry(scene_, inputs_.volume.mesh);
-    const std::vector<std::vector<Vec3>> fibres = fibre_lists();
     DensityAccumulator accumulator(grid);
     std::vector<std::int32_t> segment_counts;  // the histogram's, from the deposit's traversal
-    accumulator.add_fibres(fibres, options_.threads, &segment_counts);
+    accumulator.add_fibres(v.strands->fibres, options_.threads, &segment_counts);
     v.fibre_density = std::make_shared<const DensityGrid>(std::move(accumulator).freeze());
-    const Boundary b = boundary();
-    // b.acceptable(p), asking the volume first: most cells of the grid's box lie outside the
-    // volume, and those then need no scalp lookup.
-    const auto acceptable = [&b](const Vec3& p) { return b.beyond_volume(p) <= 0.0 && b.beyond_scalp(p) <= 0.0; };
+    // Boundary::acceptable(p), asking the volume first (most cells of the grid's box lie outside
+    // it, and those then need no scalp lookup) and each field's side() before its value (the
+    // sign is all the test needs, and away from the surfaces the cell tells it).
+    const DistanceField& volume = *v.volume_field;
+    const DistanceField& scalp = *v.scalp_field;
+    const auto acceptable = [&volume, &scalp](const Vec3& p) {
+      const int in_volume = volume.side(p);  // beyond_volume(p) = volume(p) ≤ 0
+      if (in_volume > 0 || (in_volume == 0 && !(volume.value(p) <= 0.0))) return false;
+      const int in_front = scalp.side(p);  // beyond_scalp(p) = −scalp(p) ≤ 0
+      return in_front != 0 ? in_front > 0 : -scalp.value(p) <= 0.0;
+    };
     const DensityStatistics s = density_statistics(*v.fibre_density, acceptable, options_.threads);
     const std::vector<double>& values = v.fibre_density->values();
     stage.digest = Digest().add_bytes(values.data(), values.size() * sizeof(double)).hex();
@@ -499,18 +516,10 @@ class Runner {
               static_cast<std::int64_t>(histogram_->cells_with.empty() ? 0 : histogram_->cells_with.size() - 1));
   }
 
-  std::vector<std::vector<Vec3>> fibre_lists() const {
-    const Curves& curves = result_.values.strands->fibres;
-    std::vector<std::vector<Vec3>> fibres(curves.count());
-    parallel_for(static_cast<int>(curves.count()), options_.threads, [&](int c) {
-      fibres[c].assign(curves.points.begin() + curves.offsets[c], curves.points.begin() + curves.offsets[c + 1]);
-    });
-    return fibres;
-  }
-
   void write_density() {
     if (!histogram_)  // a cached stage: recomputed from the fibres rather than stored
-      histogram_ = segment_histogram(density_geometry(scene_, inputs_.volume.mesh), fibre_lists(), options_.threads);
+      histogram_ = segment_histogram_of_curves(density_geometry(scene_, inputs_.volume.mesh),
+                                               result_.values.strands->fibres, options_.threads);
     output("density/histogram.csv", [&](const fs::path& p) { write_text_file_atomically(p, histogram_csv(*histogram_)); });
     // Centre sagittal slice (Fig. 6): normal = the head's left–right axis = front × up.
     const Vec3 up = -scene_.units.down;

@@ -23,7 +23,8 @@ struct StageCodecAccess {
     out.put(f.dims_);
     out.put(f.band_cm_);
     out.put(f.band_voxels_);
-    out.put(*f.fine_);
+    out.put(*f.samples_);
+    out.put(*f.flags_);
     out.put(f.coarse_factor_);
     out.put(f.coarse_dims_);
     out.put(*f.coarse_);
@@ -35,17 +36,21 @@ struct StageCodecAccess {
     in.get(f.dims_);
     in.get(f.band_cm_);
     in.get(f.band_voxels_);
-    std::vector<double> fine, coarse;
-    in.get(fine);
+    std::vector<double> samples, coarse;
+    std::vector<std::uint8_t> flags;
+    in.get(samples);
+    in.get(flags);
     in.get(f.coarse_factor_);
     in.get(f.coarse_dims_);
     in.get(coarse);
     const Vec3i& d = f.dims_;
     const Vec3i& c = f.coarse_dims_;
-    if (d.minCoeff() < 0 || c.minCoeff() < 0 || fine.size() != std::size_t(d.x()) * d.y() * d.z() ||
-        coarse.size() != std::size_t(c.x()) * c.y() * c.z())
+    if (d.minCoeff() < 0 || c.minCoeff() < 0 || samples.size() != std::size_t(d.x()) * d.y() * d.z() ||
+        flags.size() != samples.size() || coarse.size() != std::size_t(c.x()) * c.y() * c.z())
       throw CodecError("distance field grid sizes do not match their samples");
-    f.fine_ = std::make_shared<const std::vector<double>>(std::move(fine));
+    f.upper_ = f.origin_ + f.h_ * (d - Vec3i::Ones()).cast<double>();  // as DistanceField::finish
+    f.samples_ = std::make_shared<const std::vector<double>>(std::move(samples));
+    f.flags_ = std::make_shared<const std::vector<std::uint8_t>>(std::move(flags));
     f.coarse_ = std::make_shared<const std::vector<double>>(std::move(coarse));
     return f;
   }

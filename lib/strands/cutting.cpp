@@ -1,12 +1,18 @@
 #include "strands/cutting.h"
 
+#include <cmath>
+
 namespace hairfit {
 
-CutResult cut_at_exit(const std::vector<Vec3>& points, const DistanceFunction& distance, double threshold) {
-  CutResult result;
-  const std::size_t n = points.size();
-  std::vector<double> d(n);
-  for (std::size_t i = 0; i < n; ++i) d[i] = distance(points[i]);
+std::size_t cut_in_place(Vec3* points, std::size_t n, double* d, const DistanceFunction& distance, double threshold,
+                         const DistanceFunction& quick, bool& cut, double& outside_length) {
+  cut = false;
+  outside_length = 0.0;
+  const DistanceFunction& first = quick ? quick : distance;
+  for (std::size_t i = 0; i < n; ++i) d[i] = first(points[i]);
+  auto exact = [&](std::size_t i) {  // where the crossing is interpolated, the distance itself
+    if (std::isinf(d[i])) d[i] = distance(points[i]);
+  };
 
   // The root is fixed on the scalp: a stretch outside that starts at the root (a scalp that pokes
   // out of the volume) is never cut, only excursions after the fibre has been inside.
@@ -15,28 +21,26 @@ CutResult cut_at_exit(const std::vector<Vec3>& points, const DistanceFunction& d
   std::size_t exit_segment = 0;  // segment in which the current excursion started
   Vec3 exit_point = n > 0 ? points[0] : Vec3::Zero();
   double length_outside = 0.0;
-  auto keep_all = [&]() {
-    result.points = points;
-    result.distances = std::move(d);
-    return result;
-  };
-  auto cut_here = [&]() {
-    result.points.assign(points.begin(), points.begin() + exit_segment + 1);
-    result.distances.assign(d.begin(), d.begin() + exit_segment + 1);
-    if ((exit_point - result.points.back()).norm() > 0.0) {
-      result.points.push_back(exit_point);
-      result.distances.push_back(distance(exit_point));
+  // Ends the fibre at the crossing where the excursion started; the crossing (if it is not the
+  // segment's first point) takes the place of the segment's second point.
+  auto cut_here = [&]() -> std::size_t {
+    std::size_t kept = exit_segment + 1;
+    if ((exit_point - points[exit_segment]).norm() > 0.0) ++kept;
+    if (kept < 2) return n;  // left right at a root on the boundary: nothing to keep
+    if (kept == exit_segment + 2) {
+      points[exit_segment + 1] = exit_point;
+      d[exit_segment + 1] = distance(exit_point);
     }
-    if (result.points.size() < 2) return keep_all();  // left right at a root on the boundary: nothing to keep
-    result.cut = true;
-    result.outside_length = length_outside;
-    return result;
+    cut = true;
+    outside_length = length_outside;
+    return kept;
   };
   for (std::size_t i = 0; i + 1 < n; ++i) {
     const Vec3& a = points[i];
     const Vec3& b = points[i + 1];
     const double length = (b - a).norm();
     const bool a_out = d[i] > 0.0, b_out = d[i + 1] > 0.0;
+    if (a_out != b_out) exact(i), exact(i + 1);
     // Fraction of the segment at which the distance crosses zero (linear interpolation).
     const double t = a_out != b_out ? d[i] / (d[i] - d[i + 1]) : 0.0;
     if (!been_inside) {
@@ -58,7 +62,19 @@ CutResult cut_at_exit(const std::vector<Vec3>& points, const DistanceFunction& d
     }
     if (outside && length_outside > threshold) return cut_here();
   }
-  return keep_all();
+  return n;
+}
+
+CutResult cut_at_exit(const std::vector<Vec3>& points, const DistanceFunction& distance, double threshold,
+                      const DistanceFunction& quick) {
+  CutResult result;
+  result.points = points;
+  result.distances.resize(points.size());
+  const std::size_t kept = cut_in_place(result.points.data(), points.size(), result.distances.data(), distance, threshold,
+                                        quick, result.cut, result.outside_length);
+  result.points.resize(kept);
+  result.distances.resize(kept);
+  return result;
 }
 
 }  // namespace hairfit

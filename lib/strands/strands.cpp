@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include "core/parallel.h"
@@ -19,33 +20,57 @@ double smoothstep(double e0, double e1, double x) {
 // Share of the fibre over which it moves from its pore's own offset to its place in the wisp.
 constexpr double kSettle = 0.2;
 
+// What point i of every fibre shares (it depends on i and the options alone): t_i = i/(n−1) along
+// the reach, the settle blend, the wisp radius and the winding's cos/sin. Computed once, not per
+// fibre (the winding's cos/sin used to be a fibre's largest setup cost).
+struct Station {
+  double t, w, radius, ca, sa;
+};
+
+std::vector<Station> make_stations(const StrandOptions& o, int n) {
+  std::vector<Station> out(n);
+  for (int i = 0; i < n; ++i) {
+    const double t = static_cast<double>(i) / (n - 1);
+    const double angle = 2.0 * M_PI * o.turns * t;
+    const double ca = std::cos(angle), sa = std::sin(angle);
+    out[i] = {t, smoothstep(0.0, kSettle, t), o.root_radius + (o.tip_radius - o.root_radius) * t, ca, sa};
+  }
+  return out;
+}
+
+// make_fibre's stations, kept per thread while the options stay the same (the guides' density
+// term grows fibres one by one with the same options).
+const std::vector<Station>& stations_for(const StrandOptions& o, int n) {
+  thread_local StrandOptions key;
+  thread_local std::vector<Station> kept;
+  if (kept.size() != static_cast<std::size_t>(n) || key.root_radius != o.root_radius || key.tip_radius != o.tip_radius ||
+      key.turns != o.turns) {
+    kept = make_stations(o, n);
+    key.root_radius = o.root_radius, key.tip_radius = o.tip_radius, key.turns = o.turns;
+  }
+  return kept;
+}
+
 struct FibreLayout {
   double a, b, c;  // pore offset from the guide root in the root frame (d1, d2, t)
   double u1, u2;   // its place in the wisp's unit disk
 };
 
-// Where point i of a fibre sits relative to the guide: t_i = i/(n−1) along the reach, and its
-// offsets along the frame (d1, d2) and the root tangent. None of these depend on the reach, so
-// they are computed once per fibre rather than in every step of the length solve (the cos/sin of
-// the winding used to dominate it); the values are the same expressions as before, bit for bit.
+// Where point i of a fibre sits relative to the guide: t_i along the reach, and its offsets along
+// the frame (d1, d2) and the root tangent. None of these depend on the reach, so they are computed
+// once per fibre rather than in every step of the length solve.
 struct SweepPoint {
-  double t;        // i/(n−1)
+  double t;  // i/(n−1)
   double along_d1, along_d2, along_root_tangent;
 };
 
-std::vector<SweepPoint> sweep_points(const FibreLayout& f, const StrandOptions& o, int n) {
-  std::vector<SweepPoint> out(n);
-  for (int i = 0; i < n; ++i) {
-    const double t = static_cast<double>(i) / (n - 1);
-    const double w = smoothstep(0.0, kSettle, t);
-    const double radius = o.root_radius + (o.tip_radius - o.root_radius) * t;
-    const double x = (1.0 - w) * f.a + w * f.u1 * radius;
-    const double y = (1.0 - w) * f.b + w * f.u2 * radius;
-    const double angle = 2.0 * M_PI * o.turns * t;
-    const double ca = std::cos(angle), sa = std::sin(angle);
-    out[i] = {t, ca * x - sa * y, sa * x + ca * y, (1.0 - w) * f.c};
+void sweep_points(const FibreLayout& f, const std::vector<Station>& stations, SweepPoint* out) {
+  for (std::size_t i = 0; i < stations.size(); ++i) {
+    const Station& q = stations[i];
+    const double x = (1.0 - q.w) * f.a + q.w * f.u1 * q.radius;
+    const double y = (1.0 - q.w) * f.b + q.w * f.u2 * q.radius;
+    out[i] = {q.t, q.ca * x - q.sa * y, q.sa * x + q.ca * y, (1.0 - q.w) * f.c};
   }
-  return out;
 }
 
 // The guide's position and frame at its root (arc length 0).
@@ -53,32 +78,43 @@ struct RootFrame {
   Vec3 position, tangent, d1, d2;
 };
 
-// Points of a fibre that runs along the guide up to arc length `reach`. Arc length 0 (the first
-// point, and every point of the solve's first, zero-reach sweep) takes the root frame found once
-// per fibre instead of asking the track again.
-void sweep(const GuideTrack& track, const std::vector<SweepPoint>& layout, const RootFrame& root, double reach,
-           std::vector<Vec3>& out) {
-  const int n = static_cast<int>(out.size());
+// The n points of a fibre that runs along the guide up to arc length `reach`. Arc length 0 (the
+// first point, and every point of the solve's first, zero-reach sweep) takes the root frame found
+// once per fibre instead of asking the track again.
+void sweep(const GuideTrack& track, const SweepPoint* layout, int n, const RootFrame& root, double reach, Vec3* out) {
   std::size_t segment = 0;  // arc lengths reach·t_i only grow along the fibre
   for (int i = 0; i < n; ++i) {
     const SweepPoint& q = layout[i];
     const double s = reach * q.t;
-    Vec3 g = root.position, tangent = root.tangent, d1 = root.d1, d2 = root.d2;
-    if (s != 0.0) track.at(s, g, tangent, d1, d2, segment);
-    out[i] = g + q.along_d1 * d1 + q.along_d2 * d2 + q.along_root_tangent * root.tangent;
+    if (s == 0.0) {
+      out[i] = root.position + q.along_d1 * root.d1 + q.along_d2 * root.d2 + q.along_root_tangent * root.tangent;
+    } else {
+      Vec3 g, tangent, d1, d2;
+      track.at(s, g, tangent, d1, d2, segment);
+      out[i] = g + q.along_d1 * d1 + q.along_d2 * d2 + q.along_root_tangent * root.tangent;
+    }
   }
 }
 
-double polyline_length(const std::vector<Vec3>& p) {
+double polyline_length(const Vec3* p, int n) {
   double length = 0.0;
-  for (std::size_t i = 1; i < p.size(); ++i) length += (p[i] - p[i - 1]).norm();
+  for (int i = 1; i < n; ++i) length += (p[i] - p[i - 1]).norm();
   return length;
 }
 
-// The fibre of exactly `length` along the track; with `out_of_head`, every point but the root is
-// passed through it inside the length solve, so the moved fibre still has exactly its length.
-std::vector<Vec3> fibre_along(const GuideTrack& track, const Vec3& pore, double length, double wisp_extent,
-                              const StrandOptions& o, const HeadExit* out_of_head = nullptr) {
+// Per-thread scratch of the fibre loop (no allocation per fibre).
+struct Scratch {
+  std::vector<SweepPoint> layout;
+  std::vector<double> distances;
+  std::vector<Vec3> before_cut;
+};
+
+// The fibre of exactly `length` along the track, into points[0..n) (n = stations.size()); with
+// `out_of_head`, every point but the root is passed through it inside the length solve, so the
+// moved fibre still has exactly its length.
+void fibre_along(const GuideTrack& track, const Vec3& pore, double length, double wisp_extent,
+                 const std::vector<Station>& stations, const HeadExit* out_of_head, Vec3* points, SweepPoint* layout) {
+  const int n = static_cast<int>(stations.size());
   RootFrame root;
   track.at(0.0, root.position, root.tangent, root.d1, root.d2);
   const Vec3& t0 = root.tangent;
@@ -88,22 +124,20 @@ std::vector<Vec3> fibre_along(const GuideTrack& track, const Vec3& pore, double 
     f.u1 = f.a / wisp_extent;
     f.u2 = f.b / wisp_extent;
   }
-  std::vector<Vec3> points(std::max(2, o.points));
-  const std::vector<SweepPoint> layout = sweep_points(f, o, static_cast<int>(points.size()));
+  sweep_points(f, stations, layout);
   // The polyline's length grows with how far along the guide it reaches; find the reach that
   // gives exactly `length` by the Illinois variant of regula falsi on a bracket.
   auto excess = [&](double reach) {
-    sweep(track, layout, root, reach, points);
+    sweep(track, layout, n, root, reach, points);
     double unused;
     if (out_of_head)
-      for (std::size_t i = 1; i < points.size(); ++i) points[i] = (*out_of_head)(points[i], unused);
-    return polyline_length(points) - length;
+      for (int i = 1; i < n; ++i) points[i] = (*out_of_head)(points[i], unused);
+    return polyline_length(points, n) - length;
   };
   double lo = 0.0, f_lo = excess(lo);
   if (f_lo >= 0.0) {  // too short for its own wisp offsets: a straight fibre along the root tangent
-    for (std::size_t i = 0; i < points.size(); ++i)
-      points[i] = pore + length * static_cast<double>(i) / (points.size() - 1) * t0;
-    return points;
+    for (int i = 0; i < n; ++i) points[i] = pore + length * static_cast<double>(i) / static_cast<double>(n - 1) * t0;
+    return;
   }
   double hi = length, f_hi = excess(hi);
   while (f_hi < 0.0) {
@@ -127,42 +161,53 @@ std::vector<Vec3> fibre_along(const GuideTrack& track, const Vec3& pore, double 
     }
   }
   points[0] = pore;  // exactly, not up to round-off
-  return points;
 }
 
 // fibre_along, with the points behind the scalp moved out when `out_of_head` is given. Most
 // fibres never enter the head; only those that do pay for field lookups inside the length solve.
-// `scalp` (if given) receives what out_of_head reported at each point of the result (NaN at the
+// `in_head` (if given) receives FibrePointSides::in_head of each point of the result (−1 at the
 // root and throughout a moved fibre).
-std::vector<Vec3> fibre_kept_out(const GuideTrack& track, const Vec3& pore, double length, double wisp_extent,
-                                 const StrandOptions& o, const HeadExit& out_of_head, std::vector<double>* scalp = nullptr) {
-  std::vector<Vec3> fibre = fibre_along(track, pore, length, wisp_extent, o);
-  if (!out_of_head) return fibre;
-  std::vector<double> values(fibre.size(), std::numeric_limits<double>::quiet_NaN());
-  for (std::size_t i = 1; i < fibre.size(); ++i)
-    if (out_of_head(fibre[i], values[i]) != fibre[i]) {
-      fibre = fibre_along(track, pore, length, wisp_extent, o, &out_of_head);
-      values.assign(fibre.size(), std::numeric_limits<double>::quiet_NaN());
-      break;
+void fibre_kept_out(const GuideTrack& track, const Vec3& pore, double length, double wisp_extent,
+                    const std::vector<Station>& stations, const HeadExit& out_of_head, Vec3* points, SweepPoint* layout,
+                    std::int8_t* in_head = nullptr) {
+  fibre_along(track, pore, length, wisp_extent, stations, nullptr, points, layout);
+  if (!out_of_head) return;
+  const int n = static_cast<int>(stations.size());
+  if (in_head) in_head[0] = -1;
+  for (int i = 1; i < n; ++i) {
+    double value = std::numeric_limits<double>::quiet_NaN();
+    if (out_of_head(points[i], value) != points[i]) {
+      fibre_along(track, pore, length, wisp_extent, stations, &out_of_head, points, layout);
+      if (in_head) std::fill(in_head, in_head + n, std::int8_t(-1));
+      return;
     }
-  if (scalp) *scalp = std::move(values);
-  return fibre;
+    if (in_head) in_head[i] = std::isnan(value) ? -1 : value < 0.0;
+  }
+}
+
+std::vector<Vec3> one_fibre(const GuideTrack& track, const Vec3& pore, double length, double wisp_extent,
+                            const StrandOptions& options, const HeadExit& out_of_head) {
+  const std::vector<Station>& stations = stations_for(options, std::max(2, options.points));
+  std::vector<Vec3> points(stations.size());
+  std::vector<SweepPoint> layout(stations.size());
+  fibre_kept_out(track, pore, length, wisp_extent, stations, out_of_head, points.data(), layout.data());
+  return points;
 }
 
 }  // namespace
 
 std::vector<Vec3> make_fibre(const std::vector<Vec3>& guide, const Vec3& pore, double length, double wisp_extent,
                              const StrandOptions& options, const HeadExit& out_of_head) {
-  return fibre_kept_out(GuideTrack(guide), pore, length, wisp_extent, options, out_of_head);
+  return one_fibre(GuideTrack(guide), pore, length, wisp_extent, options, out_of_head);
 }
 
 std::vector<Vec3> make_fibre(const GuideTrack& guide, const Vec3& pore, double length, double wisp_extent,
                              const StrandOptions& options, const HeadExit& out_of_head) {
-  return fibre_kept_out(guide, pore, length, wisp_extent, options, out_of_head);
+  return one_fibre(guide, pore, length, wisp_extent, options, out_of_head);
 }
 
 Strands make_strands(const Curves& guides, const Pores& pores, const StrandOptions& options, const DistanceFunction& volume,
-                     const HeadExit& out_of_head, FibreFieldValues* values) {
+                     const HeadExit& out_of_head, FibrePointSides* sides, const DistanceFunction& volume_quick) {
   const int guide_count = static_cast<int>(guides.count());
   std::vector<GuideTrack> tracks;
   tracks.reserve(guide_count);
@@ -179,47 +224,64 @@ Strands make_strands(const Curves& guides, const Pores& pores, const StrandOptio
     extent[pores.guide[i]] = std::max(extent[pores.guide[i]], std::hypot(delta.dot(root.d1), delta.dot(root.d2)));
   }
 
+  // Every fibre is grown (and cut) in place in its own slot of n points of the result; slots of
+  // cut fibres are closed up afterwards.
   const int count = static_cast<int>(pores.positions.size());
   const bool cutting = options.cutting && volume;
-  std::vector<std::vector<Vec3>> fibres(count);
-  std::vector<std::vector<double>> distances(cutting && values ? count : 0);
-  std::vector<std::vector<double>> scalp(out_of_head && values ? count : 0);
+  const std::vector<Station> stations = make_stations(options, std::max(2, options.points));
+  const std::size_t n = stations.size(), slots = n * count;
+  Strands strands;
+  Curves& out = strands.fibres;
+  out.points.resize(slots);  // not zeroed: every slot is written on the thread that grows its fibre
+  std::vector<std::int8_t>* outside_volume = sides && cutting ? &sides->outside_volume : nullptr;
+  std::vector<std::int8_t>* in_head = sides && out_of_head ? &sides->in_head : nullptr;
+  if (sides) {
+    sides->outside_volume.assign(outside_volume ? slots : 0, 0);
+    sides->in_head.assign(in_head ? slots : 0, 0);
+  }
+  std::vector<std::uint32_t> kept(count, static_cast<std::uint32_t>(n));
   std::vector<char> cut(count, 0);
   ProgressCounter progress(options.progress);
   parallel_for(count, options.threads, [&](int i) {
-    std::vector<Vec3> fibre = fibre_kept_out(tracks[pores.guide[i]], pores.positions[i], pores.lengths[i],
-                                             extent[pores.guide[i]], options, out_of_head, scalp.empty() ? nullptr : &scalp[i]);
+    thread_local Scratch scratch;
+    scratch.layout.resize(n);
+    Vec3* points = out.points.data() + n * i;
+    std::int8_t* head = in_head ? in_head->data() + n * i : nullptr;
+    fibre_kept_out(tracks[pores.guide[i]], pores.positions[i], pores.lengths[i], extent[pores.guide[i]], stations,
+                   out_of_head, points, scratch.layout.data(), head);
     if (cutting) {
-      CutResult r = cut_at_exit(fibre, volume, options.cut_threshold);
-      cut[i] = r.cut;
-      if (!scalp.empty()) {  // a value holds where the kept point is the point it was asked about
-        scalp[i].resize(r.points.size(), std::numeric_limits<double>::quiet_NaN());
-        for (std::size_t k = 0; k < r.points.size(); ++k)
-          if (k >= fibre.size() || r.points[k] != fibre[k]) scalp[i][k] = std::numeric_limits<double>::quiet_NaN();
-      }
-      fibre = std::move(r.points);
-      if (!distances.empty()) distances[i] = std::move(r.distances);
+      scratch.distances.resize(n);
+      if (head) scratch.before_cut.assign(points, points + n);
+      bool was_cut = false;
+      double outside_length;
+      kept[i] = static_cast<std::uint32_t>(cut_in_place(points, n, scratch.distances.data(), volume, options.cut_threshold,
+                                                         volume_quick, was_cut, outside_length));
+      cut[i] = was_cut;
+      if (outside_volume)
+        for (std::size_t k = 0; k < kept[i]; ++k) (*outside_volume)[n * i + k] = scratch.distances[k] > 0.0;
+      if (head && was_cut)  // the side holds where the kept point is the point it was asked about
+        for (std::size_t k = 0; k < kept[i]; ++k)
+          if (points[k] != scratch.before_cut[k]) head[k] = -1;
     }
-    fibres[i] = std::move(fibre);
     progress.item_done();
   });
 
-  // The fibres laid end to end in pore order, each copied on its own thread.
-  Strands strands;
-  Curves& out = strands.fibres;
   out.offsets.resize(count + 1);
-  for (int i = 0; i < count; ++i) out.offsets[i + 1] = out.offsets[i] + static_cast<std::uint32_t>(fibres[i].size());
-  out.points.resize(out.offsets[count]);
-  out.guide.assign(pores.guide.begin(), pores.guide.end());
-  if (values) {
-    values->volume.assign(distances.empty() ? 0 : out.points.size(), 0.0);
-    values->scalp.assign(scalp.empty() ? 0 : out.points.size(), 0.0);
+  for (int i = 0; i < count; ++i) out.offsets[i + 1] = out.offsets[i] + kept[i];
+  if (out.offsets[count] != slots) {
+    // Close up after cut fibres, fibre after fibre: each moves down, never onto one not yet moved.
+    for (int i = 0; i < count; ++i) {
+      const std::size_t from = n * i, to = out.offsets[i];
+      if (from == to) continue;
+      std::copy(out.points.begin() + from, out.points.begin() + from + kept[i], out.points.begin() + to);
+      for (std::vector<std::int8_t>* v : {outside_volume, in_head})
+        if (v) std::copy(v->begin() + from, v->begin() + from + kept[i], v->begin() + to);
+    }
+    out.points.resize(out.offsets[count]);
+    for (std::vector<std::int8_t>* v : {outside_volume, in_head})
+      if (v) v->resize(out.offsets[count]);
   }
-  parallel_for(count, options.threads, [&](int i) {
-    std::copy(fibres[i].begin(), fibres[i].end(), out.points.begin() + out.offsets[i]);
-    if (!distances.empty()) std::copy(distances[i].begin(), distances[i].end(), values->volume.begin() + out.offsets[i]);
-    if (!scalp.empty()) std::copy(scalp[i].begin(), scalp[i].end(), values->scalp.begin() + out.offsets[i]);
-  });
+  out.guide.assign(pores.guide.begin(), pores.guide.end());
   for (int i = 0; i < count; ++i) strands.cut_count += cut[i];
   strands.cut = std::move(cut);
   return strands;

@@ -2,6 +2,7 @@
 // cluster, inside a generalised cylinder whose radius varies along the guide, optionally winding
 // about it, then optionally cut where it leaves the volume.
 #pragma once
+#include <cstdint>
 #include <vector>
 
 #include "core/curves.h"
@@ -37,16 +38,18 @@ struct Strands {
 };
 
 // Returns a point behind the scalp moved back out of the head, and any other point unchanged, and
-// sets `scalp` to the scalp's signed distance at the given point (negative inside the head), which
-// make_strands hands on (scalp_exit in lib/pipeline builds it from the scalp's distance field).
+// sets `scalp` to the scalp's signed distance at the given point (negative inside the head), or to
+// +infinity where the point is certainly in front of the scalp; make_strands hands it on (only its
+// sign matters; scalp_exit in lib/pipeline builds it from the scalp's distance field).
 using HeadExit = std::function<Vec3(const Vec3& p, double& scalp)>;
 
-// Field values make_strands looks up anyway, at every point of the fibres (fibres.points order),
-// so that callers need not ask again.
-struct FibreFieldValues {
-  std::vector<double> volume;  // volume(p), with cutting; else empty
-  std::vector<double> scalp;   // as out_of_head reported it, with out_of_head (NaN at points it
-                               // was not asked about: roots, moved points, cut ends); else empty
+// What make_strands learns about every point of the fibres on the way (fibres.points order), so
+// that callers need not ask the fields again: one byte a point.
+struct FibrePointSides {
+  std::vector<std::int8_t> outside_volume;  // with cutting: 1 where volume(p) > 0, else 0; else empty
+  std::vector<std::int8_t> in_head;  // with out_of_head: 1 where it reported a scalp distance < 0, 0
+                                     // where ≥ 0 (or NaN), −1 at points it was not asked about
+                                     // (roots, moved points, cut ends); else empty
 };
 
 // `guides` holds one polyline per guide (index = guide id), root first; `volume` is the signed
@@ -55,10 +58,12 @@ struct FibreFieldValues {
 // continues along the guide's last tangent. With `out_of_head`, a fibre that would pass behind
 // the scalp (a wisp wider than the guide's clearance, or a guide that dips in) has those points
 // moved out of the head, still with exactly its length. Deterministic for any thread count.
-// With `values`, the field values looked up on the way are handed back there.
+// With `sides`, what the field values looked up on the way said is handed back there.
+// `volume_quick` (optional) is cut_at_exit's `quick`: volume(p) or ±infinity where the sign is
+// certain.
 Strands make_strands(const Curves& guides, const Pores& pores, const StrandOptions& options,
                      const DistanceFunction& volume = nullptr, const HeadExit& out_of_head = nullptr,
-                     FibreFieldValues* values = nullptr);
+                     FibrePointSides* sides = nullptr, const DistanceFunction& volume_quick = nullptr);
 
 // One fibre (exposed for tests): the wisp frame is rotation-minimising along the guide.
 std::vector<Vec3> make_fibre(const std::vector<Vec3>& guide, const Vec3& pore, double length, double wisp_extent,

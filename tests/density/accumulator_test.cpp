@@ -122,6 +122,17 @@ TEST_CASE("deposits are byte-identical for 1, 2 and 4 threads and match one-by-o
       CHECK(histogram_of_counts(counts).cells_with == one.cells_with);
       CHECK(bytes_equal(acc.freeze(), plain.freeze()));
     }
+    // The same fibres end to end in one Curves, read in place: the same deposit and histogram.
+    Curves curves;
+    for (const auto& f : fibres) curves.add(f);
+    for (int threads : {1, 2}) {
+      DensityAccumulator acc(g);
+      std::vector<std::int32_t> counts;
+      acc.add_fibres(curves, threads, &counts);
+      CHECK(histogram_of_counts(counts).cells_with == one.cells_with);
+      CHECK(bytes_equal(acc.freeze(), plain.freeze()));
+      CHECK(segment_histogram_of_curves(g, curves, threads).cells_with == one.cells_with);
+    }
   }
   SUBCASE("statistics over a region") {
     DensityAccumulator acc(g);

@@ -1,7 +1,9 @@
 // Distance fields against brute-force exact distances, winding numbers and finite differences.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <string>
 
@@ -181,6 +183,97 @@ TEST_CASE("gradient equals central differences of the interpolant") {
     ++checked;
   }
   CHECK(checked == 400);
+}
+
+// What a lookup must return, written from the public samples alone: the trilinear interpolant of
+// the 8 corner samples of the point's cell (x fastest), gradient by the chain rule; beyond the grid
+// the value at the clamped point plus the distance to the box.
+FieldValueGradient reference_lookup(const DistanceField& f, const Vec3& p) {
+  const Vec3 upper = f.origin() + f.voxel() * (f.dims() - Vec3i::Ones()).cast<double>();
+  const Vec3 q = p.cwiseMax(f.origin()).cwiseMin(upper);
+  int cell[3];
+  double t[3];
+  for (int d = 0; d < 3; ++d) {
+    const double u = std::clamp((q[d] - f.origin()[d]) / f.voxel(), 0.0, double(f.dims()[d] - 1));
+    cell[d] = std::min(int(u), f.dims()[d] - 2);
+    t[d] = u - cell[d];
+  }
+  double c[8];
+  for (int n = 0; n < 8; ++n) c[n] = f.sample(cell[0] + (n & 1), cell[1] + ((n >> 1) & 1), cell[2] + (n >> 2));
+  const double x0 = 1 - t[0], y0 = 1 - t[1], z0 = 1 - t[2];
+  const double c00 = c[0] * x0 + c[1] * t[0], c10 = c[2] * x0 + c[3] * t[0];
+  const double c01 = c[4] * x0 + c[5] * t[0], c11 = c[6] * x0 + c[7] * t[0];
+  const double c0 = c00 * y0 + c10 * t[1], c1 = c01 * y0 + c11 * t[1];
+  FieldValueGradient out;
+  out.value = c0 * z0 + c1 * t[2];
+  out.gradient.z() = (c1 - c0) / f.voxel();
+  out.gradient.y() = ((c10 - c00) * z0 + (c11 - c01) * t[2]) / f.voxel();
+  out.gradient.x() = (((c[1] - c[0]) * y0 + (c[3] - c[2]) * t[1]) * z0 + ((c[5] - c[4]) * y0 + (c[7] - c[6]) * t[1]) * t[2]) / f.voxel();
+  const Vec3 outside = p - q;
+  const double distance = outside.norm();
+  if (distance > 0) {
+    const double sign = out.value < 0 ? -1.0 : 1.0;
+    out.value += sign * distance;
+    for (int d = 0; d < 3; ++d)
+      if (outside[d] != 0) out.gradient[d] = sign * outside[d] / distance;
+  }
+  return out;
+}
+
+TEST_CASE("lookups: value() is value_and_gradient()'s value bit for bit, both the interpolant of the samples; side() its sign") {
+  const Mesh mesh = test::messy_sphere(2, 1.0);
+  const DistanceField f = make_distance_field(mesh, spec_for(0.05, 2, 1.5), 2);
+  const Vec3 upper = f.origin() + f.voxel() * (f.dims() - Vec3i::Ones()).cast<double>();
+  uint64_t state = 987654321;
+  auto next = [&] {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return double(state >> 11) / double(1ULL << 53);
+  };
+  int exact = 0, all_far = 0, decided = 0;
+  for (int n = 0; n < 20000; ++n) {
+    // Points near the sphere, over the grid and up to a quarter of its size beyond it; every 10th
+    // on a grid node or face (fractions 0 and the clamps' upper edge), every 10th just below one
+    // (where u / coarse factor may round up to the next coarse cell).
+    Vec3 p;
+    for (int d = 0; d < 3; ++d) {
+      const double span = upper[d] - f.origin()[d];
+      p[d] = n % 2 ? f.origin()[d] - 0.25 * span + 1.5 * span * next() : 2.4 * next() - 1.2;  // half near the sphere
+      if (n % 10 == 0) p[d] = f.origin()[d] + f.voxel() * std::floor(next() * f.dims()[d]);
+      if (n % 10 == 5) p[d] = f.origin()[d] + f.voxel() * (std::floor(next() * f.dims()[d]) - 1e-13);  // just below
+    }
+    const FieldValueGradient fast = f.value_and_gradient(p);
+    const double value = f.value(p);
+    REQUIRE(std::memcmp(&value, &fast.value, sizeof value) == 0);
+    const int side = f.side(p);
+    if (side != 0) {
+      CHECK(side * value > 0.0);  // strictly on that side
+      ++decided;
+    }
+    const FieldValueGradient ref = reference_lookup(f, p);
+    // Where no corner of the cell is in the band, the lookup interpolates the coarse grid
+    // directly (the same trilinear function, other round-off): equal to ~1e-12 cm, not bit for bit.
+    const Vec3 q = p.cwiseMax(f.origin()).cwiseMin(upper);
+    Vec3i cell;
+    for (int d = 0; d < 3; ++d)
+      cell[d] = std::min(int(std::clamp((q[d] - f.origin()[d]) / f.voxel(), 0.0, double(f.dims()[d] - 1))), f.dims()[d] - 2);
+    bool any_in_band = false;
+    for (int c = 0; c < 8; ++c) any_in_band = any_in_band || f.in_band(cell[0] + (c & 1), cell[1] + ((c >> 1) & 1), cell[2] + (c >> 2));
+    if (any_in_band) {
+      CHECK(std::memcmp(&ref.value, &fast.value, sizeof value) == 0);
+      CHECK(ref.gradient == fast.gradient);
+      ++exact;
+    } else {
+      CHECK(std::abs(ref.value - fast.value) < 1e-12);
+      CHECK((ref.gradient - fast.gradient).norm() < 1e-10);
+      ++all_far;
+    }
+  }
+  CHECK(exact > 1000);
+  CHECK(all_far > 1000);
+  CHECK(decided > 15000);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  CHECK(std::isnan(f.value(Vec3(nan, 0, 0))));
+  CHECK(std::isnan(f.value_and_gradient(Vec3(0, std::numeric_limits<double>::infinity(), 0)).value));
 }
 
 TEST_CASE("beyond the band: close to the true distance, continuous at the band's edge, pulls back") {

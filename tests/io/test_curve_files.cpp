@@ -1,6 +1,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -106,6 +107,32 @@ TEST_CASE("OBJ curves: one v per point and one two-index l per segment, root fir
     previous_b = b;
   }
   CHECK(text.find("v 1 0 0\n") != std::string::npos);  // the first root, exactly
+}
+
+TEST_CASE("OBJ curves: every byte as printf writes it, for large files and any thread count") {
+  // 40 000 points (over a megabyte of text, so the in-memory text grows many times).
+  Curves c;
+  for (int k = 0; k < 2000; ++k) {
+    std::vector<Vec3> pts;
+    for (int i = 0; i < 20; ++i)
+      pts.emplace_back(std::cos(0.37 * i + k) * (k + 1) * 1e-3, 1e4 * std::sin(0.11 * i * k), -0.5 * i + 1e-7 * k);
+    c.add(pts, k);
+  }
+  std::string expected = "# hairfit curves: 2000 curves, 40000 points\n";
+  char line[128];
+  for (const Vec3& p : c.points) {
+    std::snprintf(line, sizeof line, "v %.7g %.7g %.7g\n", p.x(), p.y(), p.z());
+    expected += line;
+  }
+  for (std::size_t k = 0; k < c.count(); ++k)
+    for (std::uint32_t i = c.offsets[k]; i + 1 < c.offsets[k + 1]; ++i) {
+      std::snprintf(line, sizeof line, "l %u %u\n", i + 1, i + 2);
+      expected += line;
+    }
+  for (int threads : {1, 2, 3}) {  // formatted in blocks on several threads: the same bytes
+    write_obj_curves(temp("big.obj"), c, threads);
+    CHECK(slurp(temp("big.obj")) == expected);
+  }
 }
 
 TEST_CASE("USDA: linear BasisCurves whose counts, points, widths and extent match the curves") {

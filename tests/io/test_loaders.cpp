@@ -3,9 +3,11 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <regex>
 #include <unistd.h>
 
 #include "core/error.h"
+#include "core/random.h"
 #include "io/atomic_file.h"
 #include "io/obj_mesh.h"
 #include "io/png_chunks.h"
@@ -163,4 +165,25 @@ TEST_CASE("atomic writes leave the old file intact when writing fails") {
   CHECK(text == "old");
   for (const auto& entry : fs::directory_iterator(temp_dir()))
     CHECK(entry.path().filename().string().find(".tmp-") == std::string::npos);
+}
+
+TEST_CASE("OBJ: a face entry is refused exactly when it is not v, v/vt, v//vn or v/vt/vn with integers") {
+  // The reader's scan against the regular expression it replaced, on random short entries.
+  const std::regex face_token("-?[0-9]+(/(-?[0-9]+)?(/-?[0-9]+)?)?");
+  const char alphabet[] = "-/0123/1x";
+  Random r(9, RandomStage::test, 0);
+  int refused = 0, accepted = 0;
+  for (int n = 0; n < 1500; ++n) {
+    std::string token;
+    const int length = 1 + static_cast<int>(r.uniform(0, 7));
+    for (int i = 0; i < length; ++i) token += alphabet[static_cast<int>(r.uniform(0, sizeof alphabet - 1))];
+    const std::string error =
+        error_of([&] { load_obj_mesh(write("token.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 " + token + "\n")); });
+    const bool refused_as_token = error.find("is not a vertex index") != std::string::npos;
+    CHECK_MESSAGE(refused_as_token == !std::regex_match(token, face_token), token);
+    refused += refused_as_token;
+    accepted += !refused_as_token;
+  }
+  CHECK(refused > 300);
+  CHECK(accepted > 300);
 }

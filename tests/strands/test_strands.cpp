@@ -1,6 +1,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "core/random.h"
 #include "strands/cutting.h"
@@ -66,6 +67,34 @@ TEST_CASE("cutting: an excursion running to the tip counts to the tip; one from 
   // Each excursion runs half of two chords of length √5 outside: √5 ≈ 2.236 cm, twice.
   CHECK_FALSE(cut_at_exit(wavy, below_plane, 2.3).cut);
   CHECK(cut_at_exit(wavy, below_plane, 2.2).cut);
+}
+
+TEST_CASE("cutting with a quick side test: the same cut, exact distances at the crossings") {
+  // quick says ±infinity beyond 0.5 cm of the plane; random wiggly polylines about it.
+  const DistanceFunction quick = [](const Vec3& p) {
+    return std::fabs(p.z()) > 0.5 ? std::copysign(std::numeric_limits<double>::infinity(), p.z()) : p.z();
+  };
+  Random r(3, RandomStage::test, 2);
+  int cuts = 0;
+  for (int n = 0; n < 500; ++n) {
+    std::vector<Vec3> line;
+    for (int i = 0; i < 16; ++i) line.emplace_back(0.3 * i, 0.0, r.uniform(-2.0, 1.0) * (i > 0) - 0.1 * (i == 0));
+    const double threshold = r.uniform(0.0, 3.0);
+    const CutResult exact = cut_at_exit(line, below_plane, threshold);
+    const CutResult fast = cut_at_exit(line, below_plane, threshold, quick);
+    CHECK(fast.points == exact.points);
+    CHECK(fast.cut == exact.cut);
+    CHECK(fast.outside_length == exact.outside_length);
+    REQUIRE(fast.distances.size() == exact.distances.size());
+    for (std::size_t i = 0; i < fast.distances.size(); ++i) {
+      CHECK((fast.distances[i] > 0.0) == (exact.distances[i] > 0.0));
+      if (!std::isinf(fast.distances[i])) CHECK(fast.distances[i] == exact.distances[i]);
+    }
+    if (exact.cut) CHECK(fast.distances.back() == below_plane(fast.points.back()));  // the crossing, exactly
+    cuts += exact.cut;
+  }
+  CHECK(cuts > 50);
+  CHECK(cuts < 450);
 }
 
 TEST_CASE("the guide track's frame is orthonormal and does not twist along a planar guide") {
@@ -161,27 +190,39 @@ TEST_CASE("make_strands: one fibre per pore, cutting counted, identical for any 
   Strands reference;
   for (int threads : {1, 2, 4}) {
     o.threads = threads;
-    FibreFieldValues values;
-    values.volume = {1.0};  // replaced
-    values.scalp = {1.0};   // emptied: no out_of_head
-    const Strands s = make_strands(guides, pores, o, slab, nullptr, &values);
-    REQUIRE(values.volume.size() == s.fibres.points.size());
-    for (std::size_t k = 0; k < values.volume.size(); ++k) CHECK(values.volume[k] == slab(s.fibres.points[k]));
-    CHECK(values.scalp.empty());
-    // With a head (below y = −1, beyond every fibre): the reported values at every point but the
+    FibrePointSides sides;
+    sides.outside_volume = {1};  // replaced
+    sides.in_head = {1};         // emptied: no out_of_head
+    const Strands s = make_strands(guides, pores, o, slab, nullptr, &sides);
+    REQUIRE(sides.outside_volume.size() == s.fibres.points.size());
+    for (std::size_t k = 0; k < sides.outside_volume.size(); ++k)
+      CHECK(sides.outside_volume[k] == (slab(s.fibres.points[k]) > 0.0));
+    CHECK(sides.in_head.empty());
+    // The same with `quick` telling the side far from the boundary (±infinity beyond 1 cm).
+    const DistanceFunction quick = [&slab](const Vec3& p) {
+      const double d = slab(p);
+      return std::fabs(d) > 1.0 ? std::copysign(std::numeric_limits<double>::infinity(), d) : d;
+    };
+    FibrePointSides quick_sides;
+    const Strands q = make_strands(guides, pores, o, slab, nullptr, &quick_sides, quick);
+    CHECK(q.fibres.points == s.fibres.points);
+    CHECK(q.fibres.offsets == s.fibres.offsets);
+    CHECK(quick_sides.outside_volume == sides.outside_volume);
+    // With a head (below y = −1, beyond every fibre): the reported sides at every point but the
     // roots, and the same fibres.
     const HeadExit below = [](const Vec3& p, double& scalp) {
       scalp = p.y() + 1.0;
       return p.y() < -1.0 ? Vec3(p.x(), -1.0, p.z()) : p;
     };
-    const Strands h = make_strands(guides, pores, o, slab, below, &values);
+    const Strands h = make_strands(guides, pores, o, slab, below, &sides);
     CHECK(h.fibres.points == s.fibres.points);
-    REQUIRE(values.scalp.size() == h.fibres.points.size());
+    REQUIRE(sides.in_head.size() == h.fibres.points.size());
     for (std::size_t c = 0; c < h.fibres.count(); ++c)
       for (std::size_t k = h.fibres.offsets[c]; k < h.fibres.offsets[c + 1]; ++k) {
-        if (k == h.fibres.offsets[c]) CHECK(std::isnan(values.scalp[k]));  // the root is not asked about
-        else if (h.cut[c] && k + 1 == h.fibres.offsets[c + 1]) CHECK((std::isnan(values.scalp[k]) || values.scalp[k] == h.fibres.points[k].y() + 1.0));
-        else CHECK(values.scalp[k] == h.fibres.points[k].y() + 1.0);
+        const int expected = h.fibres.points[k].y() + 1.0 < 0.0;
+        if (k == h.fibres.offsets[c]) CHECK(sides.in_head[k] == -1);  // the root is not asked about
+        else if (h.cut[c] && k + 1 == h.fibres.offsets[c + 1]) CHECK((sides.in_head[k] == -1 || sides.in_head[k] == expected));
+        else CHECK(sides.in_head[k] == expected);
       }
     CHECK(s.fibres.count() == 300);
     CHECK(s.cut_count > 0);
