@@ -404,7 +404,7 @@ std::vector<int> eliminate_samples(const Vec3* points, const double* radius, int
     for (int e = 0; e < count; ++e) {
       const int j = partners[e];
       if (weight[j] == kEliminated) continue;
-      // As the scan computed it for the pair (j, k): same operands, same order.
+      // The weight the scan added for this pair: same operands, same expression, same bits.
       const double r = std::min(p.r, candidates[j].r);
       weight[j] -= pair_weight(r, squared_distance(p, candidates[j]));
     }
