@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <future>
 #include <limits>
 #include <map>
 #include <optional>
@@ -109,13 +110,22 @@ class Runner {
     if (!(cacheable && load_cached(stage))) {
       if (progress()) progress()->stage_begins(name, loop_items(name));
       compute(stage);
-      if (cacheable) store(stage);
+      if (cacheable) {
+        await_digest(stage);
+        store(stage);
+      }
     }
     write_outputs(name);
+    await_digest(stage);
     stage.seconds = meter.seconds();
     stage.peak_memory_bytes = meter.peak_memory_bytes();
     if (progress()) progress()->stage_ends(name, stage.status, stage.seconds);
     result_.report.stages.push_back(std::move(stage));
+  }
+
+  // A stage may hash its value on a thread of its own while it writes its files (digest_).
+  void await_digest(StageReport& stage) {
+    if (digest_.valid()) stage.digest = digest_.get();
   }
 
   ProgressReporter* progress() const { return options_.progress; }
@@ -432,7 +442,9 @@ class Runner {
     add_widths(s.fibres, scene_.hair.cross_section, options_.threads);
     v.strands = std::make_shared<const Strands>(std::move(s));
     const Curves& fibres = v.strands->fibres;
-    stage.digest = Digest().add(fibres.points).hex();
+    // The digest hashes the 35 MB of points in one serial chain: on a thread of its own, beside the
+    // counts and the files (run_stage waits for it).
+    digest_ = std::async(std::launch::async, [&fibres] { return Digest().add(fibres.points).hex(); });
     // Field values per point after the root (looked up only where make_strands did not): counted
     // per fibre on all threads, then summed (integers, so the totals do not depend on the thread
     // count). A root is its pore, a point of the scalp by construction; through the interpolated
@@ -537,6 +549,7 @@ class Runner {
   std::map<std::string, bool> cached_;
   std::optional<SegmentHistogram> histogram_;  // the density stage's, for its file
   std::optional<std::array<NrrdVolume, 2>> field_volumes_;  // the fields stage's samples (scalp, volume), for its files
+  std::future<std::string> digest_;  // the current stage's digest, when computed beside its files
   PipelineResult result_;
 };
 
