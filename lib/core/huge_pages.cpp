@@ -1,5 +1,6 @@
 #include "core/huge_pages.h"
 
+#include <cstdint>
 #include <cstdlib>
 #include <new>
 
@@ -20,10 +21,19 @@ void* allocate_huge(std::size_t bytes) {
   // are never touched.
   void* memory = std::aligned_alloc(kHugePage, rounded(bytes));
   if (!memory) throw std::bad_alloc();
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-  madvise(memory, rounded(bytes), MADV_HUGEPAGE);  // a hint: ignored where THP is off
-#endif
+  advise_huge_pages(memory, rounded(bytes));
   return memory;
+}
+
+void advise_huge_pages(void* memory, std::size_t bytes) {
+  const std::uintptr_t start = reinterpret_cast<std::uintptr_t>(memory);
+  const std::uintptr_t begin = (start + kHugePage - 1) & ~(kHugePage - 1), end = (start + bytes) & ~(kHugePage - 1);
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+  if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
+#else
+  (void)begin;
+  (void)end;
+#endif
 }
 
 void free_huge(void* memory, std::size_t bytes) {

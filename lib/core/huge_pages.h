@@ -18,6 +18,10 @@ constexpr std::size_t kHugePageThreshold = std::size_t(1) << 20;
 void* allocate_huge(std::size_t bytes);
 void free_huge(void* memory, std::size_t bytes);
 
+// Asks Linux to back the whole 2 MiB pages inside [memory, memory + bytes) with huge pages before
+// they are touched (madvise MADV_HUGEPAGE; a hint, ignored where THP is off or elsewhere).
+void advise_huge_pages(void* memory, std::size_t bytes);
+
 template <class T>
 struct HugePageAllocator {
   using value_type = T;
