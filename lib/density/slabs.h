@@ -42,16 +42,24 @@ void for_each_crossing_in_slab(const GridGeometry& grid, const std::vector<Fibre
                                const std::vector<FibreLayers>& layers, int k_begin, int k_end, Visit&& visit) {
   for (std::size_t f = 0; f < fibres.size(); ++f) {
     const FibreSpan& fibre = fibres[f];
-    // A fibre whose whole z-range misses the slab has no segment in it (z_layers is monotone).
+    // A fibre whose whole z-range misses the slab has no segment in it (z_layers is monotone);
+    // one that lies well inside it needs no test per segment.
     if (fibre.size < 2 || layers[f].last + 1 < k_begin || layers[f].first - 1 >= k_end) continue;
+    const bool inside = layers[f].first - 1 >= k_begin && layers[f].last + 1 < k_end;
     for (std::size_t s = 0; s + 1 < fibre.size; ++s) {
       const Vec3& a = fibre.points[s];
       const Vec3& b = fibre.points[s + 1];
-      int k_first, k_last;
-      z_layers(grid, std::min(a.z(), b.z()), std::max(a.z(), b.z()), k_first, k_last);
-      if (k_last + 1 < k_begin || k_first - 1 >= k_end) continue;  // one layer of slack: faces
+      if (!inside) {
+        int k_first, k_last;
+        z_layers(grid, std::min(a.z(), b.z()), std::max(a.z(), b.z()), k_first, k_last);
+        if (k_last + 1 < k_begin || k_first - 1 >= k_end) continue;  // one layer of slack: faces
+      }
+      // The walk's layer only moves one way (with b − a): once past the slab, it is done here.
+      const bool up = b.z() > a.z();
       for_each_cell_crossing(grid, a, b, [&](const Vec3i& c, double length) {
         if (c.z() >= k_begin && c.z() < k_end) visit(grid.index(c.x(), c.y(), c.z()), length);
+        else if (up ? c.z() >= k_end : c.z() < k_begin) return false;
+        return true;
       });
     }
   }

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <type_traits>
 #include <vector>
 
 #include "core/types.h"
@@ -35,7 +36,8 @@ void traverse_segment(const GridGeometry& grid, const Vec3& a, const Vec3& b, st
 std::vector<CellCrossing> traverse_segment(const GridGeometry& grid, const Vec3& a, const Vec3& b);
 
 // The same walk, calling visit(cell, length) for each crossing in order instead of listing them
-// (the deposit's inner loop: no list to fill and read back).
+// (the deposit's inner loop: no list to fill and read back). A visitor that returns bool ends the
+// walk by returning false.
 template <class Visit>
 void for_each_cell_crossing(const GridGeometry& grid, const Vec3& a, const Vec3& b, Visit&& visit) {
   const Vec3 d = b - a;
@@ -90,7 +92,11 @@ void for_each_cell_crossing(const GridGeometry& grid, const Vec3& a, const Vec3&
       }
     }
     if (t_next > t) {
-      visit(static_cast<const Vec3i&>(cell), (t_next - t) * length);
+      if constexpr (std::is_same_v<decltype(visit(static_cast<const Vec3i&>(cell), 0.0)), bool>) {
+        if (!visit(static_cast<const Vec3i&>(cell), (t_next - t) * length)) return;
+      } else {
+        visit(static_cast<const Vec3i&>(cell), (t_next - t) * length);
+      }
       t = t_next;
     }
     if (axis < 0) break;  // reached t1 inside this cell

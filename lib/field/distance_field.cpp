@@ -147,7 +147,7 @@ void locate(double u, int n, int& cell, double& frac) {
 }  // namespace
 
 void DistanceField::finish(std::vector<double> values, int threads) {
-  upper_ = origin_ + h_ * (dims_ - Vec3i::Ones()).cast<double>();
+  set_geometry();
   const int nx = dims_.x(), ny = dims_.y(), nz = dims_.z();
   const int64_t dy = nx, dz = int64_t(nx) * ny;
   const int c = coarse_factor_;
@@ -242,6 +242,12 @@ void DistanceField::finish(std::vector<double> values, int threads) {
   flags_ = std::make_shared<const std::vector<std::uint8_t>>(std::move(flags));
 }
 
+void DistanceField::set_geometry() {
+  upper_ = origin_ + h_ * (dims_ - Vec3i::Ones()).cast<double>();
+  last_node_ = (dims_ - Vec3i::Ones()).cast<double>();
+  stride_ = {1, dims_.x(), int64_t(dims_.x()) * dims_.y()};
+}
+
 bool DistanceField::in_band(int i, int j, int k) const { return (*flags_)[index(i, j, k)] & kInBand; }
 
 double DistanceField::sample(int i, int j, int k) const { return (*samples_)[index(i, j, k)]; }
@@ -320,13 +326,13 @@ double DistanceField::value(const Vec3& p) const {
 
 int DistanceField::side(const Vec3& p) const {
   if (!p.allFinite()) return 0;
-  // The cell inside_grid would read, as cell_of finds it (beyond the grid, value() only adds to
-  // the magnitude): spelled out here without the fractions, as this is the whole cost of side().
-  int64_t at = 0, stride = 1;
+  // The cell inside_grid reads (beyond the grid, value() only adds to the magnitude), found as
+  // cell_of finds it, without the fractions. Clamping u to [0, n − 1] alone picks the same cell as
+  // clamping p to the grid box first: beyond either face both end on the last cell.
+  int64_t at = 0;
   for (int d = 0; d < 3; ++d) {
-    const double u = std::clamp((std::clamp(p[d], origin_[d], upper_[d]) - origin_[d]) / h_, 0.0, double(dims_[d] - 1));
-    at += stride * std::min(static_cast<int>(u), dims_[d] - 2);
-    stride *= dims_[d];
+    const double u = std::clamp((p[d] - origin_[d]) / h_, 0.0, last_node_[d]);
+    at += stride_[d] * std::min(static_cast<int>(u), dims_[d] - 2);
   }
   const std::uint8_t f = (*flags_)[at];
   return (f & kCellPositive) ? 1 : (f & kCellNegative) ? -1 : 0;

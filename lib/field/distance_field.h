@@ -22,6 +22,7 @@
 //   gradient is that of the interpolant. The guide optimiser builds Ceres jets from value and
 //   gradient by the chain rule (no Ceres here).
 #pragma once
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -81,6 +82,7 @@ class DistanceField {
   // band's samples are given, +infinity elsewhere); `upper_` from the geometry. Called once the
   // rest is set.
   void finish(std::vector<double> band_values, int threads);
+  void set_geometry();  // upper_, last_node_ and stride_ from origin_, h_ and dims_
   template <bool kGradient>
   void inside_grid(const Vec3& p, double& value, Vec3* gradient) const;  // p within the grid box
   int64_t cell_of(const Vec3& u, double frac[3]) const;  // lowest node of the cell at u (grid units, clamped)
@@ -96,7 +98,9 @@ class DistanceField {
   Vec3i dims_ = Vec3i::Zero();
   double band_cm_ = 0.0;
   int64_t band_voxels_ = 0;
-  Vec3 upper_ = Vec3::Zero();  // the grid's far corner, origin + h·(dims − 1)
+  Vec3 upper_ = Vec3::Zero();      // the grid's far corner, origin + h·(dims − 1)
+  Vec3 last_node_ = Vec3::Zero();  // dims − 1, as doubles
+  std::array<int64_t, 3> stride_{};  // index steps along x, y, z
   // Fine samples: the signed distance in the band, the coarse grid's interpolant elsewhere,
   // so that a lookup reads its 8 corners without asking which kind each is.
   std::shared_ptr<const std::vector<double>> samples_;
