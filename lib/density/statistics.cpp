@@ -61,6 +61,12 @@ DensityStatistics density_statistics(const DensityGrid& grid, const CellPredicat
         for (int i = 0; i < g.dims.x(); ++i) in_region[g.index(i, j, k)] = inside(g.cell_centre(i, j, k)) ? 1 : 0;
     });
   }
+  return density_statistics(grid, in_region);
+}
+
+DensityStatistics density_statistics(const DensityGrid& grid, const std::vector<char>& in_region) {
+  const std::vector<double>& v = grid.values();
+  if (in_region.size() != v.size()) throw std::invalid_argument("density statistics: one region flag per cell");
   DensityStatistics s;
   double sum = 0.0;
   for (size_t c = 0; c < v.size(); ++c) {

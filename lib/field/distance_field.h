@@ -69,6 +69,10 @@ class DistanceField {
   // side, beyond 1e-290 cm), 0 where only value(p) can tell (near the surface; non-finite p).
   // Several times cheaper than value(), for callers that need only the sign.
   int side(const Vec3& p) const;
+  // side() at every point (x[i], y[j], z[k]) of a lattice, out[i + nx·(j + ny·k)]: the same
+  // answers, found from per-axis cell tables instead of point by point.
+  std::vector<std::int8_t> sides_on_lattice(const std::vector<double>& x, const std::vector<double>& y,
+                                            const std::vector<double>& z, int threads = 1) const;
 
   // Bytes of the field's samples (fine grid + coarse far-field grid). The lookup flags (one byte
   // per fine node, see below) are not counted: the figure is the one the reports have always shown.
@@ -85,7 +89,6 @@ class DistanceField {
   void set_geometry();  // upper_, last_node_ and stride_ from origin_, h_ and dims_
   template <bool kGradient>
   void inside_grid(const Vec3& p, double& value, Vec3* gradient) const;  // p within the grid box
-  int64_t cell_of(const Vec3& u, double frac[3]) const;  // lowest node of the cell at u (grid units, clamped)
   int64_t index(int i, int j, int k) const { return i + int64_t(dims_.x()) * (j + int64_t(dims_.y()) * k); }
 
   // flags_ bits: the node is in the band; the cell whose lowest corner is this node has all 8
