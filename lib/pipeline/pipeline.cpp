@@ -61,11 +61,12 @@ HeadExit scalp_exit(const DistanceField& scalp) {
       value_at_p = std::numeric_limits<double>::infinity();
       return p;
     }
+    value_at_p = scalp.value(p);  // = value_and_gradient(p).value; the gradient only when it is < 0
+    if (!(value_at_p < 0.0)) return p;
     constexpr double kClearance = 1e-3;  // cm
     Vec3 q = p;
     for (int step = 0; step < 4; ++step) {
       const FieldValueGradient vg = scalp.value_and_gradient(q);
-      if (step == 0) value_at_p = vg.value;  // = scalp.value(p)
       const double g2 = vg.gradient.squaredNorm();
       if (vg.value >= 0.0 || !(g2 > 1e-12)) break;
       q -= (vg.value - kClearance) / g2 * vg.gradient;
