@@ -16,8 +16,8 @@ SegmentHistogram histogram_of_spans(const GridGeometry& grid, const std::vector<
   // Each segment visits a cell at most once (traverse_segment), so a per-cell count of visits is
   // the number of distinct segments crossing it. Integer counts: any order gives the same result.
   std::vector<int32_t> count(size_t(grid.cell_count()), 0);
-  const std::vector<FibreLayers> layers = fibre_layers(grid, fibres, threads);
-  for_each_z_slab(grid, threads, [&](int k_begin, int k_end) {
+  const FibreLayers layers = fibre_layers(grid, fibres, threads);
+  for_each_fibre_slab(grid, fibres, layers, threads, [&](int k_begin, int k_end) {
     for_each_crossing_in_slab(grid, fibres, layers, k_begin, k_end, [&](int64_t cell, double) { ++count[cell]; });
   });
   return histogram_of_counts(count);
