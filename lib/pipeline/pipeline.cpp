@@ -501,6 +501,11 @@ class Runner {
     std::vector<std::int32_t> segment_counts;  // the histogram's, from the deposit's traversal
     accumulator.add_fibres(v.strands->fibres, options_.threads, &segment_counts);
     v.fibre_density = std::make_shared<const DensityGrid>(std::move(accumulator).freeze());
+    // The digest (one serial chain over the grid) beside the region test and the files.
+    const std::vector<double>& values = v.fibre_density->values();
+    digest_ = std::async(std::launch::async, [&values] {
+      return Digest().add_bytes(values.data(), values.size() * sizeof(double)).hex();
+    });
     // Boundary::acceptable(p) at every cell centre (beyond_volume(p) = volume(p) ≤ 0 and
     // beyond_scalp(p) = −scalp(p) ≤ 0): where a field's lookup cell settles the sign
     // (sides_on_lattice, per-axis tables), no value is interpolated; elsewhere it is, at the same
@@ -526,8 +531,6 @@ class Runner {
         }
     });
     const DensityStatistics s = density_statistics(*v.fibre_density, in_region);
-    const std::vector<double>& values = v.fibre_density->values();
-    stage.digest = Digest().add_bytes(values.data(), values.size() * sizeof(double)).hex();
     stage.add("model", scene_.effects.density == DensityModel::binary ? std::string("binary") : std::string("continuous"));
     stage.add("voxel_cm", grid.voxel);
     stage.add("grid", std::to_string(grid.dims.x()) + "x" + std::to_string(grid.dims.y()) + "x" + std::to_string(grid.dims.z()));
