@@ -16,7 +16,7 @@ int command_run(const Arguments& argv) {
 
   install_interrupt_handlers();  // Ctrl-C stops at the next safe point (core/interrupt.h)
   const Scene scene = parse_scene(args.positionals()[0]);
-  const Inputs inputs = load_inputs(scene);  // all input is checked before anything is written
+  const Inputs inputs = load_inputs(scene, resolve_thread_count(threads));  // all input is checked before anything is written
   RunOptions options;
   options.out_dir = args.text("out") ? std::filesystem::path(*args.text("out")) : scene.output.dir;
   options.until = args.text("until").value_or("");

@@ -24,7 +24,7 @@ void check_fibre(const FibreSpan& fibre, size_t item) {
 // Adds the CDM contributions of the fibres to the cells with k in [k_begin, k_end), in order,
 // and counts the crossing segments per cell when `counts` is given.
 void deposit_fibres(const GridGeometry& grid, std::vector<double>& values, std::int32_t* counts,
-                    const std::vector<FibreSpan>& fibres, const std::vector<FibreLayers>& layers, int k_begin, int k_end) {
+                    const std::vector<FibreSpan>& fibres, const FibreLayers& layers, int k_begin, int k_end) {
   const double diagonal = grid.cell_diagonal();
   if (counts)
     for_each_crossing_in_slab(grid, fibres, layers, k_begin, k_end, [&](std::int64_t cell, double length) {
@@ -96,14 +96,14 @@ void DensityAccumulator::add_fibres(const Curves& fibres, int threads, std::vect
 void DensityAccumulator::add_spans(const std::vector<FibreSpan>& fibres, int threads,
                                    std::vector<std::int32_t>* segment_counts) {
   for (size_t f = 0; f < fibres.size(); ++f) check_fibre(fibres[f], f);
-  const std::vector<FibreLayers> layers = fibre_layers(geometry_, fibres, threads);
+  const FibreLayers layers = fibre_layers(geometry_, fibres, threads);
   std::vector<double>& values = *values_;
   std::int32_t* counts = nullptr;
   if (segment_counts) {
     segment_counts->assign(size_t(geometry_.cell_count()), 0);
     counts = segment_counts->data();
   }
-  for_each_z_slab(geometry_, threads, [&](int k_begin, int k_end) {
+  for_each_fibre_slab(geometry_, fibres, layers, threads, [&](int k_begin, int k_end) {
     deposit_fibres(geometry_, values, counts, fibres, layers, k_begin, k_end);
   });
 }

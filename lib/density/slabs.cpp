@@ -19,13 +19,15 @@ void for_each_z_slab(const GridGeometry& grid, int threads, const std::function<
   });
 }
 
-void z_layers(const GridGeometry& grid, double z_lo, double z_hi, int& k_first, int& k_last) {
-  const double a = std::floor((z_lo - grid.origin.z()) / grid.voxel);
-  const double b = std::floor((z_hi - grid.origin.z()) / grid.voxel);
+int z_layer(const GridGeometry& grid, double z) {
+  const double k = std::floor((z - grid.origin.z()) / grid.voxel);
   // Clamp in double before the cast so far-away coordinates cannot overflow an int.
-  const double lim = double(grid.dims.z()) + 1.0;
-  k_first = int(std::min(std::max(a, -1.0), lim));
-  k_last = int(std::min(std::max(b, -1.0), lim));
+  return int(std::min(std::max(k, -1.0), double(grid.dims.z()) + 1.0));
+}
+
+void z_layers(const GridGeometry& grid, double z_lo, double z_hi, int& k_first, int& k_last) {
+  k_first = z_layer(grid, z_lo);
+  k_last = z_layer(grid, z_hi);
 }
 
 std::vector<FibreSpan> fibre_spans(const std::vector<std::vector<Vec3>>& fibres) {
@@ -40,14 +42,60 @@ std::vector<FibreSpan> fibre_spans(const Curves& fibres) {
   return spans;
 }
 
-std::vector<FibreLayers> fibre_layers(const GridGeometry& grid, const std::vector<FibreSpan>& fibres, int threads) {
-  std::vector<FibreLayers> layers(fibres.size(), FibreLayers{0, -1});
+void for_each_fibre_slab(const GridGeometry& grid, const std::vector<FibreSpan>& fibres,
+                         const FibreLayers& layers, int threads, const std::function<void(int, int)>& body) {
+  const int count = grid.dims.z();
+  if (count <= 0) return;
+  threads = std::max(1, threads);
+  const int slabs = std::min(count, threads == 1 ? 1 : 2 * threads);
+  if (slabs == 1) {
+    body(0, count);
+    return;
+  }
+  // Work per layer: each fibre's segments spread evenly over the layers it touches.
+  std::vector<double> change(count + 1, 0.0);
+  for (std::size_t f = 0; f < fibres.size(); ++f) {
+    if (fibres[f].size < 2) continue;
+    const int first = std::clamp(layers.first[f], 0, count - 1), last = std::clamp(layers.last[f], 0, count - 1);
+    const double per_layer = double(fibres[f].size - 1) / (last - first + 1);
+    change[first] += per_layer;
+    change[last + 1] -= per_layer;
+  }
+  std::vector<double> cumulative(count + 1, 0.0);  // work below layer k
+  double level = 0.0;
+  for (int k = 0; k < count; ++k) {
+    level += change[k];
+    cumulative[k + 1] = cumulative[k] + level;
+  }
+  // Cuts at the layers where the cumulative work reaches s/slabs of the total (each slab at least
+  // one layer).
+  std::vector<int> cuts{0};
+  for (int s = 1; s < slabs; ++s) {
+    const double target = cumulative[count] * s / slabs;
+    int k = static_cast<int>(std::lower_bound(cumulative.begin(), cumulative.end(), target) - cumulative.begin());
+    k = std::clamp(k, cuts.back() + 1, count - (slabs - s));
+    cuts.push_back(k);
+  }
+  cuts.push_back(count);
+  parallel_for(slabs, threads, [&](int s) { body(cuts[s], cuts[s + 1]); });
+}
+
+FibreLayers fibre_layers(const GridGeometry& grid, const std::vector<FibreSpan>& fibres, int threads) {
+  FibreLayers layers;
+  layers.first.assign(fibres.size(), 0);
+  layers.last.assign(fibres.size(), -1);
+  layers.begin.resize(fibres.size() + 1, 0);
+  for (std::size_t f = 0; f < fibres.size(); ++f) layers.begin[f + 1] = layers.begin[f] + fibres[f].size;
+  layers.point.resize(layers.begin.back());
   parallel_for(static_cast<int>(fibres.size()), threads, [&](int f) {
     const FibreSpan& fibre = fibres[f];
-    if (fibre.size == 0) return;
-    double z_lo = fibre.points[0].z(), z_hi = z_lo;
-    for (std::size_t p = 1; p < fibre.size; ++p) z_lo = std::min(z_lo, fibre.points[p].z()), z_hi = std::max(z_hi, fibre.points[p].z());
-    z_layers(grid, z_lo, z_hi, layers[f].first, layers[f].last);
+    int* point = layers.point.data() + layers.begin[f];
+    for (std::size_t p = 0; p < fibre.size; ++p) {
+      const int k = z_layer(grid, fibre.points[p].z());
+      point[p] = k;
+      layers.first[f] = p == 0 ? k : std::min(layers.first[f], k);
+      layers.last[f] = p == 0 ? k : std::max(layers.last[f], k);
+    }
   });
   return layers;
 }

@@ -16,8 +16,8 @@ SegmentHistogram histogram_of_spans(const GridGeometry& grid, const std::vector<
   // Each segment visits a cell at most once (traverse_segment), so a per-cell count of visits is
   // the number of distinct segments crossing it. Integer counts: any order gives the same result.
   std::vector<int32_t> count(size_t(grid.cell_count()), 0);
-  const std::vector<FibreLayers> layers = fibre_layers(grid, fibres, threads);
-  for_each_z_slab(grid, threads, [&](int k_begin, int k_end) {
+  const FibreLayers layers = fibre_layers(grid, fibres, threads);
+  for_each_fibre_slab(grid, fibres, layers, threads, [&](int k_begin, int k_end) {
     for_each_crossing_in_slab(grid, fibres, layers, k_begin, k_end, [&](int64_t cell, double) { ++count[cell]; });
   });
   return histogram_of_counts(count);
@@ -61,6 +61,12 @@ DensityStatistics density_statistics(const DensityGrid& grid, const CellPredicat
         for (int i = 0; i < g.dims.x(); ++i) in_region[g.index(i, j, k)] = inside(g.cell_centre(i, j, k)) ? 1 : 0;
     });
   }
+  return density_statistics(grid, in_region);
+}
+
+DensityStatistics density_statistics(const DensityGrid& grid, const std::vector<char>& in_region) {
+  const std::vector<double>& v = grid.values();
+  if (in_region.size() != v.size()) throw std::invalid_argument("density statistics: one region flag per cell");
   DensityStatistics s;
   double sum = 0.0;
   for (size_t c = 0; c < v.size(); ++c) {

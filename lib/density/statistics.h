@@ -45,6 +45,8 @@ struct DensityStatistics {
 // Summed in index order (deterministic). A region without occupied cells gives mean = cv = 0.
 // `inside` is asked on up to `threads` threads at once (it must be safe for that).
 DensityStatistics density_statistics(const DensityGrid& grid, const CellPredicate& inside = {}, int threads = 1);
+// The same for a region given cell by cell: in_region[c] != 0 (index order, one per cell).
+DensityStatistics density_statistics(const DensityGrid& grid, const std::vector<char>& in_region);
 
 // A planar slice: values[u + width·v] sampled (trilinearly) at origin + u·u_step + v·v_step.
 struct DensitySlice {

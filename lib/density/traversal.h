@@ -35,9 +35,12 @@ void traverse_segment(const GridGeometry& grid, const Vec3& a, const Vec3& b, st
 std::vector<CellCrossing> traverse_segment(const GridGeometry& grid, const Vec3& a, const Vec3& b);
 
 // The same walk, calling visit(cell, length) for each crossing in order instead of listing them
-// (the deposit's inner loop: no list to fill and read back).
+// (the deposit's inner loop: no list to fill and read back), and only for the cells of layers
+// [k_begin, k_end): the walk starts where it enters them and ends where it leaves them (its layer
+// only moves one way), with the lengths and cells it would have found walking from a.
 template <class Visit>
-void for_each_cell_crossing(const GridGeometry& grid, const Vec3& a, const Vec3& b, Visit&& visit) {
+void for_each_cell_crossing(const GridGeometry& grid, const Vec3& a, const Vec3& b, Visit&& visit,
+                            int k_begin = std::numeric_limits<int>::min(), int k_end = std::numeric_limits<int>::max()) {
   const Vec3 d = b - a;
   const double length = d.norm();
   if (!(length > 0.0) || !std::isfinite(length) || grid.cell_count() == 0) return;
@@ -77,9 +80,31 @@ void for_each_cell_crossing(const GridGeometry& grid, const Vec3& a, const Vec3&
     const double face = lo[k] + h * (cell[k] + (d[k] > 0.0 ? 1 : 0));
     return (face - a[k]) / d[k];
   };
+  double t = t0;
+  // Below (above) the layers, moving up (down): go straight to where the walk crosses into them,
+  // at T, the exit parameter of the layer before. By then the walk has stepped x and y through the
+  // faces whose exit parameter is ≤ T (ties go to x and y), unless one of them left the grid
+  // first; they are stepped on here without visiting. (Should one lag, the walk below catches it
+  // up without a visit, as a visit needs t_next > t = T: the result never depends on it.)
+  const bool below = cell.z() < k_begin, above = cell.z() >= k_end;
+  if (below || above) {
+    if (d.z() == 0.0 || (below && d.z() < 0.0) || (above && d.z() > 0.0)) return;  // never gets there
+    cell.z() = below ? k_begin - 1 : k_end;
+    const double T = exit_parameter(2);
+    if (!(T < t1)) return;
+    for (int k = 0; k < 2; ++k) {
+      if (d[k] == 0.0) continue;
+      while (exit_parameter(k) <= T) {
+        cell[k] += d[k] > 0.0 ? 1 : -1;
+        if (cell[k] < 0 || cell[k] >= grid.dims[k]) return;
+      }
+    }
+    cell.z() = below ? k_begin : k_end - 1;
+    if (cell.z() < 0 || cell.z() >= grid.dims.z()) return;
+    t = T;
+  }
   double exit[3] = {exit_parameter(0), exit_parameter(1), exit_parameter(2)};
   const int max_steps = grid.dims.sum() + 8;
-  double t = t0;
   for (int step = 0; step < max_steps; ++step) {
     double t_next = t1;
     int axis = -1;
@@ -96,6 +121,7 @@ void for_each_cell_crossing(const GridGeometry& grid, const Vec3& a, const Vec3&
     if (axis < 0) break;  // reached t1 inside this cell
     cell[axis] += d[axis] > 0.0 ? 1 : -1;
     if (cell[axis] < 0 || cell[axis] >= grid.dims[axis]) break;
+    if (axis == 2 && (cell.z() < k_begin || cell.z() >= k_end)) break;  // left the layers for good
     exit[axis] = exit_parameter(axis);
   }
 }

@@ -147,7 +147,7 @@ void locate(double u, int n, int& cell, double& frac) {
 }  // namespace
 
 void DistanceField::finish(std::vector<double> values, int threads) {
-  upper_ = origin_ + h_ * (dims_ - Vec3i::Ones()).cast<double>();
+  set_geometry();
   const int nx = dims_.x(), ny = dims_.y(), nz = dims_.z();
   const int64_t dy = nx, dz = int64_t(nx) * ny;
   const int c = coarse_factor_;
@@ -242,6 +242,12 @@ void DistanceField::finish(std::vector<double> values, int threads) {
   flags_ = std::make_shared<const std::vector<std::uint8_t>>(std::move(flags));
 }
 
+void DistanceField::set_geometry() {
+  upper_ = origin_ + h_ * (dims_ - Vec3i::Ones()).cast<double>();
+  last_node_ = (dims_ - Vec3i::Ones()).cast<double>();
+  stride_ = {1, dims_.x(), int64_t(dims_.x()) * dims_.y()};
+}
+
 bool DistanceField::in_band(int i, int j, int k) const { return (*flags_)[index(i, j, k)] & kInBand; }
 
 double DistanceField::sample(int i, int j, int k) const { return (*samples_)[index(i, j, k)]; }
@@ -251,17 +257,18 @@ int64_t DistanceField::memory_bytes() const {
 }
 
 
-int64_t DistanceField::cell_of(const Vec3& u, double frac[3]) const {
-  int cell[3];
-  for (int d = 0; d < 3; ++d) locate(u[d], dims_[d], cell[d], frac[d]);
-  return index(cell[0], cell[1], cell[2]);
-}
-
 template <bool kGradient>
 void DistanceField::inside_grid(const Vec3& p, double& value, Vec3* gradient) const {
-  const Vec3 u = (p - origin_) / h_;
-  double frac[3];
-  const int64_t base = cell_of(u, frac);
+  // The cell and fractions as locate() finds them, with the per-axis constants kept.
+  double u[3], frac[3];
+  int64_t base = 0;
+  for (int d = 0; d < 3; ++d) {
+    u[d] = (p[d] - origin_[d]) / h_;
+    const double clamped = std::clamp(u[d], 0.0, last_node_[d]);
+    const int cell = std::min(static_cast<int>(clamped), dims_[d] - 2);
+    frac[d] = clamped - cell;
+    base += stride_[d] * cell;
+  }
   if ((*flags_)[base] & kCellFar) {
     // Every corner is beyond the band: the samples there are the coarse interpolant, which is
     // trilinear over the whole coarse cell, so interpolating it directly gives the same value.
@@ -320,16 +327,49 @@ double DistanceField::value(const Vec3& p) const {
 
 int DistanceField::side(const Vec3& p) const {
   if (!p.allFinite()) return 0;
-  // The cell inside_grid would read, as cell_of finds it (beyond the grid, value() only adds to
-  // the magnitude): spelled out here without the fractions, as this is the whole cost of side().
-  int64_t at = 0, stride = 1;
+  // The cell inside_grid reads (beyond the grid, value() only adds to the magnitude), found as
+  // it finds it, without the fractions. Clamping u to [0, n − 1] alone picks the same cell as
+  // clamping p to the grid box first: beyond either face both end on the last cell.
+  int64_t at = 0;
   for (int d = 0; d < 3; ++d) {
-    const double u = std::clamp((std::clamp(p[d], origin_[d], upper_[d]) - origin_[d]) / h_, 0.0, double(dims_[d] - 1));
-    at += stride * std::min(static_cast<int>(u), dims_[d] - 2);
-    stride *= dims_[d];
+    const double u = std::clamp((p[d] - origin_[d]) / h_, 0.0, last_node_[d]);
+    at += stride_[d] * std::min(static_cast<int>(u), dims_[d] - 2);
   }
   const std::uint8_t f = (*flags_)[at];
   return (f & kCellPositive) ? 1 : (f & kCellNegative) ? -1 : 0;
+}
+
+std::vector<std::int8_t> DistanceField::sides_on_lattice(const std::vector<double>& x, const std::vector<double>& y,
+                                                         const std::vector<double>& z, int threads) const {
+  // Per axis, the term each coordinate adds to the cell index, as side() computes it (it treats
+  // the axes separately); a non-finite coordinate makes its points undecided (−1 here).
+  const std::vector<double>* axes[3] = {&x, &y, &z};
+  std::vector<int64_t> terms[3];
+  for (int d = 0; d < 3; ++d)
+    for (double c : *axes[d]) {
+      if (!std::isfinite(c)) {
+        terms[d].push_back(-1);
+        continue;
+      }
+      const double u = std::clamp((c - origin_[d]) / h_, 0.0, last_node_[d]);
+      terms[d].push_back(stride_[d] * std::min(static_cast<int>(u), dims_[d] - 2));
+    }
+  const std::size_t nx = x.size(), ny = y.size();
+  std::vector<std::int8_t> out(nx * ny * z.size(), 0);
+  // The side for each combination of the two side bits (kCellPositive = 4, kCellNegative = 8).
+  static_assert(kCellPositive == 4 && kCellNegative == 8, "the table below");
+  constexpr std::int8_t kSide[4] = {0, 1, -1, 1};
+  const std::uint8_t* flags = flags_->data();
+  parallel_for(static_cast<int>(z.size()), threads, [&](int k) {
+    for (std::size_t j = 0; j < ny; ++j) {
+      if (terms[1][j] < 0 || terms[2][k] < 0) continue;
+      const std::uint8_t* row = flags + terms[1][j] + terms[2][k];
+      std::int8_t* sides = out.data() + nx * (j + ny * k);
+      for (std::size_t i = 0; i < nx; ++i)
+        if (terms[0][i] >= 0) sides[i] = kSide[(row[terms[0][i]] >> 2) & 3];
+    }
+  });
+  return out;
 }
 
 Vec3 DistanceField::gradient(const Vec3& p) const { return value_and_gradient(p).gradient; }

@@ -22,6 +22,7 @@
 //   gradient is that of the interpolant. The guide optimiser builds Ceres jets from value and
 //   gradient by the chain rule (no Ceres here).
 #pragma once
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -68,6 +69,10 @@ class DistanceField {
   // side, beyond 1e-290 cm), 0 where only value(p) can tell (near the surface; non-finite p).
   // Several times cheaper than value(), for callers that need only the sign.
   int side(const Vec3& p) const;
+  // side() at every point (x[i], y[j], z[k]) of a lattice, out[i + nx·(j + ny·k)]: the same
+  // answers, found from per-axis cell tables instead of point by point.
+  std::vector<std::int8_t> sides_on_lattice(const std::vector<double>& x, const std::vector<double>& y,
+                                            const std::vector<double>& z, int threads = 1) const;
 
   // Bytes of the field's samples (fine grid + coarse far-field grid). The lookup flags (one byte
   // per fine node, see below) are not counted: the figure is the one the reports have always shown.
@@ -81,9 +86,9 @@ class DistanceField {
   // band's samples are given, +infinity elsewhere); `upper_` from the geometry. Called once the
   // rest is set.
   void finish(std::vector<double> band_values, int threads);
+  void set_geometry();  // upper_, last_node_ and stride_ from origin_, h_ and dims_
   template <bool kGradient>
   void inside_grid(const Vec3& p, double& value, Vec3* gradient) const;  // p within the grid box
-  int64_t cell_of(const Vec3& u, double frac[3]) const;  // lowest node of the cell at u (grid units, clamped)
   int64_t index(int i, int j, int k) const { return i + int64_t(dims_.x()) * (j + int64_t(dims_.y()) * k); }
 
   // flags_ bits: the node is in the band; the cell whose lowest corner is this node has all 8
@@ -96,7 +101,9 @@ class DistanceField {
   Vec3i dims_ = Vec3i::Zero();
   double band_cm_ = 0.0;
   int64_t band_voxels_ = 0;
-  Vec3 upper_ = Vec3::Zero();  // the grid's far corner, origin + h·(dims − 1)
+  Vec3 upper_ = Vec3::Zero();      // the grid's far corner, origin + h·(dims − 1)
+  Vec3 last_node_ = Vec3::Zero();  // dims − 1, as doubles
+  std::array<int64_t, 3> stride_{};  // index steps along x, y, z
   // Fine samples: the signed distance in the band, the coarse grid's interpolant elsewhere,
   // so that a lookup reads its 8 corners without asking which kind each is.
   std::shared_ptr<const std::vector<double>> samples_;

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <future>
 
 #include "io/png_map.h"
 #include "pipeline/stage_options.h"
@@ -129,15 +130,19 @@ void require_enclosure(const Scene& scene, const Inputs& in) {
 
 }  // namespace
 
-Inputs load_inputs(const Scene& scene) {
+Inputs load_inputs(const Scene& scene, int threads) {
   const double to_cm = scene.units.to_cm();
   const std::string scalp_file = scene.inputs.scalp.string(), volume_file = scene.inputs.volume.string();
   require_integrable_weight(scene);
   Inputs in;
+  // With a second thread the volume is read while the scalp is read and checked; its errors are
+  // reported only after the scalp's, as when they are read one after the other.
+  std::future<LoadedMesh> volume;
+  if (threads > 1) volume = std::async(std::launch::async, [&] { return load_obj_mesh(scene.inputs.volume, to_cm); });
   in.scalp = load_obj_mesh(scene.inputs.scalp, to_cm);
   require_plausible_coordinates(in.scalp.mesh, scalp_file, scene.units.length);
   check_scalp_for_chart(in.scalp.mesh, scene.units.front, scene.units.down, scalp_file);
-  in.volume = load_obj_mesh(scene.inputs.volume, to_cm);
+  in.volume = volume.valid() ? volume.get() : load_obj_mesh(scene.inputs.volume, to_cm);
   require_plausible_coordinates(in.volume.mesh, volume_file, scene.units.length);
   require_closed_volume(in.volume.mesh, volume_file);
   if (scene.effects.uses_map("density")) in.density_map = load_grey_map(*scene.maps.density);

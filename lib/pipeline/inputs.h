@@ -28,7 +28,8 @@ struct InputsSummary {
 // a topological disk, inconsistently oriented, edge-on from above), a volume that does not enclose
 // the scalp or faces inward, and distance-field or density grids larger than fields.max_memory:
 // every input error a run could meet, so a run refuses bad input before it writes anything.
-Inputs load_inputs(const Scene& scene);
+// `threads` > 1 reads the two meshes at once (the same result and the same first error).
+Inputs load_inputs(const Scene& scene, int threads = 1);
 
 InputsSummary summarise_inputs(const Inputs& inputs);
 

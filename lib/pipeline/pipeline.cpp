@@ -61,11 +61,12 @@ HeadExit scalp_exit(const DistanceField& scalp) {
       value_at_p = std::numeric_limits<double>::infinity();
       return p;
     }
+    value_at_p = scalp.value(p);  // = value_and_gradient(p).value; the gradient only when it is < 0
+    if (!(value_at_p < 0.0)) return p;
     constexpr double kClearance = 1e-3;  // cm
     Vec3 q = p;
     for (int step = 0; step < 4; ++step) {
       const FieldValueGradient vg = scalp.value_and_gradient(q);
-      if (step == 0) value_at_p = vg.value;  // = scalp.value(p)
       const double g2 = vg.gradient.squaredNorm();
       if (vg.value >= 0.0 || !(g2 > 1e-12)) break;
       q -= (vg.value - kClearance) / g2 * vg.gradient;
@@ -501,20 +502,36 @@ class Runner {
     std::vector<std::int32_t> segment_counts;  // the histogram's, from the deposit's traversal
     accumulator.add_fibres(v.strands->fibres, options_.threads, &segment_counts);
     v.fibre_density = std::make_shared<const DensityGrid>(std::move(accumulator).freeze());
-    // Boundary::acceptable(p), asking the volume first (most cells of the grid's box lie outside
-    // it, and those then need no scalp lookup) and each field's side() before its value (the
-    // sign is all the test needs, and away from the surfaces the cell tells it).
+    // The digest (one serial chain over the grid) beside the region test and the files.
+    const std::vector<double>& values = v.fibre_density->values();
+    digest_ = std::async(std::launch::async, [&values] {
+      return Digest().add_bytes(values.data(), values.size() * sizeof(double)).hex();
+    });
+    // Boundary::acceptable(p) at every cell centre (beyond_volume(p) = volume(p) ≤ 0 and
+    // beyond_scalp(p) = −scalp(p) ≤ 0): where a field's lookup cell settles the sign
+    // (sides_on_lattice, per-axis tables), no value is interpolated; elsewhere it is, at the same
+    // centre (GridGeometry::cell_centre, coordinate by coordinate).
     const DistanceField& volume = *v.volume_field;
     const DistanceField& scalp = *v.scalp_field;
-    const auto acceptable = [&volume, &scalp](const Vec3& p) {
-      const int in_volume = volume.side(p);  // beyond_volume(p) = volume(p) ≤ 0
-      if (in_volume > 0 || (in_volume == 0 && !(volume.value(p) <= 0.0))) return false;
-      const int in_front = scalp.side(p);  // beyond_scalp(p) = −scalp(p) ≤ 0
-      return in_front != 0 ? in_front > 0 : -scalp.value(p) <= 0.0;
-    };
-    const DensityStatistics s = density_statistics(*v.fibre_density, acceptable, options_.threads);
-    const std::vector<double>& values = v.fibre_density->values();
-    stage.digest = Digest().add_bytes(values.data(), values.size() * sizeof(double)).hex();
+    const GridGeometry& g = v.fibre_density->geometry();
+    std::vector<double> centres[3];
+    for (int d = 0; d < 3; ++d)
+      for (int n = 0; n < g.dims[d]; ++n) centres[d].push_back(g.origin[d] + g.voxel * (n + 0.5));
+    const std::vector<std::int8_t> volume_sides = volume.sides_on_lattice(centres[0], centres[1], centres[2], options_.threads);
+    const std::vector<std::int8_t> scalp_sides = scalp.sides_on_lattice(centres[0], centres[1], centres[2], options_.threads);
+    std::vector<char> in_region(static_cast<std::size_t>(g.cell_count()), 0);
+    parallel_for(g.dims.z(), options_.threads, [&](int k) {
+      for (int j = 0; j < g.dims.y(); ++j)
+        for (int i = 0; i < g.dims.x(); ++i) {
+          const std::int64_t c = g.index(i, j, k);
+          const int in_volume = volume_sides[c], in_front = scalp_sides[c];
+          if (in_volume > 0 || in_front < 0) continue;
+          const Vec3 p = g.cell_centre(i, j, k);
+          if (in_volume == 0 && !(volume.value(p) <= 0.0)) continue;
+          in_region[c] = in_front > 0 || -scalp.value(p) <= 0.0;
+        }
+    });
+    const DensityStatistics s = density_statistics(*v.fibre_density, in_region);
     stage.add("model", scene_.effects.density == DensityModel::binary ? std::string("binary") : std::string("continuous"));
     stage.add("voxel_cm", grid.voxel);
     stage.add("grid", std::to_string(grid.dims.x()) + "x" + std::to_string(grid.dims.y()) + "x" + std::to_string(grid.dims.z()));

@@ -48,7 +48,7 @@ struct StageCodecAccess {
     if (d.minCoeff() < 0 || c.minCoeff() < 0 || samples.size() != std::size_t(d.x()) * d.y() * d.z() ||
         flags.size() != samples.size() || coarse.size() != std::size_t(c.x()) * c.y() * c.z())
       throw CodecError("distance field grid sizes do not match their samples");
-    f.upper_ = f.origin_ + f.h_ * (d - Vec3i::Ones()).cast<double>();  // as DistanceField::finish
+    f.set_geometry();
     f.samples_ = std::make_shared<const std::vector<double>>(std::move(samples));
     f.flags_ = std::make_shared<const std::vector<std::uint8_t>>(std::move(flags));
     f.coarse_ = std::make_shared<const std::vector<double>>(std::move(coarse));

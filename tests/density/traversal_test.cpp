@@ -164,3 +164,51 @@ TEST_CASE("degenerate segments: zero length, on grid planes, through corners") {
     CHECK(std::abs(total(cs) - (b - a).norm()) <= 1e-12 * (b - a).norm());
   }
 }
+
+TEST_CASE("a walk over some layers finds the full walk's crossings in them, bit for bit") {
+  const GridGeometry g = small_grid();
+  Random rng(77, RandomStage::test, 0);
+  const Vec3 lo = g.origin, hi = g.upper();
+  int compared = 0, skipped_ahead = 0;
+  for (int n = 0; n < 20000; ++n) {
+    auto point = [&] {
+      Vec3 p(rng.uniform(lo.x() - 0.3, hi.x() + 0.3), rng.uniform(lo.y() - 0.3, hi.y() + 0.3),
+             rng.uniform(lo.z() - 0.3, hi.z() + 0.3));
+      // Some on grid planes and some sharing a coordinate (axis-parallel segments, ties).
+      if (n % 7 == 0) p.z() = lo.z() + g.voxel * std::floor(rng.uniform(0, g.dims.z() + 1));
+      if (n % 11 == 0) p.x() = lo.x() + g.voxel * std::floor(rng.uniform(0, g.dims.x() + 1));
+      return p;
+    };
+    Vec3 a = point();
+    Vec3 b = point();
+    if (n % 13 == 0) b.z() = a.z();
+    if (n % 5 == 0) {  // from a grid node by whole cells: through edges and corners, exact ties
+      Vec3i node, cells;
+      for (int k = 0; k < 3; ++k) {
+        node[k] = static_cast<int>(rng.uniform(0, g.dims[k] + 1));
+        cells[k] = static_cast<int>(rng.uniform(-4, 5));
+      }
+      a = lo + g.voxel * node.cast<double>();
+      b = a + g.voxel * cells.cast<double>();
+    }
+    const int k_begin = static_cast<int>(rng.uniform(0, g.dims.z()));
+    const int k_end = k_begin + 1 + static_cast<int>(rng.uniform(0, g.dims.z() - k_begin));
+    std::vector<CellCrossing> expected;
+    for (const CellCrossing& c : traverse_segment(g, a, b))
+      if (c.cell.z() >= k_begin && c.cell.z() < k_end) expected.push_back(c);
+    std::vector<CellCrossing> got;
+    for_each_cell_crossing(
+        g, a, b, [&](const Vec3i& cell, double length) { got.push_back({cell, length}); }, k_begin, k_end);
+    REQUIRE(got.size() == expected.size());
+    for (std::size_t i = 0; i < got.size(); ++i) {
+      CHECK(got[i].cell == expected[i].cell);
+      CHECK(got[i].length == expected[i].length);
+    }
+    compared += !expected.empty();
+    // How often the walk starts outside the layers (the skip ahead is exercised).
+    const std::vector<CellCrossing> all = traverse_segment(g, a, b);
+    skipped_ahead += !all.empty() && !expected.empty() && (all[0].cell.z() < k_begin || all[0].cell.z() >= k_end);
+  }
+  CHECK(compared > 5000);
+  CHECK(skipped_ahead > 1000);
+}

@@ -276,6 +276,36 @@ TEST_CASE("lookups: value() is value_and_gradient()'s value bit for bit, both th
   CHECK(std::isnan(f.value_and_gradient(Vec3(0, std::numeric_limits<double>::infinity(), 0)).value));
 }
 
+TEST_CASE("sides_on_lattice: side() at every point of a lattice") {
+  const Mesh mesh = test::icosphere(2, 1.0);
+  const DistanceField f = make_distance_field(mesh, spec_for(0.05, 2, 0.5), 2);
+  uint64_t state = 4242;
+  auto next = [&] {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return double(state >> 11) / double(1ULL << 53);
+  };
+  std::vector<double> axes[3];
+  for (int d = 0; d < 3; ++d) {
+    for (int n = 0; n < 23 + d; ++n) axes[d].push_back(-2.5 + 5.0 * next());  // inside and beyond the grid
+    axes[d].push_back(f.origin()[d] + f.voxel() * 7);                         // on a node
+  }
+  axes[1].push_back(std::numeric_limits<double>::quiet_NaN());
+  for (int threads : {1, 3}) {
+    const std::vector<std::int8_t> sides = f.sides_on_lattice(axes[0], axes[1], axes[2], threads);
+    REQUIRE(sides.size() == axes[0].size() * axes[1].size() * axes[2].size());
+    int decided = 0, differ = 0;
+    for (std::size_t k = 0; k < axes[2].size(); ++k)
+      for (std::size_t j = 0; j < axes[1].size(); ++j)
+        for (std::size_t i = 0; i < axes[0].size(); ++i) {
+          const int expected = f.side(Vec3(axes[0][i], axes[1][j], axes[2][k]));
+          differ += sides[i + axes[0].size() * (j + axes[1].size() * k)] != expected;
+          decided += expected != 0;
+        }
+    CHECK(differ == 0);
+    CHECK(decided > 10000);
+  }
+}
+
 TEST_CASE("beyond the band: close to the true distance, continuous at the band's edge, pulls back") {
   const double R = 1.0;
   const Mesh mesh = test::icosphere(3, R);
