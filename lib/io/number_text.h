@@ -8,8 +8,8 @@ namespace hairfit {
 
 // Writes v as printf("%.*g", precision, v) would, without a terminating NUL, and returns the end.
 // `out` needs room for 48 characters (it may be written beyond the end returned); precision must
-// be in [1, 17]. Exact: the value's 7 (P)
-// significant digits are rounded from its exact binary value, ties to even, as glibc does.
+// be in [1, 17]. Exact: the value's P significant digits are rounded from its exact binary value,
+// ties to even, as glibc does.
 char* format_general(char* out, double v, int precision);
 
 }  // namespace hairfit
