@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "core/parallel.h"
 #include "strands/guide_track.h"
@@ -20,40 +21,62 @@ double surcharge_step(double occupancy, double threshold, double width) {
 }
 
 double density_ceiling(const DensityGrid& grid, const DensityTermOptions& term, int threads) {
+  return DensityCeiling(term)(grid, threads);
+}
+
+double DensityCeiling::operator()(const DensityGrid& grid, int threads) {
   const GridGeometry& g = grid.geometry();
   const std::vector<double>& values = grid.values();
-  if (term.model == GuideDensityModel::binary) {
+  if (term_.model == GuideDensityModel::binary) {
     double top = 0.0;
     for (double v : values) top = std::max(top, v);
-    const double s = top > 0.0 ? surcharge_step(top, term.threshold, term.surcharge_width) : 0.0;
-    return top * top + term.surcharge * s * s;
+    const double s = top > 0.0 ? surcharge_step(top, term_.threshold, term_.surcharge_width) : 0.0;
+    return top * top + term_.surcharge * s * s;
   }
   // Every cell centre a trilinear blend can use: the grid and the ring of zero cells around it.
   // Central differences there reach two cells beyond the grid, so they read a copy padded with
-  // two rings of zeros (no bounds checks), one z layer per task: this runs once per batch over
-  // the whole grid. The largest of the layers' maxima is the same for any thread count.
+  // two rings of zeros (no bounds checks). A row's maximum depends on its own cells and those of
+  // its four neighbour rows; a row is rescanned when one of them changed since the last call.
   const int nx = g.dims.x() + 4, ny = g.dims.y() + 4, nz = g.dims.z() + 4;
-  std::vector<double> padded(static_cast<std::size_t>(nx) * ny * nz, 0.0);
-  for (int k = 0; k < g.dims.z(); ++k)
-    for (int j = 0; j < g.dims.y(); ++j)
-      std::copy_n(values.begin() + g.index(0, j, k), g.dims.x(),
-                  padded.begin() + (2 + static_cast<std::size_t>(nx) * ((j + 2) + static_cast<std::size_t>(ny) * (k + 2))));
+  const bool fresh = nx != nx_ || ny != ny_ || nz != nz_ || g.voxel != voxel_;
+  if (fresh) {
+    nx_ = nx, ny_ = ny, nz_ = nz, voxel_ = g.voxel;
+    padded_.assign(static_cast<std::size_t>(nx) * ny * nz, 0.0);
+    row_top_.assign(static_cast<std::size_t>(ny) * nz, 0.0);
+  }
+  auto row = [&](int j, int k) { return static_cast<std::size_t>(j) + static_cast<std::size_t>(ny) * k; };
+  // Copy the changed rows in (bit for bit), one z layer per task; changed[k][j]: padded row (j, k)
+  // differs from the last call (empty for the padding layers, which never change).
+  std::vector<std::vector<char>> changed(nz);
+  parallel_for(g.dims.z(), threads, [&](int k) {
+    std::vector<char>& mark = changed[k + 2];
+    mark.assign(ny, 0);
+    for (int j = 0; j < g.dims.y(); ++j) {
+      const double* from = values.data() + g.index(0, j, k);
+      double* to = padded_.data() + 2 + static_cast<std::size_t>(nx) * row(j + 2, k + 2);
+      if (!fresh && std::memcmp(from, to, sizeof(double) * g.dims.x()) == 0) continue;
+      std::copy_n(from, g.dims.x(), to);
+      mark[j + 2] = 1;
+    }
+  });
   const std::ptrdiff_t sy = nx, sz = static_cast<std::ptrdiff_t>(nx) * ny;
   const double h2 = 2.0 * g.voxel;
-  std::vector<double> layer_top(nz, 0.0);
   parallel_for(nz - 2, threads, [&](int layer) {
     const int k = layer + 1;
-    double top = 0.0;
+    auto marked = [&](int kk, int j) { return !changed[kk].empty() && changed[kk][j]; };
     for (int j = 1; j < ny - 1; ++j) {
-      const double* c = padded.data() + 1 + sy * j + sz * k;
+      if (!fresh && !marked(k, j) && !marked(k, j - 1) && !marked(k, j + 1) && !marked(k - 1, j) && !marked(k + 1, j))
+        continue;
+      double top = 0.0;
+      const double* c = padded_.data() + 1 + sy * j + sz * k;
       for (int i = 1; i < nx - 1; ++i, ++c) {
         const Vec3 d((c[1] - c[-1]) / h2, (c[sy] - c[-sy]) / h2, (c[sz] - c[-sz]) / h2);
         top = std::max(top, d.squaredNorm());
       }
+      row_top_[row(j, k)] = top;
     }
-    layer_top[k] = top;
   });
-  return term.strength * *std::max_element(layer_top.begin(), layer_top.end());
+  return term_.strength * *std::max_element(row_top_.begin(), row_top_.end());
 }
 
 std::vector<std::vector<Vec3>> guide_deposit_fibres(const std::vector<Vec3>& guide, const std::vector<int>& pores_of_guide,

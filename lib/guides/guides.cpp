@@ -288,11 +288,12 @@ DensityGuides make_guides_with_density(const RootSet& bases, const PreGuides& pr
   const std::vector<Guide> plain = make_guides(bases, preguides, boundary, first).items;
   ProgressCounter progress(options.progress);  // guides finished, after their second solve
   DensityAccumulator accumulator(density.grid);
+  DensityCeiling ceiling(density.term);
   for (int begin = 0; begin < count; begin += density.batch) {
     const int end = std::min(count, begin + density.batch);
     const DensityGrid frozen = accumulator.freeze();  // the earlier batches only
     DensityTermOptions term = density.term;
-    term.outside = density_ceiling(frozen, term, options.threads);
+    term.outside = ceiling(frozen, options.threads);
     parallel_for(end - begin, options.threads, [&](int i) {
       out.guides.items[begin + i] =
           solve_guide_with_density(bases, begin + i, preguides, boundary, options, plain[begin + i], frozen, term,

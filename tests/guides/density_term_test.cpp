@@ -3,6 +3,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <memory>
 #include <cmath>
 #include <cstdint>
 
@@ -204,6 +205,46 @@ TEST_CASE("the density ceiling is the largest F4 integrand anywhere on the grid"
   }
   CHECK(sampled <= ceiling * (1 + 1e-12));
   CHECK(sampled > 0.25 * ceiling);  // the samples do reach the dense part (the peak is at one centre)
+}
+
+TEST_CASE("the density ceiling of a grid that changes in places equals a full scan, bit for bit") {
+  const GridGeometry g = grid();
+  DensityTermOptions term;
+  term.strength = 1.5;
+  std::uint64_t state = 99;
+  auto uniform = [&state]() {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return static_cast<double>(state >> 11) / 9007199254740992.0;
+  };
+  auto point = [&]() -> Vec3 { return g.origin + (g.upper() - g.origin).cwiseProduct(Vec3(uniform(), uniform(), uniform())); };
+  for (int threads : {1, 3}) {
+    CAPTURE(threads);
+    DensityCeiling tracked(term);
+    DensityAccumulator acc(cdm_grid(g));
+    for (int step = 0; step < 12; ++step) {
+      CAPTURE(step);
+      if (step % 4 == 3) {
+        acc = DensityAccumulator(g);  // a sparser grid: the ceiling falls
+        acc.add_fibre({point(), point()});
+      } else {
+        // Short fibres here and there, and one through the corner cells of the grid.
+        for (int n = 0; n < 3; ++n) {
+          const Vec3 p = point();
+          acc.add_fibre({p, p + 0.6 * Vec3(uniform(), uniform(), uniform())});
+        }
+        acc.add_fibre({g.origin, g.origin + 0.5 * g.voxel * Vec3::Ones(), g.upper()});
+      }
+      const DensityGrid now = acc.freeze();
+      CHECK(tracked(now, threads) == density_ceiling(now, term, 1));
+    }
+    // A grid of the same dimensions at another voxel size is scanned afresh.
+    GridGeometry finer = g;
+    finer.voxel *= 0.5;
+    DensityAccumulator other(finer);
+    other.add_fibre({finer.origin, finer.upper()});
+    const DensityGrid fine = std::move(other).freeze();
+    CHECK(tracked(fine, threads) == density_ceiling(fine, term, 1));
+  }
 }
 
 TEST_CASE("outside the acceptable region a sample pays the density ceiling on top of F4") {
