@@ -15,6 +15,7 @@
 #include "io/obj_mesh.h"
 #include "io/png_map.h"
 #include "scalp/chart.h"
+#include "../support/scratch.h"
 
 using namespace hairfit;
 using hairfit::testing::read_all;
@@ -98,8 +99,7 @@ TEST_CASE("every corpus scene: run exits 2, names the file, the item and the fix
       {"map_empty_idat_cut", "data/fuzz_empty_idat_cut.png",
        ": error: is a corrupt PNG (its chunks are cut off or malformed); re-export it as a grey PNG"},
   };
-  const fs::path out = fs::temp_directory_path() / ("hairfit-corpus-" + std::to_string(::getpid()));
-  fs::remove_all(out);
+  const fs::path out = hairfit::testing::fresh_scratch_folder("corpus");
   fs::create_directories(out / "fields");
   std::ofstream(out / "report.json") << "{\"an\": \"earlier run\"}\n";
   std::ofstream(out / "fields" / "scalp.nrrd") << "earlier field\n";

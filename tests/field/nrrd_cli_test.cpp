@@ -13,6 +13,7 @@
 #include "io/nrrd.h"
 #include "io/obj_mesh.h"
 #include "test_meshes.h"
+#include "../support/scratch.h"
 
 using namespace hairfit;
 namespace fs = std::filesystem;
@@ -20,9 +21,7 @@ namespace fs = std::filesystem;
 namespace {
 
 fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / "hairfit_test_field";
-  fs::create_directories(dir);
-  return dir / name;
+  return hairfit::testing::scratch_path(name);
 }
 
 }  // namespace

@@ -19,6 +19,7 @@
 #include "core/interrupt.h"
 #include "core/parallel.h"
 #include "io/atomic_file.h"
+#include "../support/scratch.h"
 
 using namespace hairfit;
 using hairfit::testing::read_all;
@@ -28,10 +29,7 @@ namespace fs = std::filesystem;
 namespace {
 
 fs::path fresh_folder(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("hairfit-interrupt-" + std::to_string(::getpid()) + "-" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
+  return hairfit::testing::fresh_scratch_folder("interrupt-" + name);
 }
 
 // Every regular file below `dir` with its bytes, by path relative to `dir`.

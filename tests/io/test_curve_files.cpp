@@ -11,6 +11,7 @@
 
 #include "core/error.h"
 #include "io/curve_files.h"
+#include "../support/scratch.h"
 
 using namespace hairfit;
 namespace fs = std::filesystem;
@@ -18,7 +19,7 @@ namespace fs = std::filesystem;
 namespace {
 
 fs::path temp(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("hairfit-curves-" + std::to_string(::getpid()));
+  const fs::path dir = hairfit::testing::scratch_path("curves");
   fs::create_directories(dir);
   return dir / name;
 }

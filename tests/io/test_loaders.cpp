@@ -13,6 +13,7 @@
 #include "io/png_chunks.h"
 #include "io/png_image.h"
 #include "io/png_map.h"
+#include "../support/scratch.h"
 
 using namespace hairfit;
 namespace fs = std::filesystem;
@@ -20,7 +21,7 @@ namespace fs = std::filesystem;
 namespace {
 
 fs::path temp_dir() {
-  const fs::path dir = fs::temp_directory_path() / ("hairfit-io-" + std::to_string(::getpid()));
+  const fs::path dir = hairfit::testing::scratch_path("io");
   fs::create_directories(dir);
   return dir;
 }

@@ -12,6 +12,7 @@
 #include "pipeline/stage_cache.h"
 #include "pipeline/stage_plan.h"
 #include "../support/run_hairfit.h"
+#include "../support/scratch.h"
 
 using namespace hairfit;
 using hairfit::testing::read_all;
@@ -44,7 +45,7 @@ std::vector<std::string> missed(const std::function<void(Scene&)>& change, const
 using Names = std::vector<std::string>;
 
 std::string fresh_folder(const std::string& name) {
-  const fs::path path = fs::temp_directory_path() / ("hairfit-cache-test-" + std::to_string(::getpid()) + "-" + name);
+  const fs::path path = hairfit::testing::scratch_path("cache-" + name);
   fs::remove_all(path);
   return path.string();
 }

@@ -9,6 +9,7 @@
 #include "pipeline/build_id.h"
 #include "pipeline/golden.h"
 #include "../support/run_hairfit.h"
+#include "../support/scratch.h"
 
 using namespace hairfit;
 using hairfit::testing::read_all;
@@ -19,10 +20,7 @@ namespace fs = std::filesystem;
 namespace {
 
 std::string fresh_folder(const std::string& name) {
-  const fs::path path = fs::temp_directory_path() / ("hairfit-check-test-" + std::to_string(::getpid()) + "-" + name);
-  fs::remove_all(path);
-  fs::create_directories(path);
-  return path.string();
+  return hairfit::testing::fresh_scratch_folder("check-" + name).string();
 }
 
 // A copy of the smoke scene in `folder` (input paths made absolute), with `extra` replacing the

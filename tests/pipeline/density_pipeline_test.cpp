@@ -12,6 +12,7 @@
 #include "pipeline/pipeline.h"
 #include "pipeline/stage_options.h"
 #include "../support/run_hairfit.h"
+#include "../support/scratch.h"
 
 using namespace hairfit;
 using hairfit::testing::read_all;
@@ -91,7 +92,7 @@ TEST_CASE("batched guides are byte-identical for 1, 2 and 4 threads") {
     const Scene scene = smoke_scene(model, 6);
     std::map<int, std::string> guide_digest, density_digest, csv;
     for (int threads : {1, 2, 4}) {
-      const std::string out = "/tmp/hairfit-density-test-" + std::to_string(threads);
+      const std::string out = hairfit::testing::scratch_path("density-" + std::to_string(threads)).string();
       std::filesystem::remove_all(out);
       const PipelineResult r = run(scene, threads, out);
       guide_digest[threads] = stage(r.report, "guides")->digest;

@@ -5,13 +5,14 @@
 #include <regex>
 
 #include "../support/run_hairfit.h"
+#include "../support/scratch.h"
 
 using hairfit::testing::read_all;
 using hairfit::testing::run_hairfit;
 using hairfit::testing::source_path;
 
 TEST_CASE("hairfit run gives byte-identical files and digests for 1, 2, 3 and 4 threads") {
-  const std::string base = "/tmp/hairfit-determinism-" + std::to_string(::getpid());
+  const std::string base = hairfit::testing::scratch_path("determinism").string();
   for (int threads : {1, 2, 3, 4}) {
     // --no-cache: every run computes (the cache would hand the later runs the first one's values).
     const auto r = run_hairfit("run " + source_path("fixtures/smoke/scene.toml") + " --no-cache --out " + base + "-" +

@@ -7,6 +7,7 @@
 #include "pipeline/pipeline.h"
 #include "pipeline/stage_options.h"
 #include "../support/run_hairfit.h"
+#include "../support/scratch.h"
 
 using namespace hairfit;
 using hairfit::testing::read_all;
@@ -39,7 +40,7 @@ struct Run {
 Run run(bool on) {
   Run r{smoke_with_effects(on), {}, {}, {}, {}};
   r.inputs = load_inputs(r.scene);
-  r.out = (fs::temp_directory_path() / ("hairfit-effects-" + std::to_string(::getpid()) + (on ? "-on" : "-off"))).string();
+  r.out = hairfit::testing::scratch_path(on ? "effects-on" : "effects-off").string();
   fs::remove_all(r.out);
   RunOptions o;
   o.threads = 2;

@@ -8,6 +8,7 @@
 #include "io/obj_mesh.h"
 #include "prepare/surface_checks.h"
 #include "prepare/weld.h"
+#include "../support/scratch.h"
 
 using namespace hairfit;
 
@@ -74,7 +75,7 @@ TEST_CASE("welding merges vertices repeated within the tolerance and nothing far
 }
 
 TEST_CASE("OBJ vertex colours are read when every vertex has them and written back") {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "hairfit-prepare-colours";
+  const std::filesystem::path dir = hairfit::testing::fresh_scratch_folder("prepare-colours");
   Mesh m = icosphere(1);
   std::vector<Vec3> colours;
   for (std::size_t i = 0; i < m.positions.size(); ++i) colours.emplace_back(i % 2, 0.25, 0.5);

@@ -11,6 +11,7 @@
 #include "../support/run_hairfit.h"
 #include "io/obj_mesh.h"
 #include "prepare/bust.h"
+#include "../support/scratch.h"
 
 using namespace hairfit;
 using hairfit::testing::read_all;
@@ -20,10 +21,7 @@ namespace fs = std::filesystem;
 namespace {
 
 fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("hairfit-prepare-" + std::to_string(::getpid()) + "-" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
+  return hairfit::testing::fresh_scratch_folder("prepare-" + name);
 }
 
 // The bust written as a scan: positions × scale (e.g. 10 for millimetres), optionally turned by

@@ -15,6 +15,7 @@
 #include "render/plot.h"
 #include "core/shapes.h"
 #include "render/render_3d.h"
+#include "../support/scratch.h"
 
 using namespace hairfit;
 
@@ -355,7 +356,7 @@ TEST_CASE("same inputs give byte-identical PNGs, on 1 or 2 threads") {
 TEST_CASE("PNG round trip through stb_image gives back the buffer") {
   Image image = make_image(37, 23, 10, 20, 30);
   for (std::size_t i = 0; i < image.rgba.size(); ++i) image.rgba[i] = static_cast<std::uint8_t>((i * 7919) % 256);
-  const auto folder = std::filesystem::temp_directory_path() / "hairfit_test_render";
+  const auto folder = hairfit::testing::fresh_scratch_folder("render");
   write_png(folder / "rgba.png", image);
   const Image back = load_png_image(folder / "rgba.png");
   CHECK(back.width == 37);

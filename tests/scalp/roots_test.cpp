@@ -10,6 +10,7 @@
 #include "scalp/roots.h"
 #include "scalp/scalp_outputs.h"
 #include "tests/scalp/scalp_meshes.h"
+#include "../support/scratch.h"
 
 using namespace hairfit;
 
@@ -334,7 +335,7 @@ TEST_CASE("roots.ply and chart.obj round trip") {
   o.guides = 20;
   const Roots r = make_roots(ch, {}, o);
   const Clusters c = make_clusters(ch, r, o);
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "hairfit_scalp_test";
+  const std::filesystem::path dir = hairfit::testing::fresh_scratch_folder("scalp");
   write_roots_ply(dir / "roots.ply", r, c);
   const PlyPoints back = read_ply_points(dir / "roots.ply");
   REQUIRE(static_cast<int>(back.positions.size()) == r.pores.size());

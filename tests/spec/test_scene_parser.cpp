@@ -7,6 +7,7 @@
 #include "../support/run_hairfit.h"
 #include "spec/scene.h"
 #include "spec/scene_keys.h"
+#include "../support/scratch.h"
 
 using namespace hairfit;
 using hairfit::testing::read_all;
@@ -176,7 +177,7 @@ TEST_CASE("the bad-scene corpus: exit 2, the file, the line and what to do") {
 }
 
 TEST_CASE("run refuses bad input before writing anything") {
-  const std::string out = "/tmp/hairfit-test-run-" + std::to_string(::getpid());
+  const std::string out = hairfit::testing::scratch_path("refused-run").string();
   const auto r = run_hairfit("run " + source_path("tests/corpus/scenes/mesh_nan.toml") + " --out " + out);
   CHECK(r.exit_code == 2);
   CHECK_FALSE(std::filesystem::exists(out));
@@ -199,7 +200,7 @@ TEST_CASE("command-line misuse exits 2 with a usage line") {
 }
 
 TEST_CASE("--until density without a density model is refused before anything is written") {
-  const std::string out = "/tmp/hairfit-test-until-" + std::to_string(::getpid());
+  const std::string out = hairfit::testing::scratch_path("refused-until").string();
   const auto r = run_hairfit("run " + source_path("fixtures/smoke/scene.toml") + " --until density --out " + out);
   CHECK(r.exit_code == 2);
   CHECK(r.err.find("declares no density model") != std::string::npos);

@@ -9,6 +9,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "scratch.h"
+
 namespace hairfit::testing {
 
 struct CommandResult {
@@ -27,7 +29,7 @@ inline std::string read_all(const std::string& path) {
 // `arguments` is appended to the program path as shell text (quote it yourself).
 inline CommandResult run_hairfit(const std::string& arguments) {
   static int counter = 0;
-  const std::string base = "/tmp/hairfit-test-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+  const std::string base = scratch_path("run-" + std::to_string(counter++)).string();
   const std::string command = std::string(HAIRFIT_BINARY) + " " + arguments + " >" + base + ".out 2>" + base + ".err";
   const int status = std::system(command.c_str());
   CommandResult r;
