@@ -294,10 +294,17 @@ DensityGuides make_guides_with_density(const RootSet& bases, const PreGuides& pr
     const DensityGrid frozen = accumulator.freeze();  // the earlier batches only
     DensityTermOptions term = density.term;
     term.outside = ceiling(frozen, options.threads);
+    // The guides of a batch are independent of each other, so the order they are taken in changes
+    // nothing but the balance: the costliest first (by their first solve's evaluations), so that
+    // the batch does not end with one thread on a slow guide while the others wait.
+    std::vector<int> order(end - begin);
+    std::iota(order.begin(), order.end(), begin);
+    std::stable_sort(order.begin(), order.end(),
+                     [&](int x, int y) { return plain[x].evaluations > plain[y].evaluations; });
     parallel_for(end - begin, options.threads, [&](int i) {
-      out.guides.items[begin + i] =
-          solve_guide_with_density(bases, begin + i, preguides, boundary, options, plain[begin + i], frozen, term,
-                                   density.stall);
+      const int g = order[i];
+      out.guides.items[g] =
+          solve_guide_with_density(bases, g, preguides, boundary, options, plain[g], frozen, term, density.stall);
       progress.item_done();
     });
     if (density.term.model == GuideDensityModel::continuous) {

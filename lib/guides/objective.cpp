@@ -87,13 +87,59 @@ T boundary_residual(const T& u, BoundaryForm form, double c_d, double w) {
   return T(std::sqrt(c_d)) * x * x * (T(3) - T(2) * x);
 }
 
+// The F1 and F2 residuals of all neighbours at one sample share the guide's d3 (or Darboux vector)
+// u: Σ_j s_j²|u − a_j|² = S|u − ā|² + Σ_j s_j²|a_j − ā|² with S = Σ_j s_j² and ā = Σ_j s_j²a_j / S.
+// So the optimiser sees one residual √S·(u − ā) per sample and term, and the rest is a constant.
+struct MergedTargets {
+  std::vector<double> scale;  // √S per sample
+  std::vector<Vec3> mean;     // ā per sample
+  double constant = 0.0;      // Σ over samples of Σ_j s_j²|a_j − ā|²
+};
+
+// `square_scale(nb, k)`: s_j² of neighbour nb at sample k; `target(nb, k)`: a_j.
+template <typename SquareScale, typename Target>
+MergedTargets merge_targets(const GuideTargets& t, const SquareScale& square_scale, const Target& target) {
+  MergedTargets m;
+  const std::size_t samples = t.sample_nodes.size();
+  m.scale.resize(samples);
+  m.mean.resize(samples);
+  for (std::size_t k = 0; k < samples; ++k) {
+    double total = 0.0;
+    Vec3 sum = Vec3::Zero();
+    for (const GuideTargets::Neighbour& nb : t.neighbours) {
+      total += square_scale(nb, k);
+      sum += square_scale(nb, k) * target(nb, k);
+    }
+    m.scale[k] = std::sqrt(total);
+    m.mean[k] = total > 0.0 ? Vec3(sum / total) : Vec3::Zero();
+    for (const GuideTargets::Neighbour& nb : t.neighbours)
+      m.constant += square_scale(nb, k) * (target(nb, k) - m.mean[k]).squaredNorm();
+  }
+  return m;
+}
+
 class GuideCost {
  public:
-  explicit GuideCost(const GuideTargets& t) : t_(t) {}
+  // `merged`: the F1 and F2 blocks as MergedTargets (3 residuals per sample each, the sum of
+  // squares short by merged_constant()), as the optimiser sees them; otherwise one block of 3 per
+  // neighbour and sample, each term's residuals as the paper writes them (guide_residuals, terms).
+  explicit GuideCost(const GuideTargets& t, bool merged = false) : t_(t), merged_(merged) {
+    if (!merged) return;
+    const GuideWeights& w = t.weights;
+    direction_ = merge_targets(
+        t, [&](const GuideTargets::Neighbour& nb, std::size_t k) { return w.direction * nb.weight_at(k) * t.sample_weights[k] / 2.0; },
+        [](const GuideTargets::Neighbour& nb, std::size_t k) { return nb.tangents[k]; });
+    similarity_ = merge_targets(
+        t, [&](const GuideTargets::Neighbour& nb, std::size_t k) { return w.similarity * nb.weight_at(k) * t.sample_weights[k]; },
+        [](const GuideTargets::Neighbour& nb, std::size_t k) { return nb.darboux[k]; });
+  }
 
   int residual_count() const {
-    return static_cast<int>(t_.sample_nodes.size() * (6 * t_.neighbours.size() + 2 + density_per_sample()));
+    const std::size_t per_term = merged_ ? 3 : 3 * t_.neighbours.size();
+    return static_cast<int>(t_.sample_nodes.size() * (2 * per_term + 2 + density_per_sample()));
   }
+  // Σr² of the full residuals minus Σr² of these (0 unless merged).
+  double merged_constant() const { return direction_.constant + similarity_.constant; }
   // F4 residuals per sample: none without a grid; CDM the slope, BOM occupancy and surcharge;
   // both then the outside residual.
   int density_per_sample() const {
@@ -133,8 +179,33 @@ class GuideCost {
   // material curvature), however it was solved.
   template <typename T>
   bool residuals_of_shape(const T* nodes, const T* frames, const T* curvature, T* residuals) const {
-    const GuideWeights& w = t_.weights;
     T* r = residuals;
+    const std::size_t samples = t_.sample_nodes.size();
+    if (merged_) {
+      for (std::size_t k = 0; k < samples; ++k) {
+        const T scale = T(direction_.scale[k]);
+        const T* d3 = &frames[9 * t_.sample_nodes[k] + 6];
+        for (int a = 0; a < 3; ++a) *r++ = scale * (d3[a] - T(direction_.mean[k][a]));
+      }
+      for (std::size_t k = 0; k < samples; ++k) {
+        const T scale = T(similarity_.scale[k]);
+        const T* R = &frames[9 * t_.sample_nodes[k]];
+        const T* kappa = &curvature[3 * t_.sample_nodes[k]];
+        for (int a = 0; a < 3; ++a) {
+          const T omega = R[a] * kappa[0] + R[3 + a] * kappa[1] + R[6 + a] * kappa[2];
+          *r++ = scale * (omega - T(similarity_.mean[k][a]));
+        }
+      }
+    } else {
+      full_direction_and_similarity(frames, curvature, r);
+    }
+    return boundary_and_density(nodes, frames, r);
+  }
+
+ private:
+  template <typename T>
+  void full_direction_and_similarity(const T* frames, const T* curvature, T*& r) const {
+    const GuideWeights& w = t_.weights;
     const std::size_t samples = t_.sample_nodes.size();
     for (const GuideTargets::Neighbour& nb : t_.neighbours)
       for (std::size_t k = 0; k < samples; ++k) {
@@ -154,6 +225,12 @@ class GuideCost {
           *r++ = scale * (omega - T(nb.darboux[k][a]));
         }
       }
+  }
+
+  template <typename T>
+  bool boundary_and_density(const T* nodes, const T* frames, T* r) const {
+    const GuideWeights& w = t_.weights;
+    const std::size_t samples = t_.sample_nodes.size();
     for (std::size_t k = 0; k < samples; ++k) {
       const T scale = T(std::sqrt(w.boundary * t_.sample_weights[k]));
       T p[3];
@@ -189,8 +266,9 @@ class GuideCost {
     return true;
   }
 
- private:
   const GuideTargets& t_;
+  bool merged_ = false;
+  MergedTargets direction_, similarity_;
 };
 
 // The optimiser's coordinates x = (f_L, μ) with m(0) = μ + c × f_L + g, where c is the chord
@@ -233,8 +311,10 @@ struct LoadCoordinates {
 
 class ReparameterisedCost {
  public:
-  ReparameterisedCost(const GuideTargets& t, const LoadCoordinates& coordinates) : cost_(t), coordinates_(coordinates) {}
+  ReparameterisedCost(const GuideTargets& t, const LoadCoordinates& coordinates)
+      : cost_(t, /*merged=*/true), coordinates_(coordinates) {}
   int residual_count() const { return cost_.residual_count(); }
+  double merged_constant() const { return cost_.merged_constant(); }
   template <typename T>
   bool operator()(const T* x, T* residuals) const {
     T loads[6];
@@ -254,7 +334,8 @@ class ReparameterisedCost {
 // equations anyway. What this saves is Ceres' own work on a 374 × 6 Jacobian at every evaluation
 // (validating, zeroing, scaling and multiplying it): the guide solves of the 500-guide paper-scale
 // scene went from 4.92 to 3.92 G instructions (callgrind). Where only the cost is asked for, the
-// residuals are (0, …, 0, |r|).
+// residuals are (0, …, 0, |r|). The residuals are the merged ones (MergedTargets: 160 in place
+// of 374 at paper scale); their constant joins the seventh residual, so Ceres sees the full cost.
 class CompressedGuideCost : public ceres::SizedCostFunction<7, 6> {
  public:
   explicit CompressedGuideCost(const ReparameterisedCost& cost) : cost_(cost) {}
@@ -266,7 +347,7 @@ class CompressedGuideCost : public ceres::SizedCostFunction<7, 6> {
     r.resize(m);
     if (!jacobians || !jacobians[0]) {
       if (!cost_(x, r.data())) return false;
-      double squares = 0.0;
+      double squares = cost_.merged_constant();
       for (double v : r) squares += v * v;
       std::fill(residuals, residuals + 6, 0.0);
       residuals[6] = std::sqrt(squares);
@@ -282,7 +363,9 @@ class CompressedGuideCost : public ceres::SizedCostFunction<7, 6> {
       r[i] = rj[i].a;
       for (int k = 0; k < 6; ++k) j[6 * i + k] = rj[i].v[k];
     }
-    return compress_least_squares(m, r.data(), j.data(), residuals, jacobians[0]);
+    if (!compress_least_squares(m, r.data(), j.data(), residuals, jacobians[0])) return false;
+    residuals[6] = std::sqrt(residuals[6] * residuals[6] + cost_.merged_constant());
+    return true;
   }
 
  private:
@@ -386,8 +469,9 @@ GuideTerms evaluate_guide_terms(const GuideTargets& targets, const double eta[6]
   return with_unweighted_f4(targets, eta, terms_of(targets, r));
 }
 
-std::vector<double> guide_residuals(const GuideTargets& targets, const double eta[6], std::vector<double>* jacobian) {
-  GuideCost cost(targets);
+namespace {
+
+std::vector<double> residuals_of(const GuideCost& cost, const double eta[6], std::vector<double>* jacobian) {
   std::vector<double> r(cost.residual_count());
   if (!jacobian) {
     cost(eta, r.data());
@@ -403,6 +487,20 @@ std::vector<double> guide_residuals(const GuideTargets& targets, const double et
     for (int j = 0; j < 6; ++j) (*jacobian)[6 * i + j] = rj[i].v[j];
   }
   return r;
+}
+
+}  // namespace
+
+std::vector<double> guide_residuals(const GuideTargets& targets, const double eta[6], std::vector<double>* jacobian) {
+  return residuals_of(GuideCost(targets), eta, jacobian);
+}
+
+MergedGuideResiduals merged_guide_residuals(const GuideTargets& targets, const double eta[6]) {
+  const GuideCost cost(targets, /*merged=*/true);
+  MergedGuideResiduals m;
+  m.residuals = residuals_of(cost, eta, &m.jacobian);
+  m.constant = cost.merged_constant();
+  return m;
 }
 
 namespace {

@@ -63,6 +63,15 @@ GuideTerms evaluate_guide_terms(const GuideTargets& targets, const ShootingResul
 // (row-major, 6 per residual). For tests of the residuals and their jets.
 std::vector<double> guide_residuals(const GuideTargets& targets, const double eta[6], std::vector<double>* jacobian = nullptr);
 
+// The residuals as the optimiser sees them: the F1 and F2 residuals of all neighbours at a sample
+// merged into one residual per sample and term (their sum of squares then falls short of the full
+// one by `constant`, whatever the shape). Same Jacobian layout. For tests of the merging.
+struct MergedGuideResiduals {
+  std::vector<double> residuals, jacobian;
+  double constant = 0.0;
+};
+MergedGuideResiduals merged_guide_residuals(const GuideTargets& targets, const double eta[6]);
+
 struct GuideSolve {
   double eta[6] = {0, 0, 0, 0, 0, 0};  // best (f_L, m(0)), dimensionless
   // A heavy rod (weight beyond kHeavyRod) is optimised in its terminal loads by multiple shooting:

@@ -1,5 +1,7 @@
 #include <doctest/doctest.h>
 
+#include <tuple>
+
 #include <cmath>
 
 #include "guides/guides.h"
@@ -184,6 +186,66 @@ TEST_CASE("the residuals sum exactly to the weighted terms, and F1 is the mean o
   for (int k = 0; k <= 16; ++k) f1 += t.sample_weights[k] * (1.0 - p.shape.tangents[k].dot(r.directions[0].normalized()));
   CHECK(terms.f1 == doctest::Approx(f1).epsilon(1e-12));
   CHECK(terms.total == doctest::Approx(0.3 * terms.f1 + 0.3 * terms.f2 + 0.4 * terms.f3).epsilon(1e-12));
+}
+
+TEST_CASE("the optimiser's merged residuals have the full residuals' cost, gradient and Gauss–Newton matrix") {
+  GuideOptions o;
+  o.rod.segments = 16;
+  const RootSet r = roots_at({{0.4, 0.0}}, 8.0, 0.0);
+  GuideTargets t;
+  const Vec3 bend = bending_direction(r.normals[0], r.directions[0], o.down, o.front);
+  t.model = make_rod_model(hair_rod(8.0, o.material), RodRoot{r.positions[0], root_frame(r.directions[0], bend)});
+  t.root = r.positions[0];
+  t.length = 8.0;
+  t.rod = o.rod;
+  for (int k = 0; k <= 8; ++k) {
+    t.sample_nodes.push_back(2 * k);
+    t.sample_weights.push_back((k == 0 || k == 8 ? 0.5 : 1.0) / 8);
+  }
+  // Three pre-guides bent different ways, one trusted only part of the way (and not at all at
+  // the last sample: a zero weight there).
+  const Vec3 forces[3] = {Vec3(2.0, 0.0, 0.0), Vec3(0.0, 0.0, -1.5), Vec3(-1.0, 0.5, 1.0)};
+  const double weights[3] = {0.5, 0.3, 0.2};
+  for (int j = 0; j < 3; ++j) {
+    const PreGuide p = preguide_with_loads(r, 0, o, forces[j], Vec3(0.0, 1.0, 0.0));
+    GuideTargets::Neighbour nb;
+    nb.weight = weights[j];
+    for (int node : t.sample_nodes) {
+      nb.tangents.push_back(p.shape.tangents[node]);
+      nb.darboux.push_back(p.shape.darboux[node]);
+      if (j == 2) nb.trust.push_back(node < 16 ? 1.0 - node / 16.0 : 0.0);
+    }
+    t.neighbours.push_back(nb);
+  }
+  const Boundary b = world().boundary();
+  t.boundary = &b;
+  t.weights = GuideWeights{0.35, 0.2, 0.45, 0.0};
+  const double eta[6] = {0.3, -0.2, 0.1, 0.05, 0.4, -0.1};
+  std::vector<double> jacobian;
+  const std::vector<double> full = guide_residuals(t, eta, &jacobian);
+  const MergedGuideResiduals merged = merged_guide_residuals(t, eta);
+  CHECK(full.size() == 9 * (2 * 3 * 3 + 2));
+  CHECK(merged.residuals.size() == 9 * (2 * 3 + 2));
+  CHECK(merged.constant > 0.0);
+  auto normal_equations = [](const std::vector<double>& r, const std::vector<double>& j, double constant) {
+    Eigen::Matrix<double, 6, 6> jtj = Eigen::Matrix<double, 6, 6>::Zero();
+    Eigen::Matrix<double, 6, 1> jtr = Eigen::Matrix<double, 6, 1>::Zero();
+    double cost = constant;
+    for (std::size_t i = 0; i < r.size(); ++i) {
+      const Eigen::Map<const Eigen::Matrix<double, 6, 1>> row(&j[6 * i]);
+      jtj += row * row.transpose();
+      jtr += r[i] * row;
+      cost += r[i] * r[i];
+    }
+    return std::make_tuple(cost, jtr, jtj);
+  };
+  const auto [cost_full, jtr_full, jtj_full] = normal_equations(full, jacobian, 0.0);
+  const auto [cost_merged, jtr_merged, jtj_merged] = normal_equations(merged.residuals, merged.jacobian, merged.constant);
+  CHECK(cost_merged == doctest::Approx(cost_full).epsilon(1e-12));
+  CHECK((jtr_merged - jtr_full).norm() <= 1e-12 * jtr_full.norm());
+  CHECK((jtj_merged - jtj_full).norm() <= 1e-12 * jtj_full.norm());
+  // The F3 block is the same residuals in both.
+  for (int i = 0; i < 18; ++i) CHECK(merged.residuals[9 * 6 + i] == full[9 * 18 + i]);
 }
 
 TEST_CASE("a guide stopped by the iteration cap is flagged, finite, and keeps its best iterate") {
