@@ -31,7 +31,7 @@ struct DensityTermOptions {
   double outside = 0.0;
 };
 
-// When a Levenberg–Marquardt solve has stopped paying: `iterations` iterations in a row, accepted
+// When a guide's trust-region solve has stopped paying: `iterations` iterations in a row, accepted
 // or rejected, that together lowered the cost by less than `tolerance` of it. 0 iterations: never
 // (then only the relative tolerance and the iteration cap stop the solve).
 struct StallTest {

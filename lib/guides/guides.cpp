@@ -150,7 +150,7 @@ Guide solve_guide(const RootSet& bases, int b, const PreGuides& preguides, const
     add_weighted_loads(preguides.items, g.neighbours, g.neighbour_weights, start);
   GuideSolve solve = optimise_guide(targets, start, o.max_iterations, o.tolerance, stall);
   g.shape = solved_shape(targets, solve);
-  // Levenberg–Marquardt can stop in a local minimum that runs through the head or out of the
+  // The solve can stop in a local minimum that runs through the head or out of the
   // volume well past the boundary ramp: then the other start (straight ↔ the neighbours' loads)
   // is tried too, and the lower cost kept.
   if (worst_excursion(g.shape, boundary) > o.boundary_width) {

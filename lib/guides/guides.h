@@ -1,6 +1,6 @@
 // Principal guides (paper §3.4, eq. 6–9): one per cluster, the rod whose six load parameters
-// minimise Σ wᵢ·Fᵢ, optimised with Ceres (Levenberg–Marquardt, automatic differentiation through
-// the rod integrator). The loads are parameterised in the initial-value form η̃ = (f_L, m(0))
+// minimise Σ wᵢ·Fᵢ, optimised with Ceres (Levenberg–Marquardt; Powell's dogleg for the solves with
+// the density term; automatic differentiation through the rod integrator). The loads are parameterised in the initial-value form η̃ = (f_L, m(0))
 // (DESIGN §1): every evaluation is one forward integration and t_L = m(L) is an output.
 #pragma once
 #include <string>

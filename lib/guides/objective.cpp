@@ -526,12 +526,20 @@ class StallCallback : public ceres::IterationCallback {
   bool stalled_ = false;
 };
 
-ceres::Solver::Options solver_options(int max_iterations, double tolerance) {
+// `dogleg`: Powell's dogleg in place of Levenberg–Marquardt. For the solves with the density term
+// (they start at the density-free optimum, and F4 is rough at the voxel scale) it takes the
+// Gauss–Newton step whenever the trust region holds it, where LM's damping crept: on the
+// paper-scale scene 22.0 evaluations per guide instead of 28.9 with F4 10.6 instead of 12.5, a
+// lower followed mismatch and a more even density; on the full head no guide at the cap instead of
+// 7 (bench/results/density_dogleg.md). Without the density term LM stays: there dogleg took 22 %
+// more evaluations (spheroid) and stopped 100 guides at the cap instead of 36 (straight).
+ceres::Solver::Options solver_options(int max_iterations, double tolerance, bool dogleg) {
   ceres::Solver::Options options;
   // Six parameters against a few hundred residuals: the 6×6 normal equations cost a fraction of a
   // QR of the whole Jacobian (the QR was 22 % of the guide solve's instructions, callgrind), and
   // the reparameterised loads keep them well conditioned; LM's damping adds to their diagonal.
   options.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
+  if (dogleg) options.trust_region_strategy_type = ceres::DOGLEG;
   options.max_num_iterations = max_iterations;
   options.function_tolerance = tolerance;
   options.gradient_tolerance = 1e-10;
@@ -545,10 +553,10 @@ ceres::Solver::Options solver_options(int max_iterations, double tolerance) {
   return options;
 }
 
-// Levenberg–Marquardt on `problem`; true when the stall test ended it.
+// The trust-region solve of `problem`; true when the stall test ended it.
 bool solve(ceres::Problem& problem, int max_iterations, double tolerance, const StallTest& stall,
-           ceres::Solver::Summary& summary) {
-  ceres::Solver::Options options = solver_options(max_iterations, tolerance);
+           ceres::Solver::Summary& summary, bool dogleg = false) {
+  ceres::Solver::Options options = solver_options(max_iterations, tolerance, dogleg);
   StallCallback stall_callback(stall);
   if (stall.iterations > 0) options.callbacks.push_back(&stall_callback);
   ceres::Solve(options, &problem, &summary);
@@ -620,7 +628,7 @@ GuideSolve optimise_guide(const GuideTargets& targets, const double start[6], in
   ceres::Problem problem;
   problem.AddResidualBlock(new CompressedGuideCost(functor), nullptr, x);
   ceres::Solver::Summary summary;
-  const bool stalled = solve(problem, max_iterations, tolerance, stall, summary);
+  const bool stalled = solve(problem, max_iterations, tolerance, stall, summary, targets.density != nullptr);
 
   bool finite = true;
   for (double v : x) finite = finite && std::isfinite(v);

@@ -86,9 +86,10 @@ struct GuideSolve {
   double initial_cost = 0.0, final_cost = 0.0;  // Ceres' ½Σr²
 };
 
-// Levenberg–Marquardt (normal equations, one thread) from `start`, stopped by the relative
-// tolerance, the iteration cap or `stall` (then termination "STALL", converged). Never returns
-// NaN: a failed solve keeps the best finite iterate (or the start).
+// A trust-region solve (normal equations, one thread) from `start`, stopped by the relative
+// tolerance, the iteration cap or `stall` (then termination "STALL", converged): Levenberg–
+// Marquardt, or Powell's dogleg when targets.density is set (see solver_options in objective.cpp).
+// Never returns NaN: a failed solve keeps the best finite iterate (or the start).
 GuideSolve optimise_guide(const GuideTargets& targets, const double start[6], int max_iterations, double tolerance,
                           const StallTest& stall = {});
 
