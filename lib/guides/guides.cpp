@@ -215,6 +215,70 @@ Guide solve_guide_with_density(const RootSet& bases, int b, const PreGuides& pre
   return g;
 }
 
+// The density-free solves as make_guides defines them. With a warm start: first the seeds, the
+// guide nearest each pre-guide, from the pre-guides' loads; then every other guide from its
+// nearest seeds' optimised loads, which lie closer to its own optimum than the pre-guides' loads
+// (on the spheroid fixture 8 % fewer cost evaluations and a slightly lower mean cost). Without
+// one, every guide on its own. Once the seeds are solved, any other guide can be solved at any
+// time on any thread with the same result: the results do not depend on the thread count or on
+// when each guide is taken.
+class FirstSolves {
+ public:
+  FirstSolves(const RootSet& bases, const PreGuides& preguides, const Boundary& boundary, const GuideOptions& options,
+              std::vector<Guide>& out)
+      : bases_(bases), preguides_(preguides), boundary_(boundary), options_(options), out_(out),
+        is_seed_(bases.size(), 0) {
+    out_.resize(bases.size());
+    if (!warm()) return;
+    auto base_at = [&](int b) { return bases.positions[b]; };
+    const std::vector<int> everyone = all_indices(bases.size());
+    for (const PreGuide& p : preguides.items) is_seed_[nearest(everyone, base_at, p.root, 1)[0]] = 1;
+    for (int b = 0; b < bases.size(); ++b)
+      if (is_seed_[b]) seeds_.push_back(b);
+  }
+
+  // Solves the seeds, on all threads.
+  void solve_seeds(ProgressCounter& progress) {
+    parallel_for(seeds_.size(), options_.threads, [&](int i) {
+      out_[seeds_[i]] = solve_guide(bases_, seeds_[i], preguides_, boundary_, options_);
+      progress.item_done();
+    });
+  }
+  // The guides in [begin, end) that are not seeds, in index order.
+  std::vector<int> others(int begin, int end) const {
+    std::vector<int> list;
+    for (int b = begin; b < end; ++b)
+      if (!is_seed_[b]) list.push_back(b);
+    return list;
+  }
+  // Solves guide b (not a seed; the seeds solved).
+  void solve(int b) {
+    if (!warm()) {
+      out_[b] = solve_guide(bases_, b, preguides_, boundary_, options_);
+      return;
+    }
+    auto base_at = [&](int j) { return bases_.positions[j]; };
+    const std::vector<int> from = nearest(seeds_, base_at, bases_.positions[b], options_.neighbours);
+    std::vector<double> weights;
+    for (int j : from) weights.push_back((bases_.positions[j] - bases_.positions[b]).norm());
+    weights = follow_weights(weights);
+    double start[6] = {0, 0, 0, 0, 0, 0};
+    add_weighted_loads(out_, from, weights, start);
+    out_[b] = solve_guide(bases_, b, preguides_, boundary_, options_, nullptr, {}, start);
+  }
+
+ private:
+  bool warm() const { return options_.warm_start && preguides_.size() > 0; }
+
+  const RootSet& bases_;
+  const PreGuides& preguides_;
+  const Boundary& boundary_;
+  const GuideOptions& options_;
+  std::vector<Guide>& out_;
+  std::vector<char> is_seed_;
+  std::vector<int> seeds_;
+};
+
 }  // namespace
 
 Curves Guides::curves() const {
@@ -225,39 +289,12 @@ Curves Guides::curves() const {
 
 Guides make_guides(const RootSet& bases, const PreGuides& preguides, const Boundary& boundary, const GuideOptions& options) {
   Guides guides;
-  const int count = bases.size();
-  guides.items.resize(count);
   ProgressCounter progress(options.progress);
-  if (!options.warm_start || preguides.size() == 0) {
-    parallel_for(count, options.threads, [&](int b) {
-      guides.items[b] = solve_guide(bases, b, preguides, boundary, options);
-      progress.item_done();
-    });
-    return guides;
-  }
-  // Warm start in two rounds. First the seeds, the guide nearest each pre-guide, from the
-  // pre-guides' loads; then every other guide from its nearest seeds' optimised loads, which lie
-  // closer to its own optimum than the pre-guides' loads (on the spheroid fixture 8% fewer cost
-  // evaluations and a slightly lower mean cost). Both rounds are fixed by the geometry, so the
-  // results do not depend on the thread count.
-  auto base_at = [&](int b) { return bases.positions[b]; };
-  std::vector<char> is_seed(count, 0);
-  for (const PreGuide& p : preguides.items) is_seed[nearest(all_indices(count), base_at, p.root, 1)[0]] = 1;
-  std::vector<int> seeds, rest;
-  for (int b = 0; b < count; ++b) (is_seed[b] ? seeds : rest).push_back(b);
-  parallel_for(seeds.size(), options.threads, [&](int i) {
-    guides.items[seeds[i]] = solve_guide(bases, seeds[i], preguides, boundary, options);
-    progress.item_done();
-  });
-  parallel_for(rest.size(), options.threads, [&](int i) {
-    const int b = rest[i];
-    const std::vector<int> from = nearest(seeds, base_at, bases.positions[b], options.neighbours);
-    std::vector<double> weights;
-    for (int j : from) weights.push_back((bases.positions[j] - bases.positions[b]).norm());
-    weights = follow_weights(weights);
-    double start[6] = {0, 0, 0, 0, 0, 0};
-    add_weighted_loads(guides.items, from, weights, start);
-    guides.items[b] = solve_guide(bases, b, preguides, boundary, options, nullptr, {}, start);
+  FirstSolves first(bases, preguides, boundary, options, guides.items);
+  first.solve_seeds(progress);
+  const std::vector<int> others = first.others(0, bases.size());
+  parallel_for(others.size(), options.threads, [&](int i) {
+    first.solve(others[i]);
     progress.item_done();
   });
   return guides;
@@ -277,23 +314,31 @@ DensityGuides make_guides_with_density(const RootSet& bases, const PreGuides& pr
       if (g >= 0 && g < count) pores_of[g].push_back(static_cast<int>(i));
     }
   // The first solves do not see the density: the guides the scene would have without a density
-  // model (make_guides, warm-started from seeds), all at once on all threads. They are only the
-  // second solves' start, and those minimise the whole objective to options.tolerance, so they
-  // stop at a relative decrease of kFirstSolveTolerance: on the paper-scale scene 17 % fewer
-  // evaluations, with mean cost, density spread and followed mismatch within run-to-run scatter
-  // (bench/results/density_stall.md).
-  GuideOptions first = options;
-  first.progress = nullptr;
-  first.tolerance = std::max(options.tolerance, kFirstSolveTolerance);
-  const std::vector<Guide> plain = make_guides(bases, preguides, boundary, first).items;
+  // model (FirstSolves, as make_guides). They are only the second solves' start, and those
+  // minimise the whole objective to options.tolerance, so they stop at a relative decrease of
+  // kFirstSolveTolerance: on the paper-scale scene 17 % fewer evaluations, with mean cost, density
+  // spread and followed mismatch within run-to-run scatter (bench/results/density_stall.md).
+  GuideOptions first_options = options;
+  first_options.progress = nullptr;
+  first_options.tolerance = std::max(options.tolerance, kFirstSolveTolerance);
+  std::vector<Guide> plain;
+  FirstSolves first(bases, preguides, boundary, first_options, plain);
+  ProgressCounter no_progress(first_options.progress);  // empty: the first solves report nothing
+  first.solve_seeds(no_progress);
+  auto batch_end = [&](int begin) { return std::min(count, begin + density.batch); };
+  {
+    const std::vector<int> todo = first.others(0, batch_end(0));
+    parallel_for(todo.size(), options.threads, [&](int i) { first.solve(todo[i]); });
+  }
   ProgressCounter progress(options.progress);  // guides finished, after their second solve
   DensityAccumulator accumulator(density.grid);
   DensityCeiling ceiling(density.term);
+  DensityGrid frozen = accumulator.freeze();  // the earlier batches only
+  double outside = ceiling(frozen, options.threads);
   for (int begin = 0; begin < count; begin += density.batch) {
-    const int end = std::min(count, begin + density.batch);
-    const DensityGrid frozen = accumulator.freeze();  // the earlier batches only
+    const int end = batch_end(begin);
     DensityTermOptions term = density.term;
-    term.outside = ceiling(frozen, options.threads);
+    term.outside = outside;
     // The guides of a batch are independent of each other, so the order they are taken in changes
     // nothing but the balance: the costliest first (by their first solve's evaluations), so that
     // the batch does not end with one thread on a slow guide while the others wait.
@@ -307,22 +352,36 @@ DensityGuides make_guides_with_density(const RootSet& bases, const PreGuides& pr
           solve_guide_with_density(bases, g, preguides, boundary, options, plain[g], frozen, term, density.stall);
       progress.item_done();
     });
+    std::vector<std::vector<Vec3>> fibres;
     if (density.term.model == GuideDensityModel::continuous) {
       // Grown on all threads, deposited in guide order.
       std::vector<std::vector<std::vector<Vec3>>> grown(end - begin);
       parallel_for(end - begin, options.threads, [&](int i) {
         grown[i] = guide_deposit_fibres(out.guides.items[begin + i].shape.nodes, pores_of[begin + i], density);
       });
-      std::vector<std::vector<Vec3>> fibres;
       for (std::vector<std::vector<Vec3>>& of_guide : grown)
         for (std::vector<Vec3>& f : of_guide) fibres.push_back(std::move(f));
-      accumulator.add_fibres(fibres, options.threads);
-    } else {
-      std::vector<Tube> tubes;
-      for (int g = begin; g < end; ++g)
-        tubes.push_back(guide_tube(out.guides.items[g].shape.nodes, density.strands.root_radius, density.strands.tip_radius));
-      accumulator.occupy_all(tubes, options.threads);
     }
+    // The deposit, the next grid and its ceiling are one thread's task, so that the other threads
+    // meanwhile solve the next batch's first solves (they need neither): the deposit's memory
+    // traffic scaled poorly over threads, and the other cores idled through it.
+    const bool last = end == count;
+    const std::vector<int> next = last ? std::vector<int>() : first.others(end, batch_end(end));
+    parallel_for(1 + static_cast<int>(next.size()), options.threads, [&](int i) {
+      if (i > 0) return first.solve(next[i - 1]);
+      if (density.term.model == GuideDensityModel::continuous) {
+        accumulator.add_fibres(fibres, 1);
+      } else {
+        std::vector<Tube> tubes;
+        for (int g = begin; g < end; ++g)
+          tubes.push_back(guide_tube(out.guides.items[g].shape.nodes, density.strands.root_radius, density.strands.tip_radius));
+        accumulator.occupy_all(tubes, 1);
+      }
+      if (last) return;
+      frozen = DensityGrid();  // one copy of the grid at a time
+      frozen = accumulator.freeze();
+      outside = ceiling(frozen, 1);
+    });
     ++out.batches;
   }
   out.density = std::move(accumulator).freeze();
