@@ -100,35 +100,46 @@ DensityValueGradient DensityGrid::value_and_gradient(const Vec3& p) const {
   return out;
 }
 
-Vec3 DensityGrid::central_gradient(const Vec3& p) const { return central_gradient_and_jacobian(p).gradient; }
-
-DensityGradientJacobian DensityGrid::central_gradient_and_jacobian(const Vec3& p) const {
-  DensityGradientJacobian out;
-  if (geometry_.cell_count() == 0 || !p.allFinite()) return out;
+void DensityGrid::central_gradient_at(const Vec3& p, Vec3& gradient, Mat3* jacobian) const {
+  const GridGeometry& geometry = geometry_;
+  gradient = Vec3::Zero();
+  if (jacobian) *jacobian = Mat3::Zero();
+  if (geometry.cell_count() == 0 || !p.allFinite()) return;
   Vec3i b;
   Vec3 f;
-  locate(geometry_, p, b, f);
+  locate(geometry, p, b, f);
   const Weights w = trilinear_weights(f);
-  const double h = geometry_.voxel;
+  const double h = geometry.voxel;
   // Every cell the differences read lies within one of the block: away from the grid's faces
   // they are read by offset, without bounds checks (the guide optimiser calls this per sample).
-  const Vec3i& n = geometry_.dims;
+  const Vec3i& n = geometry.dims;
   const bool interior = b.x() >= 1 && b.y() >= 1 && b.z() >= 1 && b.x() + 2 < n.x() && b.y() + 2 < n.y() && b.z() + 2 < n.z();
   const std::ptrdiff_t sy = n.x(), sz = static_cast<std::ptrdiff_t>(n.x()) * n.y();
   for (int c = 0; c < 8; ++c) {
     const int i = b.x() + (c & 1), j = b.y() + ((c >> 1) & 1), k = b.z() + ((c >> 2) & 1);
     Vec3 g;
     if (interior) {
-      const double* v = values_->data() + geometry_.index(i, j, k);
+      const double* v = values_->data() + geometry.index(i, j, k);
       g = Vec3((v[1] - v[-1]) / (2.0 * h), (v[sy] - v[-sy]) / (2.0 * h), (v[sz] - v[-sz]) / (2.0 * h));
     } else {
       g = Vec3((cell(i + 1, j, k) - cell(i - 1, j, k)) / (2.0 * h), (cell(i, j + 1, k) - cell(i, j - 1, k)) / (2.0 * h),
                (cell(i, j, k + 1) - cell(i, j, k - 1)) / (2.0 * h));
     }
-    out.gradient += w.w[c] * g;
-    out.jacobian += g * w.dw[c].transpose();
+    gradient += w.w[c] * g;
+    if (jacobian) *jacobian += g * w.dw[c].transpose();
   }
-  out.jacobian /= h;
+  if (jacobian) *jacobian /= h;
+}
+
+Vec3 DensityGrid::central_gradient(const Vec3& p) const {
+  Vec3 gradient;
+  central_gradient_at(p, gradient, nullptr);
+  return gradient;
+}
+
+DensityGradientJacobian DensityGrid::central_gradient_and_jacobian(const Vec3& p) const {
+  DensityGradientJacobian out;
+  central_gradient_at(p, out.gradient, &out.jacobian);
   return out;
 }
 

@@ -73,6 +73,10 @@ class DensityGrid {
   DensityGradientJacobian central_gradient_and_jacobian(const Vec3& p) const;
 
  private:
+  // The central gradient at p, and its Jacobian when `jacobian` is given (the gradient's bits are
+  // the same either way; the guides' cost-only evaluations skip the Jacobian).
+  void central_gradient_at(const Vec3& p, Vec3& gradient, Mat3* jacobian) const;
+
   friend class DensityAccumulator;
   friend struct StageCodecAccess;  // the stage cache (lib/pipeline/stage_codec.cpp) stores and restores it
   DensityGrid(const GridGeometry& g, std::shared_ptr<const std::vector<double>> v)
