@@ -153,22 +153,29 @@ TEST_CASE("the boundary penalty keeps a guide inside where the unpenalised optim
   for (const Vec3& p : held.items[0].shape.nodes) CHECK(p.allFinite());
 }
 
-TEST_CASE("the residuals sum exactly to the weighted terms, and F1 is the mean of 1 − cos φ") {
-  GuideOptions o;
-  o.rod.segments = 16;
-  o.samples = 16;
-  const RootSet r = roots_at({{0.4, 0.0}}, 8.0, 0.0);
-  const PreGuide p = preguide_with_loads(r, 0, o, Vec3(2.0, 0.0, 0.0), Vec3(0.0, 1.0, 0.0));
+// The targets of an 8 cm guide at the first root of `r`, without neighbours or boundary:
+// `samples` + 1 equally spaced samples over o.rod.segments (a multiple of samples).
+GuideTargets targets_at_root(const RootSet& r, const GuideOptions& o, int samples) {
   GuideTargets t;
   const Vec3 bend = bending_direction(r.normals[0], r.directions[0], o.down, o.front);
   t.model = make_rod_model(hair_rod(8.0, o.material), RodRoot{r.positions[0], root_frame(r.directions[0], bend)});
   t.root = r.positions[0];
   t.length = 8.0;
   t.rod = o.rod;
-  for (int k = 0; k <= 16; ++k) {
-    t.sample_nodes.push_back(k);
-    t.sample_weights.push_back((k == 0 || k == 16 ? 0.5 : 1.0) / 16);
+  for (int k = 0; k <= samples; ++k) {
+    t.sample_nodes.push_back(k * o.rod.segments / samples);
+    t.sample_weights.push_back((k == 0 || k == samples ? 0.5 : 1.0) / samples);
   }
+  return t;
+}
+
+TEST_CASE("the residuals sum exactly to the weighted terms, and F1 is the mean of 1 − cos φ") {
+  GuideOptions o;
+  o.rod.segments = 16;
+  o.samples = 16;
+  const RootSet r = roots_at({{0.4, 0.0}}, 8.0, 0.0);
+  const PreGuide p = preguide_with_loads(r, 0, o, Vec3(2.0, 0.0, 0.0), Vec3(0.0, 1.0, 0.0));
+  GuideTargets t = targets_at_root(r, o, 16);
   GuideTargets::Neighbour nb;
   nb.weight = 1.0;
   nb.tangents = p.shape.tangents;
@@ -192,16 +199,7 @@ TEST_CASE("the optimiser's merged residuals have the full residuals' cost, gradi
   GuideOptions o;
   o.rod.segments = 16;
   const RootSet r = roots_at({{0.4, 0.0}}, 8.0, 0.0);
-  GuideTargets t;
-  const Vec3 bend = bending_direction(r.normals[0], r.directions[0], o.down, o.front);
-  t.model = make_rod_model(hair_rod(8.0, o.material), RodRoot{r.positions[0], root_frame(r.directions[0], bend)});
-  t.root = r.positions[0];
-  t.length = 8.0;
-  t.rod = o.rod;
-  for (int k = 0; k <= 8; ++k) {
-    t.sample_nodes.push_back(2 * k);
-    t.sample_weights.push_back((k == 0 || k == 8 ? 0.5 : 1.0) / 8);
-  }
+  GuideTargets t = targets_at_root(r, o, 8);
   // Three pre-guides bent different ways, one trusted only part of the way (and not at all at
   // the last sample: a zero weight there).
   const Vec3 forces[3] = {Vec3(2.0, 0.0, 0.0), Vec3(0.0, 0.0, -1.5), Vec3(-1.0, 0.5, 1.0)};
