@@ -59,8 +59,72 @@ Image render_line_plot(const LinePlot& plot, int width, int height) {
       }
   }
   if (!(x_lo <= x_hi)) x_lo = plot.log_x ? 1 : 0, x_hi = plot.log_x ? 10 : 1, y_lo = x_lo, y_hi = x_hi;
+
+  // The legend's box: one row per named series.
+  std::vector<std::size_t> named;
+  double legend_width = 0.0;
+  for (std::size_t k = 0; k < plot.series.size(); ++k)
+    if (!plot.series[k].name.empty()) {
+      named.push_back(k);
+      legend_width = std::max(legend_width, Canvas::text_width(plot.series[k].name));
+    }
+  const double row = 22.0, box_w = legend_width + 48, box_h = row * named.size() + 10;
+
+  // Axes whose y range leaves the top `headroom` share of the plot area free of data.
+  const PlotRect area = plot_rect(width, height, 24.0);
+  auto make_axes = [&](double headroom) {
+    double high = y_hi;
+    if (headroom > 0.0)
+      high = plot.log_y ? y_hi * std::pow(y_hi / y_lo, headroom / (1.0 - headroom))
+                        : y_hi + (y_hi - y_lo) * headroom / (1.0 - headroom);
+    return Axes(area, fit_range(x_lo, x_hi, plot.log_x), fit_range(y_lo, high, plot.log_y));
+  };
+  // Pixels along every line and at every point, where the legend must not go.
+  auto drawn_pixels = [&](const Axes& axes) {
+    std::vector<Vec2> drawn;
+    for (const Series& s : plot.series) {
+      Vec2 previous = Vec2::Zero();
+      bool joined = false;
+      for (std::size_t i = 0; i < s.x.size(); ++i) {
+        if (!usable(s.x[i], s.y[i])) {
+          joined = false;
+          continue;
+        }
+        const Vec2 p = axes.to_pixel(s.x[i], s.y[i]);
+        if (s.lines && joined)
+          for (int t = 1; t < 16; ++t) drawn.push_back(previous + (p - previous) * (t / 16.0));
+        drawn.push_back(p);
+        previous = p, joined = true;
+      }
+    }
+    return drawn;
+  };
+  // The corners of the plot area in order of preference, and the first that hides nothing; with
+  // none, the data makes room at the top and the legend takes the top right.
+  auto corner = [&](const PlotRect& r, int c) {
+    return Vec2(c % 2 == 0 ? r.x1 - box_w - 10 : r.x0 + 10, c < 2 ? r.y0 + 10 : r.y1 - box_h - 10);
+  };
+  auto hides = [&](const std::vector<Vec2>& drawn, const Vec2& at) {
+    return std::any_of(drawn.begin(), drawn.end(), [&](const Vec2& p) {
+      return p.x() >= at.x() - 4 && p.x() <= at.x() + box_w + 4 && p.y() >= at.y() - 4 && p.y() <= at.y() + box_h + 4;
+    });
+  };
+  Axes axes = make_axes(0.0);
+  Vec2 legend_at = corner(area, 0);
+  if (!named.empty()) {
+    const std::vector<Vec2> drawn = drawn_pixels(axes);
+    int clear = -1;
+    for (int c = 0; c < 4 && clear < 0; ++c)
+      if (!hides(drawn, corner(axes.rect(), c))) clear = c;
+    if (clear >= 0) {
+      legend_at = corner(axes.rect(), clear);
+    } else {
+      axes = make_axes(std::min(0.6, (box_h + 24.0) / (area.y1 - area.y0)));
+      legend_at = corner(axes.rect(), 0);
+    }
+  }
+
   Canvas canvas(width, height, paper_color());
-  const Axes axes(plot_rect(width, height, 24.0), fit_range(x_lo, x_hi, plot.log_x), fit_range(y_lo, y_hi, plot.log_y));
   axes.draw(canvas, plot.x_label, plot.y_label);
   const PlotRect& r = axes.rect();
   auto inside = [&](const Vec2& p) { return p.x() >= r.x0 - 1 && p.x() <= r.x1 + 1 && p.y() >= r.y0 - 1 && p.y() <= r.y1 + 1; };
@@ -87,17 +151,8 @@ Image render_line_plot(const LinePlot& plot, int width, int height) {
           canvas.disc(axes.to_pixel(s.x[i], s.y[i]), 3.0, color);
         }
   }
-  // Legend in the top-right corner of the plot area, on a white box.
-  std::vector<std::size_t> named;
-  double legend_width = 0.0;
-  for (std::size_t k = 0; k < plot.series.size(); ++k)
-    if (!plot.series[k].name.empty()) {
-      named.push_back(k);
-      legend_width = std::max(legend_width, Canvas::text_width(plot.series[k].name));
-    }
   if (!named.empty()) {
-    const double row = 22.0, box_w = legend_width + 48, box_h = row * named.size() + 10;
-    const double bx = r.x1 - box_w - 10, by = r.y0 + 10;
+    const double bx = legend_at.x(), by = legend_at.y();
     canvas.fill_rect(bx, by, bx + box_w, by + box_h, paper_color(), 0.92f);
     canvas.stroke_rect(bx, by, bx + box_w, by + box_h, grid_color(), 1.0);
     for (std::size_t n = 0; n < named.size(); ++n) {
