@@ -147,9 +147,9 @@ class GuideCost {
     return t_.density_term.model == GuideDensityModel::continuous ? 2 : 3;
   }
 
-  // Residuals in blocks: F1 (3 per neighbour and sample), F2 (3 per neighbour and sample), F3
-  // (scalp and volume per sample), F4 (density_per_sample per sample, only with a grid).
-  // Σr² = Σ wᵢFᵢ exactly, with the trapezoidal rule for ∫ds.
+  // Residuals in blocks: F1 (3 per neighbour and sample; merged: 3 per sample), F2 (the same),
+  // F3 (scalp and volume per sample), F4 (density_per_sample per sample, only with a grid).
+  // Σr² (+ merged_constant()) = Σ wᵢFᵢ exactly, with the trapezoidal rule for ∫ds.
   template <typename T>
   bool operator()(const T* eta, T* residuals) const {
     const int n = t_.rod.segments + 1;
