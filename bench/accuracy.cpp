@@ -471,7 +471,7 @@ int main(int argc, char** argv) {
           "varies) and the process CPU time (user + system, steadier). ★: on the Pareto front of CPU time against "
           "median guide error (within the same density model).\n\n";
     md += "| knob | value | wall s (loaded) | CPU s | guide error median / p90 / max cm | inside | field error mean / "
-          "max cm | LM iterations | not converged | |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---|\n";
+          "max cm | iterations | not converged | |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---|\n";
     for (const Row& r : rows) {
       const bool front = !dominated(r);
       char line[1024];

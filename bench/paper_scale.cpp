@@ -72,7 +72,7 @@ void report_scene(const std::string& hairfit, const fs::path& scene, const fs::p
   row("process CPU s (user + system)", cpu, "%.2f");
   row("process user CPU s", user, "%.2f");
   row("cost evaluations per guide", evaluations, "%.1f");
-  row("LM iterations per guide", iterations, "%.1f");
+  row("solver iterations per guide", iterations, "%.1f");
   std::uint64_t stage_peak = 0;
   for (const RunRecord& r : records)
     for (const StageRun& s : r.stages) stage_peak = std::max(stage_peak, s.peak_memory_bytes);
