@@ -123,7 +123,9 @@ class GuideCost {
   // `merged`: the F1 and F2 blocks as MergedTargets (3 residuals per sample each, the sum of
   // squares short by merged_constant()), as the optimiser sees them; otherwise one block of 3 per
   // neighbour and sample, each term's residuals as the paper writes them (guide_residuals, terms).
-  explicit GuideCost(const GuideTargets& t, bool merged = false) : t_(t), merged_(merged) {
+  explicit GuideCost(const GuideTargets& t, bool merged = false)
+      : t_(t), merged_(merged), is_sample_(t.rod.segments + 1, 0) {
+    for (int node : t.sample_nodes) is_sample_[node] = 1;
     if (!merged) return;
     const GuideWeights& w = t.weights;
     direction_ = merge_targets(
@@ -153,8 +155,9 @@ class GuideCost {
   template <typename T>
   bool operator()(const T* eta, T* residuals) const {
     const int n = t_.rod.segments + 1;
-    // The trace is rewritten in full by every evaluation, so each thread keeps one buffer: fresh
-    // vectors of jets were zero-filled and freed at every evaluation (2.6 % of the guide solve).
+    // Every evaluation rewrites the sample nodes of the trace, the only ones the residuals read,
+    // so each thread keeps one buffer: fresh vectors of jets were zero-filled and freed at every
+    // evaluation (2.6 % of the guide solve).
     thread_local std::vector<T> trace;
     trace.resize(15 * static_cast<std::size_t>(n));
     T* nodes = trace.data();
@@ -162,7 +165,7 @@ class GuideCost {
     T* curvature = frames + 9 * n;
     T m1[3];
     integrate_rod<T>(t_.model, t_.rod.integrator, t_.rod.segments, eta, eta + 3, m1,
-                     RodTrace<T>{nodes, frames, curvature, nullptr});
+                     RodTrace<T>{nodes, frames, curvature, nullptr, is_sample_.data()});
     return residuals_of_shape(nodes, frames, curvature, residuals);
   }
 
@@ -268,6 +271,7 @@ class GuideCost {
 
   const GuideTargets& t_;
   bool merged_ = false;
+  std::vector<unsigned char> is_sample_;  // per node: the residuals read it (RodTrace::only)
   MergedTargets direction_, similarity_;
 };
 

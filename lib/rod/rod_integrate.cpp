@@ -286,6 +286,7 @@ inline V<S> scaled(double step, const V<S>& rate) {
 template <typename T, typename S>
 inline void write_node(const Constants& k, const RodTrace<T>& trace, int i, double s, const V<S>& r, const M<S>& frame,
                        const V<S>& m, const Local<S>& local) {
+  if (trace.only && !trace.only[i]) return;
   if (trace.nodes)
     for (int a = 0; a < 3; ++a) to_public(r[a], trace.nodes[3 * i + a]);
   if (trace.frames)

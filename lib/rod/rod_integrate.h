@@ -46,6 +46,9 @@ struct RodTrace {
   T* frames = nullptr;     // R(s_i) column-major: d1, d2, d3 (9 scalars per node)
   T* curvature = nullptr;  // κ(s_i) = κ̂ + C⁻¹Rᵀm, material frame (κ1, κ2, τ)
   T* moments = nullptr;    // m(s_i), world axes
+  // When set, only the nodes i with only[i] ≠ 0 are written (the guide objective reads its
+  // samples alone); the others keep whatever the arrays held.
+  const unsigned char* only = nullptr;
 };
 
 // One forward integration with `segments` equal steps (segments ≥ 1; not checked here).
