@@ -126,7 +126,7 @@ Image density_picture(const Scene& scene, const StageValues& v, int width, int h
   for (std::size_t i = 0; i < c.count(); ++i) fibres[i].assign(c.points.begin() + c.offsets[i], c.points.begin() + c.offsets[i + 1]);
   const SegmentHistogram histogram = segment_histogram(v.fibre_density->geometry(), fibres, threads);
   BarPlot bars;
-  bars.title = "segments per cell (paper Fig. 5)";
+  bars.title = "segments per cell (Fig. 5)";
   bars.x_label = "segments per cell";
   bars.y_label = "cells";
   bars.values.assign(histogram.cells_with.begin() + std::min<std::size_t>(1, histogram.cells_with.size()), histogram.cells_with.end());
@@ -137,7 +137,7 @@ Image density_picture(const Scene& scene, const StageValues& v, int width, int h
   map.title = "density, centre sagittal slice (Fig. 6)";
   map.x_label = "cm";
   map.y_label = "up (cm)";
-  map.value_label = "segment length / cell diagonal";
+  map.value_label = "length / cell diagonal";
   map.scale = ColorScale::sequential;
   map.smooth = false;
   map.grid.width = slice.width;
@@ -145,7 +145,13 @@ Image density_picture(const Scene& scene, const StageValues& v, int width, int h
   map.grid.values = slice.values;
   map.grid.x_max = slice.u_step.norm() * (slice.width - 1);
   map.grid.y_max = slice.v_step.norm() * (slice.height - 1);
-  return two_panels(render_bar_plot(bars, width / 2, height), render_heat_map(map, width - width / 2, height), width, height);
+  // Side by side, unless that leaves the panels too narrow for their titles and labels (below
+  // 1000 px, e.g. a contact sheet's tile): then one above the other.
+  const bool stacked = width < 1000;
+  const int w = stacked ? width : width / 2, h = stacked ? height / 2 : height;
+  return two_panels(render_bar_plot(bars, w, h),
+                    render_heat_map(map, stacked ? width : width - w, stacked ? height - h : height), width, height,
+                    stacked);
 }
 
 }  // namespace
