@@ -129,7 +129,7 @@ void fibre_along(const GuideTrack& track, const Vec3& pore, double length, doubl
   // with L(r) = `length`. L is nearly proportional to r, so the first guess scales the full
   // reach by length / L(length); secant steps follow, kept inside the bracket of reaches known
   // too short and too long (a step that would leave it bisects instead). On the paper-scale
-  // scene this takes 4.4 sweeps a fibre where regula falsi on [0, length] (Illinois) took 6.7.
+  // scene this takes 4.7 sweeps a fibre where regula falsi on [0, length] (Illinois) took 6.7.
   auto excess = [&](double reach) {
     sweep(track, layout, n, root, reach, points);
     double unused;
