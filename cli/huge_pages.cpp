@@ -27,18 +27,31 @@ struct KeepTouchedMemory {
   }
 } keep_touched_memory;
 
-void* allocate(std::size_t size) {
+void* allocate_or_null(std::size_t size) noexcept {
   void* p = std::malloc(size == 0 ? 1 : size);
+  if (p && size >= kThreshold) hairfit::advise_huge_pages(p, size);
+  return p;
+}
+
+void* allocate(std::size_t size) {
+  void* p = allocate_or_null(size);
   if (!p) throw std::bad_alloc();
-  if (size >= kThreshold) hairfit::advise_huge_pages(p, size);
   return p;
 }
 
 }  // namespace
 
+// Every form that pairs with the plain operator delete is replaced, the nothrow ones included:
+// std::stable_sort's buffer comes from the nothrow new and goes back through the plain delete,
+// and under AddressSanitizer a nothrow new left to the runtime met our free() as a mismatch.
+// The aligned forms pair only with each other and stay the runtime's.
 void* operator new(std::size_t size) { return allocate(size); }
 void* operator new[](std::size_t size) { return allocate(size); }
+void* operator new(std::size_t size, const std::nothrow_t&) noexcept { return allocate_or_null(size); }
+void* operator new[](std::size_t size, const std::nothrow_t&) noexcept { return allocate_or_null(size); }
 void operator delete(void* p) noexcept { std::free(p); }
 void operator delete[](void* p) noexcept { std::free(p); }
 void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+void operator delete(void* p, const std::nothrow_t&) noexcept { std::free(p); }
+void operator delete[](void* p, const std::nothrow_t&) noexcept { std::free(p); }
