@@ -215,50 +215,71 @@ Guide solve_guide_with_density(const RootSet& bases, int b, const PreGuides& pre
   return g;
 }
 
-// The density-free solves as make_guides defines them. With a warm start: first the seeds, the
-// guide nearest each pre-guide, from the pre-guides' loads; then every other guide from its
-// nearest seeds' optimised loads, which lie closer to its own optimum than the pre-guides' loads
-// (on the spheroid fixture 8 % fewer cost evaluations and a slightly lower mean cost). Without
-// one, every guide on its own. Once the seeds are solved, any other guide can be solved at any
-// time on any thread with the same result: the results do not depend on the thread count or on
-// when each guide is taken.
+// The density-free solves as make_guides defines them. With a warm start, in rounds: first the
+// seeds, the guide nearest each pre-guide, from the pre-guides' loads; then a quarter of the
+// others, then another quarter, each guide from the optimised loads of its nearest guides solved
+// in earlier rounds, which lie closer to its own optimum than the pre-guides' loads; the rest
+// likewise from all of them. Starting from nearer solved guides took 9 % fewer evaluations on the
+// spheroid fixture and 8 % on the paper scale than starting every guide from the seeds, with
+// shares inside and mismatches within scatter. Without a warm start, every guide on its own.
+// Once the rounds are solved, any other guide can be solved at any time on any thread with the
+// same result: the results do not depend on the thread count or on when each guide is taken.
 class FirstSolves {
  public:
   FirstSolves(const RootSet& bases, const PreGuides& preguides, const Boundary& boundary, const GuideOptions& options,
               std::vector<Guide>& out)
       : bases_(bases), preguides_(preguides), boundary_(boundary), options_(options), out_(out),
-        is_seed_(bases.size(), 0) {
+        in_round_(bases.size(), 0) {
     out_.resize(bases.size());
     if (!warm()) return;
     auto base_at = [&](int b) { return bases.positions[b]; };
     const std::vector<int> everyone = all_indices(bases.size());
-    for (const PreGuide& p : preguides.items) is_seed_[nearest(everyone, base_at, p.root, 1)[0]] = 1;
-    for (int b = 0; b < bases.size(); ++b)
-      if (is_seed_[b]) seeds_.push_back(b);
+    for (const PreGuide& p : preguides.items) in_round_[nearest(everyone, base_at, p.root, 1)[0]] = 1;
+    rounds_.resize(3);
+    int k = 0;  // counts the others in index order: k % 4 == 0 joins round 1, k % 4 == 2 round 2
+    for (int b = 0; b < bases.size(); ++b) {
+      if (in_round_[b]) {
+        rounds_[0].push_back(b);
+        continue;
+      }
+      const int r = k++ % 4;
+      if (r == 0 || r == 2) {
+        rounds_[r == 0 ? 1 : 2].push_back(b);
+        in_round_[b] = 1;
+      }
+    }
   }
 
-  // Solves the seeds, on all threads.
-  void solve_seeds(ProgressCounter& progress) {
-    parallel_for(seeds_.size(), options_.threads, [&](int i) {
-      out_[seeds_[i]] = solve_guide(bases_, seeds_[i], preguides_, boundary_, options_);
-      progress.item_done();
-    });
+  // Solves the rounds, each on all threads.
+  void solve_rounds(ProgressCounter& progress) {
+    for (std::size_t r = 0; r < rounds_.size(); ++r) {
+      const std::vector<int>& round = rounds_[r];
+      parallel_for(round.size(), options_.threads, [&](int i) {
+        if (r == 0)
+          out_[round[i]] = solve_guide(bases_, round[i], preguides_, boundary_, options_);
+        else
+          solve(round[i]);
+        progress.item_done();
+      });
+      solved_.insert(solved_.end(), round.begin(), round.end());
+      std::sort(solved_.begin(), solved_.end());
+    }
   }
-  // The guides in [begin, end) that are not seeds, in index order.
+  // The guides in [begin, end) in no round, in index order.
   std::vector<int> others(int begin, int end) const {
     std::vector<int> list;
     for (int b = begin; b < end; ++b)
-      if (!is_seed_[b]) list.push_back(b);
+      if (!in_round_[b]) list.push_back(b);
     return list;
   }
-  // Solves guide b (not a seed; the seeds solved).
+  // Solves guide b (not a seed) from the guides of the rounds solved so far.
   void solve(int b) {
     if (!warm()) {
       out_[b] = solve_guide(bases_, b, preguides_, boundary_, options_);
       return;
     }
     auto base_at = [&](int j) { return bases_.positions[j]; };
-    const std::vector<int> from = nearest(seeds_, base_at, bases_.positions[b], options_.neighbours);
+    const std::vector<int> from = nearest(solved_, base_at, bases_.positions[b], options_.neighbours);
     std::vector<double> weights;
     for (int j : from) weights.push_back((bases_.positions[j] - bases_.positions[b]).norm());
     weights = follow_weights(weights);
@@ -275,8 +296,9 @@ class FirstSolves {
   const Boundary& boundary_;
   const GuideOptions& options_;
   std::vector<Guide>& out_;
-  std::vector<char> is_seed_;
-  std::vector<int> seeds_;
+  std::vector<char> in_round_;
+  std::vector<std::vector<int>> rounds_;  // seeds, then two quarters of the others
+  std::vector<int> solved_;               // the guides of the rounds solved so far, in index order
 };
 
 }  // namespace
@@ -291,7 +313,7 @@ Guides make_guides(const RootSet& bases, const PreGuides& preguides, const Bound
   Guides guides;
   ProgressCounter progress(options.progress);
   FirstSolves first(bases, preguides, boundary, options, guides.items);
-  first.solve_seeds(progress);
+  first.solve_rounds(progress);
   const std::vector<int> others = first.others(0, bases.size());
   parallel_for(others.size(), options.threads, [&](int i) {
     first.solve(others[i]);
@@ -324,7 +346,7 @@ DensityGuides make_guides_with_density(const RootSet& bases, const PreGuides& pr
   std::vector<Guide> plain;
   FirstSolves first(bases, preguides, boundary, first_options, plain);
   ProgressCounter no_progress(first_options.progress);  // empty: the first solves report nothing
-  first.solve_seeds(no_progress);
+  first.solve_rounds(no_progress);
   auto batch_end = [&](int begin) { return std::min(count, begin + density.batch); };
   {
     const std::vector<int> todo = first.others(0, batch_end(0));
