@@ -384,21 +384,20 @@ DensityGuides make_guides_with_density(const RootSet& bases, const PreGuides& pr
       for (std::vector<std::vector<Vec3>>& of_guide : grown)
         for (std::vector<Vec3>& f : of_guide) fibres.push_back(std::move(f));
     }
-    // The deposit, the next grid and its ceiling are one thread's task, so that the other threads
-    // meanwhile solve the next batch's first solves (they need neither): the deposit's memory
-    // traffic scaled poorly over threads, and the other cores idled through it.
+    if (density.term.model == GuideDensityModel::binary) {  // the tubes' voxelisation scales over threads
+      std::vector<Tube> tubes;
+      for (int g = begin; g < end; ++g)
+        tubes.push_back(guide_tube(out.guides.items[g].shape.nodes, density.strands.root_radius, density.strands.tip_radius));
+      accumulator.occupy_all(tubes, options.threads);
+    }
+    // The fibres' deposit (CDM), the next grid and its ceiling are one thread's task, so that the
+    // other threads meanwhile solve the next batch's first solves (they need neither): the fibre
+    // deposit's memory traffic scaled poorly over threads, and the other cores idled through it.
     const bool last = end == count;
     const std::vector<int> next = last ? std::vector<int>() : first.others(end, batch_end(end));
     parallel_for(1 + static_cast<int>(next.size()), options.threads, [&](int i) {
       if (i > 0) return first.solve(next[i - 1]);
-      if (density.term.model == GuideDensityModel::continuous) {
-        accumulator.add_fibres(fibres, 1);
-      } else {
-        std::vector<Tube> tubes;
-        for (int g = begin; g < end; ++g)
-          tubes.push_back(guide_tube(out.guides.items[g].shape.nodes, density.strands.root_radius, density.strands.tip_radius));
-        accumulator.occupy_all(tubes, 1);
-      }
+      if (density.term.model == GuideDensityModel::continuous) accumulator.add_fibres(fibres, 1);
       if (last) return;
       frozen = DensityGrid();  // one copy of the grid at a time
       frozen = accumulator.freeze();
