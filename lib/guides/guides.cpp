@@ -383,8 +383,7 @@ DensityGuides make_guides_with_density(const RootSet& bases, const PreGuides& pr
       });
       for (std::vector<std::vector<Vec3>>& of_guide : grown)
         for (std::vector<Vec3>& f : of_guide) fibres.push_back(std::move(f));
-    }
-    if (density.term.model == GuideDensityModel::binary) {  // the tubes' voxelisation scales over threads
+    } else {  // BOM: the tubes' voxelisation scales over threads
       std::vector<Tube> tubes;
       for (int g = begin; g < end; ++g)
         tubes.push_back(guide_tube(out.guides.items[g].shape.nodes, density.strands.root_radius, density.strands.tip_radius));

@@ -1,6 +1,7 @@
 #include "pipeline/stage_pictures.h"
 
 #include <algorithm>
+#include <functional>
 
 #include "density/statistics.h"
 #include "render/chart_plot.h"
@@ -43,7 +44,6 @@ Polylines polylines(const Curves& curves) {
 
 namespace {
 
-// Two panels, each drawn at (width/2 or the rest) × height, joined into exactly width × height.
 // Two pictures side by side (`stacked`: one above the other) in a width × height image.
 Image two_panels(const Image& left, const Image& right, int width, int height, bool stacked = false) {
   Image out = make_image(width, height, 0, 0, 0);
@@ -59,6 +59,17 @@ Image two_panels(const Image& left, const Image& right, int width, int height, b
   else
     blit(right, left.width, 0);
   return out;
+}
+
+// Two panels, each drawn at half the picture: side by side, or one above the other when `width`
+// is below `stack_below`, where side by side would leave them too narrow for their titles and
+// labels (a contact sheet's tile).
+Image halves(const std::function<Image(int, int)>& first, const std::function<Image(int, int)>& second, int width,
+             int height, int stack_below) {
+  const bool stacked = width < stack_below;
+  const int w = stacked ? width : width / 2, h = stacked ? height / 2 : height;
+  return two_panels(first(w, h), second(stacked ? width : width - w, stacked ? height - h : height), width, height,
+                    stacked);
 }
 
 // A slice of a distance field through the head's mid-sagittal plane (spanned by front and up),
@@ -145,13 +156,8 @@ Image density_picture(const Scene& scene, const StageValues& v, int width, int h
   map.grid.values = slice.values;
   map.grid.x_max = slice.u_step.norm() * (slice.width - 1);
   map.grid.y_max = slice.v_step.norm() * (slice.height - 1);
-  // Side by side, unless that leaves the panels too narrow for their titles and labels (below
-  // 1000 px, e.g. a contact sheet's tile): then one above the other.
-  const bool stacked = width < 1000;
-  const int w = stacked ? width : width / 2, h = stacked ? height / 2 : height;
-  return two_panels(render_bar_plot(bars, w, h),
-                    render_heat_map(map, stacked ? width : width - w, stacked ? height - h : height), width, height,
-                    stacked);
+  return halves([&](int w, int h) { return render_bar_plot(bars, w, h); },
+                [&](int w, int h) { return render_heat_map(map, w, h); }, width, height, 1000);
 }
 
 }  // namespace
@@ -172,13 +178,9 @@ Image render_stage(const std::string& stage, const Scene& scene, const Inputs& i
     return contact_sheet(tiles, captions, 4);
   }
   if (stage == "fields") {
-    // Side by side, unless that leaves a map too narrow for its labels (a contact sheet's panel).
-    const bool stacked = width < 800;
-    const int w = stacked ? width : width / 2, h = stacked ? height / 2 : height;
-    return two_panels(field_slice(*values.scalp_field, scene, "scalp field, mid-sagittal slice", w, h),
-                      field_slice(*values.volume_field, scene, "volume field, mid-sagittal slice",
-                                  stacked ? width : width - w, stacked ? height - h : height),
-                      width, height, stacked);
+    return halves([&](int w, int h) { return field_slice(*values.scalp_field, scene, "scalp field, mid-sagittal slice", w, h); },
+                  [&](int w, int h) { return field_slice(*values.volume_field, scene, "volume field, mid-sagittal slice", w, h); },
+                  width, height, 800);
   }
   if (stage == "chart") return chart_picture(values, false, width, height);
   Drawing3D drawing;
