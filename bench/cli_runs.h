@@ -69,6 +69,7 @@ inline ProcessUsage run_process(const std::vector<std::string>& argv, const fs::
 struct StageRun {
   std::string name;
   double seconds = 0.0;
+  double cpu_seconds = 0.0;
   std::uint64_t peak_memory_bytes = 0;
   nlohmann::ordered_json figures;  // the stage's object in report.json: its figures beside seconds, digest, …
 };
@@ -93,7 +94,8 @@ inline std::vector<StageRun> read_report(const fs::path& path) {
   const nlohmann::ordered_json root = nlohmann::ordered_json::parse(in);  // stages in run order
   std::vector<StageRun> out;
   for (const auto& [name, s] : root.at("stages").items())
-    out.push_back({name, s.at("seconds").get<double>(), s.at("peak_memory_bytes").get<std::uint64_t>(), s});
+    out.push_back({name, s.at("seconds").get<double>(), s.value("cpu_seconds", 0.0),
+                   s.at("peak_memory_bytes").get<std::uint64_t>(), s});
   return out;
 }
 

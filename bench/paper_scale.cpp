@@ -32,17 +32,22 @@ void report_scene(const std::string& hairfit, const fs::path& scene, const fs::p
   const RunRecord& first = records.front();
   std::printf("%d runs, --threads %d; fibres %.0f, guides %.0f, effects as the scene declares\n\n", runs, threads,
               first.figure("strands", "fibres"), first.figure("guides", "guides"));
-  std::printf("| stage | median s | min s | max s | peak memory MiB (max) |\n|---|---:|---:|---:|---:|\n");
+  // Cores busy: the stage's CPU time over its wall time, per run; of `threads`, how many worked.
+  std::printf("| stage | median s | min s | max s | median CPU s | cores busy | peak memory MiB (max) |\n"
+              "|---|---:|---:|---:|---:|---:|---:|\n");
   for (const StageRun& s : first.stages) {
-    std::vector<double> seconds;
+    std::vector<double> seconds, cpu, busy;
     std::uint64_t peak = 0;
     for (const RunRecord& r : records) {
-      seconds.push_back(r.stage(s.name)->seconds);
-      peak = std::max(peak, r.stage(s.name)->peak_memory_bytes);
+      const StageRun& run = *r.stage(s.name);
+      seconds.push_back(run.seconds);
+      cpu.push_back(run.cpu_seconds);
+      busy.push_back(run.seconds > 0 ? run.cpu_seconds / run.seconds : 0.0);
+      peak = std::max(peak, run.peak_memory_bytes);
     }
-    std::printf("| %s | %.3f | %.3f | %.3f | %.0f |\n", s.name.c_str(), median(seconds),
+    std::printf("| %s | %.3f | %.3f | %.3f | %.3f | %.2f | %.0f |\n", s.name.c_str(), median(seconds),
                 *std::min_element(seconds.begin(), seconds.end()), *std::max_element(seconds.begin(), seconds.end()),
-                mib(peak));
+                median(cpu), median(busy), mib(peak));
   }
   std::vector<double> wall, cpu, user, stage_sum, evaluations, iterations;
   std::uint64_t rss = 0;

@@ -119,6 +119,7 @@ class Runner {
     write_outputs(name);
     await_digest(stage);
     stage.seconds = meter.seconds();
+    stage.cpu_seconds = meter.cpu_seconds();
     stage.peak_memory_bytes = meter.peak_memory_bytes();
     if (progress()) progress()->stage_ends(name, stage.status, stage.seconds);
     result_.report.stages.push_back(std::move(stage));

@@ -1,5 +1,7 @@
 #include "pipeline/report.h"
 
+#include <sys/resource.h>
+
 #include <chrono>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -19,6 +21,7 @@ std::string report_json(const RunReport& report) {
     Json stage;
     stage["status"] = s.status;
     stage["seconds"] = s.seconds;
+    stage["cpu_seconds"] = s.cpu_seconds;
     stage["peak_memory_bytes"] = s.peak_memory_bytes;
     stage["digest"] = s.digest;
     for (const auto& [key, value] : s.figures) std::visit([&, k = key](const auto& v) { stage[k] = v; }, value);
@@ -37,6 +40,13 @@ double now() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
+double process_cpu_seconds() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  auto seconds = [](const timeval& t) { return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec); };
+  return seconds(usage.ru_utime) + seconds(usage.ru_stime);
+}
+
 std::uint64_t peak_resident_bytes() {
   std::ifstream status("/proc/self/status");
   std::string line;
@@ -47,12 +57,14 @@ std::uint64_t peak_resident_bytes() {
 
 }  // namespace
 
-StageMeter::StageMeter() : start_(now()) {
+StageMeter::StageMeter() : start_(now()), cpu_start_(process_cpu_seconds()) {
   std::ofstream clear("/proc/self/clear_refs");
   if (clear) clear << "5";
 }
 
 double StageMeter::seconds() const { return now() - start_; }
+
+double StageMeter::cpu_seconds() const { return process_cpu_seconds() - cpu_start_; }
 
 std::uint64_t StageMeter::peak_memory_bytes() const { return peak_resident_bytes(); }
 

@@ -63,7 +63,7 @@ std::string statuses(const std::string& out_dir) {
 // report.json without what legitimately differs between runs: times, memory, threads, cache status.
 std::string report_without_run_figures(const std::string& out_dir) {
   const std::string report = read_all(out_dir + "/report.json");
-  return std::regex_replace(report, std::regex("\"(seconds|peak_memory_bytes|status|threads)\": [^,\\n]+"), "");
+  return std::regex_replace(report, std::regex("\"(seconds|cpu_seconds|peak_memory_bytes|status|threads)\": [^,\\n]+"), "");
 }
 
 }  // namespace
