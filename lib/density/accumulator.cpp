@@ -81,20 +81,20 @@ double DensityAccumulator::cell(int i, int j, int k) const {
 
 void DensityAccumulator::add_fibre(const std::vector<Vec3>& fibre) {
   // A one-element batch, so the single and the batch path are the same code.
-  add_spans({FibreSpan{fibre.data(), fibre.size()}}, 1, nullptr);
+  add_fibres(std::vector<FibreSpan>{FibreSpan{fibre.data(), fibre.size()}}, 1, nullptr);
 }
 
 void DensityAccumulator::add_fibres(const std::vector<std::vector<Vec3>>& fibres, int threads,
                                     std::vector<std::int32_t>* segment_counts) {
-  add_spans(fibre_spans(fibres), threads, segment_counts);
+  add_fibres(fibre_spans(fibres), threads, segment_counts);
 }
 
 void DensityAccumulator::add_fibres(const Curves& fibres, int threads, std::vector<std::int32_t>* segment_counts) {
-  add_spans(fibre_spans(fibres), threads, segment_counts);
+  add_fibres(fibre_spans(fibres), threads, segment_counts);
 }
 
-void DensityAccumulator::add_spans(const std::vector<FibreSpan>& fibres, int threads,
-                                   std::vector<std::int32_t>* segment_counts) {
+void DensityAccumulator::add_fibres(const std::vector<FibreSpan>& fibres, int threads,
+                                    std::vector<std::int32_t>* segment_counts) {
   for (size_t f = 0; f < fibres.size(); ++f) check_fibre(fibres[f], f);
   const FibreLayers layers = fibre_layers(geometry_, fibres, threads);
   std::vector<double>& values = *values_;

@@ -39,6 +39,9 @@ class DensityAccumulator {
                   std::vector<std::int32_t>* segment_counts = nullptr);
   // The same for curves stored end to end (Curves::points), read in place.
   void add_fibres(const Curves& fibres, int threads = 1, std::vector<std::int32_t>* segment_counts = nullptr);
+  // The same for fibres wherever they lie, read in place.
+  void add_fibres(const std::vector<FibreSpan>& fibres, int threads = 1,
+                  std::vector<std::int32_t>* segment_counts = nullptr);
 
   // BOM (paper §3.5): every cell the tube occupies (frustum_cells per segment) becomes 1.
   void occupy(const Tube& tube, OccupancyShape shape = OccupancyShape::frustum);
@@ -53,8 +56,6 @@ class DensityAccumulator {
   DensityGrid freeze() &&;
 
  private:
-  void add_spans(const std::vector<FibreSpan>& fibres, int threads, std::vector<std::int32_t>* segment_counts);
-
   GridGeometry geometry_;
   std::shared_ptr<std::vector<double>> values_;
 };

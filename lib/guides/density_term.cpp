@@ -79,9 +79,9 @@ double DensityCeiling::operator()(const DensityGrid& grid, int threads) {
   return term_.strength * *std::max_element(row_top_.begin(), row_top_.end());
 }
 
-std::vector<std::vector<Vec3>> guide_deposit_fibres(const std::vector<Vec3>& guide, const std::vector<int>& pores_of_guide,
-                                                    const GuideDensityOptions& options) {
-  if (pores_of_guide.empty()) return {guide};
+void grow_guide_fibres(const std::vector<Vec3>& guide, const std::vector<int>& pores_of_guide,
+                       const GuideDensityOptions& options, Vec3* fibres) {
+  if (pores_of_guide.empty()) return;
   // The wisp extent exactly as make_strands measures it: the largest distance of the cluster's
   // pores from the guide root in the plane of the root frame.
   const GuideTrack track(guide);
@@ -92,11 +92,9 @@ std::vector<std::vector<Vec3>> guide_deposit_fibres(const std::vector<Vec3>& gui
     const Vec3 delta = options.pores.positions[i] - g0;
     extent = std::max(extent, std::hypot(delta.dot(d1), delta.dot(d2)));
   }
-  std::vector<std::vector<Vec3>> fibres;
-  fibres.reserve(pores_of_guide.size());
+  const std::size_t n = fibre_point_count(options.strands);
   for (int i : pores_of_guide)
-    fibres.push_back(make_fibre(track, options.pores.positions[i], options.pores.lengths[i], extent, options.strands));
-  return fibres;
+    grow_fibre(track, options.pores.positions[i], options.pores.lengths[i], extent, options.strands, fibres + n * i);
 }
 
 Tube guide_tube(const std::vector<Vec3>& guide, double root_radius, double tip_radius) {

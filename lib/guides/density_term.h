@@ -50,8 +50,8 @@ struct GuideDensityOptions {
   // evaluations halve and the density comes out no less even (bench/results/density_stall.md).
   StallTest stall{3, 1e-4};
   // What a final guide deposits. CDM: the fibres the strand stage will grow from its cluster's
-  // pores (make_fibre with the same wisp extent, before cutting and before being moved out of the head); a pore list with no pores for a
-  // guide deposits the guide polyline once instead. BOM: a tube along the guide, radius
+  // pores (grow_guide_fibres: before cutting and before being moved out of the head); a guide with
+  // no pores deposits the guide polyline once instead. BOM: a tube along the guide, radius
   // strands.root_radius → strands.tip_radius (cm).
   Pores pores;
   StrandOptions strands;
@@ -91,11 +91,13 @@ class DensityCeiling {
   std::vector<double> row_top_;   // per padded row (j, k): the largest |∇Φρ|² along it
 };
 
-// The fibres a guide deposits (CDM): one per pore of its cluster, as make_strands grows them
-// (uncut), in pore order; `pores_of_guide` are indices into options.pores. No pores: the guide
-// polyline itself.
-std::vector<std::vector<Vec3>> guide_deposit_fibres(const std::vector<Vec3>& guide, const std::vector<int>& pores_of_guide,
-                                                    const GuideDensityOptions& options);
+// The fibres a guide deposits (CDM): one per pore of its cluster, grown as make_strands grows them
+// before the head exit and the cut (grow_fibre, with the wisp extent make_strands measures); pore
+// i's (an index into options.pores, one of `pores_of_guide`) goes to
+// fibres[i·n, (i+1)·n), n = fibre_point_count(options.strands). A guide with no pores deposits its
+// own polyline instead (make_guides_with_density).
+void grow_guide_fibres(const std::vector<Vec3>& guide, const std::vector<int>& pores_of_guide,
+                       const GuideDensityOptions& options, Vec3* fibres);
 
 // The generalised cylinder a guide occupies (BOM): radius root_radius at the root to tip_radius at
 // the tip, linear in arc length.

@@ -330,11 +330,16 @@ DensityGuides make_guides_with_density(const RootSet& bases, const PreGuides& pr
   out.guides.items.resize(count);
   // The pores of each cluster, in pore order (CDM deposits the fibres they will grow).
   std::vector<std::vector<int>> pores_of(count);
-  if (density.term.model == GuideDensityModel::continuous)
+  const std::size_t fibre_points = fibre_point_count(density.strands);
+  std::vector<Vec3> grown;  // CDM: every pore's fibre, in its place
+  if (density.term.model == GuideDensityModel::continuous) {
     for (std::size_t i = 0; i < density.pores.guide.size(); ++i) {
       const int g = density.pores.guide[i];
       if (g >= 0 && g < count) pores_of[g].push_back(static_cast<int>(i));
     }
+    grown.resize(fibre_points * density.pores.positions.size());  // each written before it is read
+  }
+  auto grown_at = [&](int pore) { return grown.data() + fibre_points * pore; };
   // The first solves do not see the density: the guides the scene would have without a density
   // model (FirstSolves, as make_guides). They are only the second solves' start, and those
   // minimise the whole objective to options.tolerance, so they stop at a relative decrease of
@@ -374,15 +379,16 @@ DensityGuides make_guides_with_density(const RootSet& bases, const PreGuides& pr
           solve_guide_with_density(bases, g, preguides, boundary, options, plain[g], frozen, term, density.stall);
       progress.item_done();
     });
-    std::vector<std::vector<Vec3>> fibres;
+    std::vector<FibreSpan> fibres;
     if (density.term.model == GuideDensityModel::continuous) {
-      // Grown on all threads, deposited in guide order.
-      std::vector<std::vector<std::vector<Vec3>>> grown(end - begin);
+      // Grown on all threads into their pores' places, deposited in guide order.
       parallel_for(end - begin, options.threads, [&](int i) {
-        grown[i] = guide_deposit_fibres(out.guides.items[begin + i].shape.nodes, pores_of[begin + i], density);
+        grow_guide_fibres(out.guides.items[begin + i].shape.nodes, pores_of[begin + i], density, grown_at(0));
       });
-      for (std::vector<std::vector<Vec3>>& of_guide : grown)
-        for (std::vector<Vec3>& f : of_guide) fibres.push_back(std::move(f));
+      for (int g = begin; g < end; ++g) {
+        if (pores_of[g].empty()) fibres.push_back({out.guides.items[g].shape.nodes.data(), out.guides.items[g].shape.nodes.size()});
+        for (int i : pores_of[g]) fibres.push_back({grown_at(i), fibre_points});
+      }
     } else {  // BOM: the tubes' voxelisation scales over threads
       std::vector<Tube> tubes;
       for (int g = begin; g < end; ++g)
@@ -405,6 +411,9 @@ DensityGuides make_guides_with_density(const RootSet& bases, const PreGuides& pr
     ++out.batches;
   }
   out.density = std::move(accumulator).freeze();
+  // Handed on only when every pore's fibre was grown (each pore belongs to a guide in range).
+  if (std::all_of(density.pores.guide.begin(), density.pores.guide.end(), [&](int g) { return g >= 0 && g < count; }))
+    out.fibres = std::move(grown);
   return out;
 }
 

@@ -116,6 +116,7 @@ class Runner {
         store(stage);
       }
     }
+    if (name == "strands") std::vector<Vec3>().swap(deposited_fibres_);  // taken over, or unused (cached strands)
     write_outputs(name);
     await_digest(stage);
     stage.seconds = meter.seconds();
@@ -394,6 +395,7 @@ class Runner {
       DensityGuides result = make_guides_with_density(v.clusters->bases, *v.preguides, boundary(), o, d);
       v.guides = std::make_shared<const Guides>(std::move(result.guides));
       v.guide_density = std::make_shared<const DensityGrid>(std::move(result.density));
+      deposited_fibres_ = std::move(result.fibres);
       const std::vector<double>& values = v.guide_density->values();
       density_digest.add_bytes(values.data(), values.size() * sizeof(double));
       stage.add("density_batches", static_cast<std::int64_t>(result.batches));
@@ -440,7 +442,7 @@ class Runner {
     o.progress = loop_progress();
     FibrePointSides known;  // looked up on the way: the counts need not ask again
     Strands s = make_strands(v.guides->curves(), pores(), o, volume_distance, scalp_exit(*v.scalp_field), &known,
-                             volume_quick);
+                             volume_quick, deposited_fibres_.empty() ? nullptr : &deposited_fibres_);
     add_widths(s.fibres, scene_.hair.cross_section, options_.threads);
     v.strands = std::make_shared<const Strands>(std::move(s));
     const Curves& fibres = v.strands->fibres;
@@ -568,6 +570,10 @@ class Runner {
   std::optional<SegmentHistogram> histogram_;  // the density stage's, for its file
   std::optional<std::array<NrrdVolume, 2>> field_volumes_;  // the fields stage's samples (scalp, volume), for its files
   std::future<std::string> digest_;  // the current stage's digest, when computed beside its files
+  // The fibres the guides stage's CDM deposit grew, as the strands stage grows them before the head
+  // exit and the cut (DensityGuides::fibres): handed on within one run only, so that the strands
+  // stage need not grow them again. Never cached; the results do not depend on it.
+  std::vector<Vec3> deposited_fibres_;
   PipelineResult result_;
 };
 

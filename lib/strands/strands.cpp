@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <stdexcept>
+#include <string>
 
 #include "core/parallel.h"
 #include "strands/guide_track.h"
@@ -173,11 +175,11 @@ void fibre_along(const GuideTrack& track, const Vec3& pore, double length, doubl
 // fibre_along, with the points behind the scalp moved out when `out_of_head` is given. Most
 // fibres never enter the head; only those that do pay for field lookups inside the length solve.
 // `in_head` (if given) receives FibrePointSides::in_head of each point of the result (−1 at the
-// root and throughout a moved fibre).
+// root and throughout a moved fibre). `grown`: `points` already hold fibre_along's result.
 void fibre_kept_out(const GuideTrack& track, const Vec3& pore, double length, double wisp_extent,
                     const std::vector<Station>& stations, const HeadExit& out_of_head, Vec3* points, SweepPoint* layout,
-                    std::int8_t* in_head = nullptr) {
-  fibre_along(track, pore, length, wisp_extent, stations, nullptr, points, layout);
+                    std::int8_t* in_head = nullptr, bool grown = false) {
+  if (!grown) fibre_along(track, pore, length, wisp_extent, stations, nullptr, points, layout);
   if (!out_of_head) return;
   const int n = static_cast<int>(stations.size());
   if (in_head) in_head[0] = -1;
@@ -194,7 +196,7 @@ void fibre_kept_out(const GuideTrack& track, const Vec3& pore, double length, do
 
 std::vector<Vec3> one_fibre(const GuideTrack& track, const Vec3& pore, double length, double wisp_extent,
                             const StrandOptions& options, const HeadExit& out_of_head) {
-  const std::vector<Station>& stations = stations_for(options, std::max(2, options.points));
+  const std::vector<Station>& stations = stations_for(options, fibre_point_count(options));
   std::vector<Vec3> points(stations.size());
   std::vector<SweepPoint> layout(stations.size());
   fibre_kept_out(track, pore, length, wisp_extent, stations, out_of_head, points.data(), layout.data());
@@ -202,6 +204,16 @@ std::vector<Vec3> one_fibre(const GuideTrack& track, const Vec3& pore, double le
 }
 
 }  // namespace
+
+int fibre_point_count(const StrandOptions& options) { return std::max(2, options.points); }
+
+void grow_fibre(const GuideTrack& guide, const Vec3& pore, double length, double wisp_extent,
+                const StrandOptions& options, Vec3* points) {
+  const std::vector<Station>& stations = stations_for(options, fibre_point_count(options));
+  thread_local std::vector<SweepPoint> layout;
+  layout.resize(stations.size());
+  fibre_along(guide, pore, length, wisp_extent, stations, nullptr, points, layout.data());
+}
 
 std::vector<Vec3> make_fibre(const std::vector<Vec3>& guide, const Vec3& pore, double length, double wisp_extent,
                              const StrandOptions& options, const HeadExit& out_of_head) {
@@ -214,7 +226,8 @@ std::vector<Vec3> make_fibre(const GuideTrack& guide, const Vec3& pore, double l
 }
 
 Strands make_strands(const Curves& guides, const Pores& pores, const StrandOptions& options, const DistanceFunction& volume,
-                     const HeadExit& out_of_head, FibrePointSides* sides, const DistanceFunction& volume_quick) {
+                     const HeadExit& out_of_head, FibrePointSides* sides, const DistanceFunction& volume_quick,
+                     std::vector<Vec3>* grown) {
   const int guide_count = static_cast<int>(guides.count());
   std::vector<GuideTrack> tracks;
   tracks.reserve(guide_count);
@@ -235,11 +248,20 @@ Strands make_strands(const Curves& guides, const Pores& pores, const StrandOptio
   // cut fibres are closed up afterwards.
   const int count = static_cast<int>(pores.positions.size());
   const bool cutting = options.cutting && volume;
-  const std::vector<Station> stations = make_stations(options, std::max(2, options.points));
+  const std::vector<Station> stations = make_stations(options, fibre_point_count(options));
   const std::size_t n = stations.size(), slots = n * count;
   Strands strands;
   Curves& out = strands.fibres;
-  out.points.resize(slots);  // not zeroed: every slot is written on the thread that grows its fibre
+  if (grown) {
+    if (grown->size() != slots)
+      throw std::invalid_argument("make_strands: the grown fibres hold " + std::to_string(grown->size()) +
+                                  " points; " + std::to_string(count) + " pores of " + std::to_string(n) +
+                                  " points need " + std::to_string(slots));
+    out.points = std::move(*grown);
+    grown->clear();
+  } else {
+    out.points.resize(slots);  // not zeroed: every slot is written on the thread that grows its fibre
+  }
   std::vector<std::int8_t>* outside_volume = sides && cutting ? &sides->outside_volume : nullptr;
   std::vector<std::int8_t>* in_head = sides && out_of_head ? &sides->in_head : nullptr;
   if (sides) {
@@ -255,7 +277,7 @@ Strands make_strands(const Curves& guides, const Pores& pores, const StrandOptio
     Vec3* points = out.points.data() + n * i;
     std::int8_t* head = in_head ? in_head->data() + n * i : nullptr;
     fibre_kept_out(tracks[pores.guide[i]], pores.positions[i], pores.lengths[i], extent[pores.guide[i]], stations,
-                   out_of_head, points, scratch.layout.data(), head);
+                   out_of_head, points, scratch.layout.data(), head, grown != nullptr);
     if (cutting) {
       scratch.distances.resize(n);
       if (head) scratch.before_cut.assign(points, points + n);

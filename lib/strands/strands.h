@@ -52,6 +52,15 @@ struct FibrePointSides {
                                      // (roots, moved points, cut ends); else empty
 };
 
+// Points per fibre before cutting: options.points, at least 2.
+int fibre_point_count(const StrandOptions& options);
+
+// The fibre of `pore` along `guide`, as make_strands grows it before moving it out of the head and
+// cutting it, into points[0, fibre_point_count(options)). `wisp_extent` as make_strands measures
+// it: the largest distance of the guide's pores from its root in the root frame's (d1, d2) plane.
+void grow_fibre(const GuideTrack& guide, const Vec3& pore, double length, double wisp_extent,
+                const StrandOptions& options, Vec3* points);
+
 // `guides` holds one polyline per guide (index = guide id), root first; `volume` is the signed
 // distance to the hair-volume boundary (needed only when options.cutting). Each fibre starts
 // exactly at its pore and, unless cut, has exactly its length; a fibre longer than its guide
@@ -61,9 +70,14 @@ struct FibrePointSides {
 // With `sides`, what the field values looked up on the way said is handed back there.
 // `volume_quick` (optional) is cut_at_exit's `quick`: volume(p) or ±infinity where the sign is
 // certain.
+// `grown` (optional): every pore's fibre as grow_fibre grows it along these guides with these
+// options, fibre_point_count(options) points each, in pore order (the density model's deposit
+// grew them already). Its buffer is taken over and left empty, and those fibres are not grown
+// again; the result is the same bit for bit.
 Strands make_strands(const Curves& guides, const Pores& pores, const StrandOptions& options,
                      const DistanceFunction& volume = nullptr, const HeadExit& out_of_head = nullptr,
-                     FibrePointSides* sides = nullptr, const DistanceFunction& volume_quick = nullptr);
+                     FibrePointSides* sides = nullptr, const DistanceFunction& volume_quick = nullptr,
+                     std::vector<Vec3>* grown = nullptr);
 
 // One fibre (exposed for tests): the wisp frame is rotation-minimising along the guide.
 std::vector<Vec3> make_fibre(const std::vector<Vec3>& guide, const Vec3& pore, double length, double wisp_extent,

@@ -178,3 +178,27 @@ TEST_CASE("no density inside the head (Fig. 6)") {
     CHECK(dense_behind == 0);
   }
 }
+
+// With CDM the guides stage grows every pore's fibre for its deposit, and the strands stage takes
+// those fibres over instead of growing them again; from a cached guides stage it grows them
+// itself. Both must give the same strands, bit for bit.
+TEST_CASE("CDM: strands taken over from the deposit equal strands grown from cached guides") {
+  const Scene scene = smoke_scene(DensityModel::continuous, 6);
+  const std::filesystem::path cache = hairfit::testing::scratch_path("deposit-cache");
+  std::filesystem::remove_all(cache);
+  RunOptions o;
+  o.threads = 2;
+  o.write_outputs = false;
+  o.cache_dir = cache;
+  const PipelineResult computed = run_pipeline(scene, smoke_inputs(), o);
+  const PipelineResult from_cache = run_pipeline(scene, smoke_inputs(), o);
+  REQUIRE(stage(computed.report, "guides")->status == "computed");
+  REQUIRE(stage(from_cache.report, "guides")->status == "cached");
+  REQUIRE(stage(from_cache.report, "strands")->status == "computed");
+  CHECK(from_cache.values.strands->fibres.points == computed.values.strands->fibres.points);
+  CHECK(from_cache.values.strands->fibres.offsets == computed.values.strands->fibres.offsets);
+  CHECK(from_cache.values.strands->cut == computed.values.strands->cut);
+  CHECK(stage(from_cache.report, "strands")->digest == stage(computed.report, "strands")->digest);
+  CHECK(stage(from_cache.report, "density")->digest == stage(computed.report, "density")->digest);
+  std::filesystem::remove_all(cache);
+}

@@ -284,3 +284,70 @@ TEST_CASE("a fibre that would pass behind the scalp is moved out of the head, ke
   }
   CHECK(moved > 10);  // the case exercises the exit, not only the fast path
 }
+
+TEST_CASE("make_strands takes over fibres grown beforehand (grow_fibre): the same strands, bit for bit") {
+  // Two guides hugging the scalp y = 0 (the head below it), so that winding wisps send some fibres
+  // behind the scalp (grown again with the exit) and the cut at y = 0.3 shortens others.
+  Curves guides;
+  for (int g = 0; g < 2; ++g) {
+    std::vector<Vec3> guide;
+    for (int i = 0; i <= 40; ++i) guide.emplace_back(0.25 * i, 0.05 * std::sin(M_PI * i / 40.0), 2.0 * g);
+    guides.add(guide, g);
+  }
+  const HeadExit project = [](const Vec3& p, double& scalp) {
+    scalp = p.y();
+    return p.y() < 0.0 ? Vec3(p.x(), 0.0, p.z()) : p;
+  };
+  const DistanceFunction slab = [](const Vec3& p) { return p.y() - 0.3; };
+  Pores pores;
+  Random r(7, RandomStage::test, 2);
+  for (int i = 0; i < 120; ++i) {
+    const int g = i % 2;
+    pores.positions.emplace_back(0.0, 0.0, 2.0 * g + r.uniform(-0.5, 0.5));
+    pores.lengths.push_back(r.uniform(4.0, 14.0));
+    pores.guide.push_back(g);
+  }
+  StrandOptions o;
+  o.points = 24;
+  o.root_radius = 0.5;
+  o.tip_radius = 1.0;
+  o.turns = 0.75;
+  o.cutting = true;
+  o.cut_threshold = 0.2;
+  // The wisp extents as make_strands measures them.
+  std::vector<GuideTrack> tracks;
+  std::vector<double> extent(2, 0.0);
+  for (int g = 0; g < 2; ++g) tracks.emplace_back(std::vector<Vec3>(guides.points.begin() + guides.offsets[g],
+                                                                    guides.points.begin() + guides.offsets[g + 1]));
+  for (std::size_t i = 0; i < pores.positions.size(); ++i) {
+    Vec3 g0, t0, d1, d2;
+    tracks[pores.guide[i]].at(0.0, g0, t0, d1, d2);
+    const Vec3 delta = pores.positions[i] - g0;
+    extent[pores.guide[i]] = std::max(extent[pores.guide[i]], std::hypot(delta.dot(d1), delta.dot(d2)));
+  }
+  const std::size_t n = fibre_point_count(o);
+  REQUIRE(n == 24);
+  for (int threads : {1, 3}) {
+    o.threads = threads;
+    std::vector<Vec3> grown(n * pores.positions.size());
+    for (std::size_t i = 0; i < pores.positions.size(); ++i)
+      grow_fibre(tracks[pores.guide[i]], pores.positions[i], pores.lengths[i], extent[pores.guide[i]], o, &grown[n * i]);
+    FibrePointSides sides, sides_grown;
+    const Strands fresh = make_strands(guides, pores, o, slab, project, &sides);
+    const Strands taken = make_strands(guides, pores, o, slab, project, &sides_grown, nullptr, &grown);
+    CHECK(grown.empty());  // taken over
+    CHECK(taken.fibres.points == fresh.fibres.points);
+    CHECK(taken.fibres.offsets == fresh.fibres.offsets);
+    CHECK(taken.cut == fresh.cut);
+    CHECK(sides_grown.in_head == sides.in_head);
+    CHECK(sides_grown.outside_volume == sides.outside_volume);
+    // The case exercises both paths: fibres moved out of the head, and fibres cut.
+    int moved = 0;
+    for (std::size_t c = 0; c < fresh.fibres.count(); ++c)
+      moved += sides.in_head[fresh.fibres.offsets[c] + 1] == -1;
+    CHECK(moved > 5);
+    CHECK(fresh.cut_count > 5);
+  }
+  std::vector<Vec3> wrong(5);
+  CHECK_THROWS_AS(make_strands(guides, pores, o, slab, project, nullptr, nullptr, &wrong), std::invalid_argument);
+}
