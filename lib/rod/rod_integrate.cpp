@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <type_traits>
 
 #include <ceres/jet.h>
 
@@ -32,6 +33,7 @@ namespace {
 // operations, so a jet run's values are bit for bit the double run's.
 typedef double Pair2 __attribute__((vector_size(16)));
 typedef double Pair4 __attribute__((vector_size(32)));
+typedef double Pair8 __attribute__((vector_size(64)));
 
 template <int N, typename P>
 struct Dual {
@@ -359,10 +361,12 @@ inline void steps(const RodModel& model, RodIntegrator integrator, int segments,
   for (int a = 0; a < 9; ++a) to_public(frame[a], state.frame[a]);
 }
 
-// The integrator compiled twice: for the baseline x86-64 (SSE2, tangents in pairs) and for AVX2
-// (tangents in fours), chosen at run time. Neither enables FMA (and -ffp-contract=off), so both
-// do the same IEEE operations in the same order: the results are bit for bit the same. flatten
-// inlines the stages, so that all of the AVX2 variant is compiled for AVX2.
+// The integrator compiled for the baseline x86-64 (SSE2, tangents in pairs), for AVX2 (tangents
+// in fours) and, for the guides' six tangents, for AVX-512 (all six in one pack: half the tangent
+// instructions of two AVX2 packs; the guide solves' Jacobians are the largest single cost of a
+// run), chosen at run time. -ffp-contract=off keeps FMA out even where the target has it, so all
+// variants do the same IEEE operations in the same order: the results are bit for bit the same.
+// flatten inlines the stages, so that all of a variant is compiled for its target.
 #if defined(__GNUC__) && defined(__x86_64__)
 #define HAIRFIT_ROD_AVX2 1
 template <typename T>
@@ -371,6 +375,15 @@ __attribute__((target("avx2"), flatten)) void steps_avx2(const RodModel& model, 
                                                          RodState<T>& state, const RodTrace<T>& trace) {
   steps<T, Pair4>(model, integrator, segments, first, last, terminal_force, state, trace);
 }
+__attribute__((target("avx512f"), flatten)) void steps_avx512(const RodModel& model, RodIntegrator integrator,
+                                                              int segments, int first, int last,
+                                                              const ceres::Jet<double, 6>* terminal_force,
+                                                              RodState<ceres::Jet<double, 6>>& state,
+                                                              const RodTrace<ceres::Jet<double, 6>>& trace) {
+  steps<ceres::Jet<double, 6>, Pair8>(model, integrator, segments, first, last, terminal_force, state, trace);
+}
+template <typename T>
+constexpr bool kSixTangents = std::is_same_v<T, ceres::Jet<double, 6>>;
 #endif
 
 }  // namespace
@@ -379,6 +392,9 @@ template <typename T>
 void integrate_rod_steps(const RodModel& model, RodIntegrator integrator, int segments, int first, int last,
                          const T* terminal_force, RodState<T>& state, const RodTrace<T>& trace) {
 #ifdef HAIRFIT_ROD_AVX2
+  if constexpr (kSixTangents<T>)
+    if (__builtin_cpu_supports("avx512f"))
+      return steps_avx512(model, integrator, segments, first, last, terminal_force, state, trace);
   if (__builtin_cpu_supports("avx2"))
     return steps_avx2<T>(model, integrator, segments, first, last, terminal_force, state, trace);
 #endif
