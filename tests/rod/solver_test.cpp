@@ -362,3 +362,42 @@ TEST_CASE("the value part of a jet integration is bit for bit the double integra
     }
   }
 }
+
+TEST_CASE("six-tangent jets (the guides' Jacobians, one AVX-512 pack where the CPU has one) carry the three-tangent jets' derivatives bit for bit") {
+  // Every tangent lane does the same IEEE operations whatever the pack width, so the derivatives
+  // by (f_L, m(0)) of a six-tangent run are those of two three-tangent runs, one seeded on f_L and
+  // one on m(0), exactly; and the value part is the double run's.
+  for (const RodIntegrator integrator : {RodIntegrator::rk2, RodIntegrator::rk4}) {
+    const RodModel model = make_rod_model(test_rod(), test_root());
+    const double force[3] = {0.7, -0.3, 0.5}, moment[3] = {0.4, 1.1, -0.6};
+    RodJet6 force6[3], moment6[3], end6[3];
+    RodJet3 force_seeded[3], moment_seeded[3], force_plain[3], moment_plain[3], end_by_force[3], end_by_moment[3];
+    for (int a = 0; a < 3; ++a) {
+      force6[a] = RodJet6(force[a], a);
+      moment6[a] = RodJet6(moment[a], 3 + a);
+      force_seeded[a] = RodJet3(force[a], a);
+      moment_seeded[a] = RodJet3(moment[a], a);
+      force_plain[a] = RodJet3(force[a]);
+      moment_plain[a] = RodJet3(moment[a]);
+    }
+    const int n = 40;
+    std::vector<RodJet6> nodes6(3 * (n + 1));
+    std::vector<RodJet3> nodes_by_force(3 * (n + 1)), nodes_by_moment(3 * (n + 1));
+    std::vector<double> nodes(3 * (n + 1));
+    double end[3];
+    integrate_rod<RodJet6>(model, integrator, n, force6, moment6, end6, RodTrace<RodJet6>{nodes6.data()});
+    integrate_rod<RodJet3>(model, integrator, n, force_seeded, moment_plain, end_by_force, RodTrace<RodJet3>{nodes_by_force.data()});
+    integrate_rod<RodJet3>(model, integrator, n, force_plain, moment_seeded, end_by_moment, RodTrace<RodJet3>{nodes_by_moment.data()});
+    integrate_rod<double>(model, integrator, n, force, moment, end, RodTrace<double>{nodes.data()});
+    auto same = [](const RodJet6& six, const RodJet3& by_force, const RodJet3& by_moment, double value) {
+      for (int k = 0; k < 3; ++k) {
+        if (six.v[k] != by_force.v[k] || six.v[3 + k] != by_moment.v[k]) return false;
+      }
+      return six.a == value && by_force.a == value && by_moment.a == value;
+    };
+    for (int a = 0; a < 3; ++a) CHECK(same(end6[a], end_by_force[a], end_by_moment[a], end[a]));
+    int differing = 0;
+    for (std::size_t i = 0; i < nodes6.size(); ++i) differing += !same(nodes6[i], nodes_by_force[i], nodes_by_moment[i], nodes[i]);
+    CHECK(differing == 0);
+  }
+}
