@@ -114,11 +114,15 @@ GuideTargets make_targets(const RootSet& bases, int b, const PreGuides& preguide
   return t;
 }
 
-// A solved guide's shape: traced piece by piece for a heavy rod (one integration from m(0) would
-// diverge), else one integration from (f_L, m(0)).
-FibreShape solved_shape(const GuideTargets& t, const GuideSolve& s) {
-  if (s.heavy) return fibre_shape(t.model, t.root, t.length, t.rod, s.solution);
-  return fibre_shape(t.model, t.root, t.length, t.rod, Vec3(s.eta[0], s.eta[1], s.eta[2]), Vec3(s.eta[3], s.eta[4], s.eta[5]));
+// A solved guide's shape and terminal torque m(1): traced piece by piece for a heavy rod (one
+// integration from m(0) would diverge), else one integration from (f_L, m(0)).
+FibreShape solved_shape(const GuideTargets& t, const GuideSolve& s, Vec3& terminal_torque) {
+  if (s.heavy) {
+    terminal_torque = s.solution.terminal_torque;
+    return fibre_shape(t.model, t.root, t.length, t.rod, s.solution);
+  }
+  return fibre_shape(t.model, t.root, t.length, t.rod, Vec3(s.eta[0], s.eta[1], s.eta[2]), Vec3(s.eta[3], s.eta[4], s.eta[5]),
+                     &terminal_torque);
 }
 
 // How far (cm) a shape's worst node lies beyond the scalp or the volume (≤ 0: none does).
@@ -128,11 +132,15 @@ double worst_excursion(const FibreShape& shape, const Boundary& boundary) {
   return worst;
 }
 
+// What a solve is for: a guide of the result (every figure of Guide), or only the start of a
+// density solve (the loads, the shape, the counts; the cost and its terms stay 0).
+enum class GuideUse { result, start };
+
 // `seed_start`: the loads to start from (world axes, dimensionless); null = as options.warm_start
 // says (the followed pre-guides' loads, weighted, or straight).
 Guide solve_guide(const RootSet& bases, int b, const PreGuides& preguides, const Boundary& boundary, const GuideOptions& o,
                   const DensityGrid* density = nullptr, const DensityTermOptions& term = {},
-                  const double* seed_start = nullptr, const StallTest& stall = {}) {
+                  const double* seed_start = nullptr, const StallTest& stall = {}, GuideUse use = GuideUse::result) {
   Guide g;
   g.root = bases.positions[b];
   g.normal = bases.normals[b];
@@ -149,7 +157,7 @@ Guide solve_guide(const RootSet& bases, int b, const PreGuides& preguides, const
   else if (o.warm_start)
     add_weighted_loads(preguides.items, g.neighbours, g.neighbour_weights, start);
   GuideSolve solve = optimise_guide(targets, start, o.max_iterations, o.tolerance, stall);
-  g.shape = solved_shape(targets, solve);
+  g.shape = solved_shape(targets, solve, g.terminal_torque);
   // The solve can stop in a local minimum that runs through the head or out of the
   // volume well past the boundary ramp: then the other start (straight ↔ the neighbours' loads)
   // is tried too, and the lower cost kept.
@@ -161,21 +169,13 @@ Guide solve_guide(const RootSet& bases, int b, const PreGuides& preguides, const
     const int iterations = solve.iterations + retry.iterations, evaluations = solve.evaluations + retry.evaluations;
     if (retry.final_cost < solve.final_cost) {
       solve = std::move(retry);
-      g.shape = solved_shape(targets, solve);
+      g.shape = solved_shape(targets, solve, g.terminal_torque);
     }
     solve.iterations = iterations;
     solve.evaluations = evaluations;
   }
   g.force = Vec3(solve.eta[0], solve.eta[1], solve.eta[2]);
   g.root_moment = Vec3(solve.eta[3], solve.eta[4], solve.eta[5]);
-  if (solve.heavy) {
-    g.terminal_torque = solve.solution.terminal_torque;
-  } else {
-    Vec3 m1;
-    integrate_rod<double>(targets.model, o.rod.integrator, o.rod.segments, solve.eta, solve.eta + 3, m1.data(),
-                          RodTrace<double>{});
-    g.terminal_torque = m1;
-  }
   const RodScales scales = rod_scales(hair_rod(g.length, o.material));
   g.force_scale = scales.force;
   g.moment_scale = scales.moment;
@@ -184,6 +184,7 @@ Guide solve_guide(const RootSet& bases, int b, const PreGuides& preguides, const
   g.converged = solve.converged;
   g.termination = solve.termination;
   g.initial_cost = 2.0 * solve.initial_cost;  // Ceres reports ½Σr²
+  if (use == GuideUse::start) return g;
   const GuideTerms terms =
       solve.heavy ? evaluate_guide_terms(targets, solve.solution) : evaluate_guide_terms(targets, solve.eta);
   g.cost = terms.total;
@@ -226,9 +227,10 @@ Guide solve_guide_with_density(const RootSet& bases, int b, const PreGuides& pre
 // same result: the results do not depend on the thread count or on when each guide is taken.
 class FirstSolves {
  public:
+  // `use`: the guides are the result (make_guides) or the density solves' starts.
   FirstSolves(const RootSet& bases, const PreGuides& preguides, const Boundary& boundary, const GuideOptions& options,
-              std::vector<Guide>& out)
-      : bases_(bases), preguides_(preguides), boundary_(boundary), options_(options), out_(out),
+              GuideUse use, std::vector<Guide>& out)
+      : bases_(bases), preguides_(preguides), boundary_(boundary), options_(options), use_(use), out_(out),
         in_round_(bases.size(), 0) {
     out_.resize(bases.size());
     if (!warm()) return;
@@ -256,7 +258,7 @@ class FirstSolves {
       const std::vector<int>& round = rounds_[r];
       parallel_for(round.size(), options_.threads, [&](int i) {
         if (r == 0)
-          out_[round[i]] = solve_guide(bases_, round[i], preguides_, boundary_, options_);
+          out_[round[i]] = solve_guide(bases_, round[i], preguides_, boundary_, options_, nullptr, {}, nullptr, {}, use_);
         else
           solve(round[i]);
         progress.item_done();
@@ -275,7 +277,7 @@ class FirstSolves {
   // Solves guide b (not a seed) from the guides of the rounds solved so far.
   void solve(int b) {
     if (!warm()) {
-      out_[b] = solve_guide(bases_, b, preguides_, boundary_, options_);
+      out_[b] = solve_guide(bases_, b, preguides_, boundary_, options_, nullptr, {}, nullptr, {}, use_);
       return;
     }
     auto base_at = [&](int j) { return bases_.positions[j]; };
@@ -285,7 +287,7 @@ class FirstSolves {
     weights = follow_weights(weights);
     double start[6] = {0, 0, 0, 0, 0, 0};
     add_weighted_loads(out_, from, weights, start);
-    out_[b] = solve_guide(bases_, b, preguides_, boundary_, options_, nullptr, {}, start);
+    out_[b] = solve_guide(bases_, b, preguides_, boundary_, options_, nullptr, {}, start, {}, use_);
   }
 
  private:
@@ -295,6 +297,7 @@ class FirstSolves {
   const PreGuides& preguides_;
   const Boundary& boundary_;
   const GuideOptions& options_;
+  GuideUse use_;
   std::vector<Guide>& out_;
   std::vector<char> in_round_;
   std::vector<std::vector<int>> rounds_;  // seeds, then two quarters of the others
@@ -312,7 +315,7 @@ Curves Guides::curves() const {
 Guides make_guides(const RootSet& bases, const PreGuides& preguides, const Boundary& boundary, const GuideOptions& options) {
   Guides guides;
   ProgressCounter progress(options.progress);
-  FirstSolves first(bases, preguides, boundary, options, guides.items);
+  FirstSolves first(bases, preguides, boundary, options, GuideUse::result, guides.items);
   first.solve_rounds(progress);
   const std::vector<int> others = first.others(0, bases.size());
   parallel_for(others.size(), options.threads, [&](int i) {
@@ -349,7 +352,7 @@ DensityGuides make_guides_with_density(const RootSet& bases, const PreGuides& pr
   first_options.progress = nullptr;
   first_options.tolerance = std::max(options.tolerance, kFirstSolveTolerance);
   std::vector<Guide> plain;
-  FirstSolves first(bases, preguides, boundary, first_options, plain);
+  FirstSolves first(bases, preguides, boundary, first_options, GuideUse::start, plain);
   ProgressCounter no_progress(first_options.progress);  // empty: the first solves report nothing
   first.solve_rounds(no_progress);
   auto batch_end = [&](int begin) { return std::min(count, begin + density.batch); };

@@ -32,12 +32,13 @@ FibreShape shape_of(const Vec3& root, double length, int nodes_count, const std:
 }  // namespace
 
 FibreShape fibre_shape(const RodModel& model, const Vec3& root, double length, const RodDiscretisation& rod,
-                       const Vec3& force, const Vec3& root_moment) {
+                       const Vec3& force, const Vec3& root_moment, Vec3* terminal_moment) {
   const int n = rod.segments + 1;
   std::vector<double> nodes(3 * n), frames(9 * n), curvature(3 * n);
   Vec3 m1;
   integrate_rod<double>(model, rod.integrator, rod.segments, force.data(), root_moment.data(), m1.data(),
                         RodTrace<double>{nodes.data(), frames.data(), curvature.data(), nullptr});
+  if (terminal_moment) *terminal_moment = m1;
   return shape_of(root, length, n, nodes, frames, curvature);
 }
 

@@ -57,9 +57,10 @@ struct PreGuides {
 
 PreGuides make_preguides(const RootSet& roots, const Boundary& boundary, const PreguideOptions& options);
 
-// The shape of a rod with dimensionless loads (initial-value form: one forward integration).
+// The shape of a rod with dimensionless loads (initial-value form: one forward integration), and,
+// if asked, the moment m(1) that integration ends with.
 FibreShape fibre_shape(const RodModel& model, const Vec3& root, double length, const RodDiscretisation& rod,
-                       const Vec3& force, const Vec3& root_moment);
+                       const Vec3& force, const Vec3& root_moment, Vec3* terminal_moment = nullptr);
 
 // The same from a shooting solution, traced piece by piece when it has pieces (heavy rods).
 FibreShape fibre_shape(const RodModel& model, const Vec3& root, double length, const RodDiscretisation& rod,
