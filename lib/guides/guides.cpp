@@ -376,18 +376,18 @@ DensityGuides make_guides_with_density(const RootSet& bases, const PreGuides& pr
     std::iota(order.begin(), order.end(), begin);
     std::stable_sort(order.begin(), order.end(),
                      [&](int x, int y) { return plain[x].evaluations > plain[y].evaluations; });
+    // CDM: each guide grows its fibres into their pores' places as soon as it is solved (they are
+    // deposited below, in guide order).
+    const bool grow = density.term.model == GuideDensityModel::continuous;
     parallel_for(end - begin, options.threads, [&](int i) {
       const int g = order[i];
       out.guides.items[g] =
           solve_guide_with_density(bases, g, preguides, boundary, options, plain[g], frozen, term, density.stall);
+      if (grow) grow_guide_fibres(out.guides.items[g].shape.nodes, pores_of[g], density, grown_at(0));
       progress.item_done();
     });
     std::vector<FibreSpan> fibres;
-    if (density.term.model == GuideDensityModel::continuous) {
-      // Grown on all threads into their pores' places, deposited in guide order.
-      parallel_for(end - begin, options.threads, [&](int i) {
-        grow_guide_fibres(out.guides.items[begin + i].shape.nodes, pores_of[begin + i], density, grown_at(0));
-      });
+    if (grow) {
       for (int g = begin; g < end; ++g) {
         if (pores_of[g].empty()) fibres.push_back({out.guides.items[g].shape.nodes.data(), out.guides.items[g].shape.nodes.size()});
         for (int i : pores_of[g]) fibres.push_back({grown_at(i), fibre_points});
