@@ -1,4 +1,4 @@
-// Deterministic parallel loops: items are split into fixed contiguous blocks and every item writes
+// Deterministic parallel loops: items are handed out in small chunks and every item writes
 // only its own, index-addressed output, so results never depend on the number of threads.
 #pragma once
 #include <functional>

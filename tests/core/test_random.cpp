@@ -1,7 +1,10 @@
 #include <doctest/doctest.h>
 
+#include <chrono>
 #include <cmath>
+#include <mutex>
 #include <set>
+#include <thread>
 #include <vector>
 
 #include "core/digest.h"
@@ -80,6 +83,37 @@ TEST_CASE("parallel_for visits each index once, for any thread count") {
     CHECK(std::set<int>(hits.begin(), hits.end()) == std::set<int>{1});
   }
   parallel_for(0, 4, [](int) { FAIL("no item expected"); });
+}
+
+TEST_CASE("parallel_for inside a loop body, and from two threads at once, still visits each index once") {
+  // The worker pool serves one loop at a time; a loop that finds it busy runs on threads of its own.
+  std::vector<std::vector<int>> hits(8, std::vector<int>(300, 0));
+  parallel_for(8, 3, [&](int outer) { parallel_for(300, 2, [&](int i) { hits[outer][i] += 1; }); });
+  for (const std::vector<int>& h : hits) CHECK(std::set<int>(h.begin(), h.end()) == std::set<int>{1});
+  std::vector<int> a(5000, 0), b(5000, 0);
+  std::thread other([&] {
+    for (int k = 0; k < 20; ++k) parallel_for(250, 3, [&](int i) { b[250 * k + i] += 1; });
+  });
+  for (int k = 0; k < 20; ++k) parallel_for(250, 3, [&](int i) { a[250 * k + i] += 1; });
+  other.join();
+  CHECK(std::set<int>(a.begin(), a.end()) == std::set<int>{1});
+  CHECK(std::set<int>(b.begin(), b.end()) == std::set<int>{1});
+}
+
+TEST_CASE("parallel_for's threads are kept from loop to loop") {
+  // Thread-local scratch (make_fibre's stations, the guide cost's buffers) survives between loops
+  // only if the same threads serve them: two loops in a row see no more distinct threads than the
+  // larger of them needs.
+  std::mutex mutex;
+  std::set<std::thread::id> seen;
+  for (int loop = 0; loop < 5; ++loop)
+    parallel_for(64, 3, [&](int) {
+      std::this_thread::sleep_for(std::chrono::microseconds(200));
+      std::lock_guard<std::mutex> lock(mutex);
+      seen.insert(std::this_thread::get_id());
+    });
+  CHECK(seen.size() <= 3);
+  CHECK(seen.size() >= 2);
 }
 
 TEST_CASE("parallel_for reports the lowest failing index whatever the thread count") {
