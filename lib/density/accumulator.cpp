@@ -97,7 +97,7 @@ void DensityAccumulator::add_fibres(const std::vector<FibreSpan>& fibres, int th
                                     std::vector<std::int32_t>* segment_counts) {
   for (size_t f = 0; f < fibres.size(); ++f) check_fibre(fibres[f], f);
   const FibreLayers layers = fibre_layers(geometry_, fibres, threads);
-  std::vector<double>& values = *values_;
+  std::vector<double>& values = writable_values();
   std::int32_t* counts = nullptr;
   if (segment_counts) {
     segment_counts->assign(size_t(geometry_.cell_count()), 0);
@@ -110,18 +110,21 @@ void DensityAccumulator::add_fibres(const std::vector<FibreSpan>& fibres, int th
 
 void DensityAccumulator::occupy(const Tube& tube, OccupancyShape shape) {
   check_tube(tube, 0);
-  occupy_tubes(geometry_, *values_, {tube}, shape, 0, geometry_.dims.z());
+  occupy_tubes(geometry_, writable_values(), {tube}, shape, 0, geometry_.dims.z());
 }
 
 void DensityAccumulator::occupy_all(const std::vector<Tube>& tubes, int threads, OccupancyShape shape) {
   for (size_t t = 0; t < tubes.size(); ++t) check_tube(tubes[t], t);
-  std::vector<double>& values = *values_;
+  std::vector<double>& values = writable_values();
   for_each_z_slab(geometry_, threads,
                   [&](int k_begin, int k_end) { occupy_tubes(geometry_, values, tubes, shape, k_begin, k_end); });
 }
 
-DensityGrid DensityAccumulator::freeze() const& {
-  return DensityGrid(geometry_, std::make_shared<const std::vector<double>>(*values_));
+DensityGrid DensityAccumulator::freeze() const& { return DensityGrid(geometry_, values_); }
+
+std::vector<double>& DensityAccumulator::writable_values() {
+  if (values_.use_count() > 1) values_ = std::make_shared<std::vector<double>>(*values_);  // a frozen grid shares them
+  return *values_;
 }
 
 DensityGrid DensityAccumulator::freeze() && {

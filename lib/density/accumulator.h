@@ -49,13 +49,17 @@ class DensityAccumulator {
   void occupy_all(const std::vector<Tube>& tubes, int threads = 1,
                   OccupancyShape shape = OccupancyShape::frustum);
 
-  // The immutable grid of the values so far. The const version copies the buffer (8 bytes a
-  // cell, e.g. 14 MB for 120³ cells) and the accumulator stays usable; the rvalue version
-  // (std::move(acc).freeze()) hands over the buffer without copying.
+  // The immutable grid of the values so far. The const version shares the buffer and the
+  // accumulator stays usable: its next deposit copies the buffer (8 bytes a cell, e.g. 14 MB for
+  // 120³ cells) if a grid frozen from it is still alive, and writes in place if none is. The
+  // rvalue version (std::move(acc).freeze()) hands the buffer over.
   DensityGrid freeze() const&;
   DensityGrid freeze() &&;
 
  private:
+  // The values, about to be written: copied first while a frozen grid shares them.
+  std::vector<double>& writable_values();
+
   GridGeometry geometry_;
   std::shared_ptr<std::vector<double>> values_;
 };

@@ -386,6 +386,9 @@ DensityGuides make_guides_with_density(const RootSet& bases, const PreGuides& pr
       if (grow) grow_guide_fibres(out.guides.items[g].shape.nodes, pores_of[g], density, grown_at(0));
       progress.item_done();
     });
+    // Released before the deposit, which then writes the grid in place (a frozen grid shares the
+    // accumulator's buffer until then: DensityAccumulator::freeze).
+    frozen = DensityGrid();
     std::vector<FibreSpan> fibres;
     if (grow) {
       for (int g = begin; g < end; ++g) {
@@ -407,7 +410,6 @@ DensityGuides make_guides_with_density(const RootSet& bases, const PreGuides& pr
       if (i > 0) return first.solve(next[i - 1]);
       if (density.term.model == GuideDensityModel::continuous) accumulator.add_fibres(fibres, 1);
       if (last) return;
-      frozen = DensityGrid();  // one copy of the grid at a time
       frozen = accumulator.freeze();
       outside = ceiling(frozen, 1);
     });

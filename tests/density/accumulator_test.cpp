@@ -168,3 +168,26 @@ TEST_CASE("a frozen grid never changes; an accumulator can continue from a grid"
   CHECK(moved.cell(16, 16, 16) == acc.cell(16, 16, 16));
   CHECK(first.cell(16, 16, 16) == before);
 }
+
+TEST_CASE("freezing shares the accumulator's buffer: a deposit copies it only while a frozen grid is alive") {
+  const GridGeometry g = bench_like_grid();
+  DensityAccumulator acc(g);
+  const std::vector<Vec3> fibre{Vec3(0.1, 0.1, 0.1), Vec3(0.2, 0.1, 0.1)};
+  acc.add_fibre(fibre);
+  const double* buffer;
+  {
+    const DensityGrid frozen = acc.freeze();
+    buffer = frozen.values().data();
+    CHECK(acc.freeze().values().data() == buffer);  // no copy on freezing
+    acc.add_fibre(fibre);                            // copies: `frozen` must not change
+    CHECK(frozen.cell(16, 16, 16) * 2.0 == acc.cell(16, 16, 16));
+    CHECK(acc.freeze().values().data() != buffer);
+  }
+  const double* current = acc.freeze().values().data();
+  acc.add_fibre(fibre);  // no grid frozen from it is alive: written in place
+  const DensityGrid after = acc.freeze();
+  CHECK(after.values().data() == current);
+  DensityAccumulator plain(g);  // the same three deposits, never frozen in between
+  for (int k = 0; k < 3; ++k) plain.add_fibre(fibre);
+  CHECK(after.values() == plain.freeze().values());
+}
