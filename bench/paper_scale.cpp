@@ -137,7 +137,12 @@ void compare_builds(const std::string& hairfit, const std::string& other, const 
   std::printf("%d runs each, --threads %d, medians\n\n| | A s | B s | B / A |\n|---|---:|---:|---:|\n", runs, threads);
   auto row = [](const std::string& name, double x, double y) {  // 0: not reported (an older build)
     if (x > 0 && y > 0) std::printf("| %s | %.3f | %.3f | %.3f |\n", name.c_str(), x, y, y / x);
-    else std::printf("| %s | %s | %s | – |\n", name.c_str(), x > 0 ? std::to_string(x).c_str() : "–", y > 0 ? std::to_string(y).c_str() : "–");
+    else {
+      char a[32] = "–", b[32] = "–";
+      if (x > 0) std::snprintf(a, sizeof a, "%.3f", x);
+      if (y > 0) std::snprintf(b, sizeof b, "%.3f", y);
+      std::printf("| %s | %s | %s | – |\n", name.c_str(), a, b);
+    }
   };
   row("process wall", ma.wall, mb.wall);
   row("process CPU", ma.cpu, mb.cpu);
