@@ -198,6 +198,7 @@ PreGuide solve_preguide(const RootSet& roots, int i, const Boundary& boundary, c
     ShootingResult solution;  // m(0), and the pieces of a heavy rod
     double miss = 0.0;
     Vec3 tip_tangent = Vec3::Zero();
+    Vec3 chord = Vec3::Zero();  // r(1) − r(0) in rod units: the tip force's moment arm about the root
     std::optional<RodEnd> end;  // the solution's rod end, when its solve traced it
     const Vec3& m0() const { return solution.root_moment; }
   };
@@ -205,16 +206,22 @@ PreGuide solve_preguide(const RootSet& roots, int i, const Boundary& boundary, c
     if (st.end) {  // the tip as fibre_shape places it: root + length · r(1)
       st.miss = boundary.volume->value(g.root + g.length * st.end->position) + g.target_depth;
       st.tip_tangent = st.end->tangent;
+      st.chord = st.end->position;
       return;
     }
     const FibreShape shape = fibre_shape(model, g.root, g.length, o.rod, st.solution);
     st.miss = boundary.volume->value(shape.nodes.back()) + g.target_depth;
     st.tip_tangent = shape.tangents.back();
+    st.chord = (shape.nodes.back() - g.root) / g.length;
   };
   // m(0) at `load` extrapolated along the branch from the solutions a, b, c (loads increasing):
   // the parabola through all three where their loads differ, else the line through the last two,
-  // else the last. Quadratic prediction starts Newton nearer its root than the line did.
-  auto extrapolated = [](const State& a, const State& b, const State& c, double load) -> Vec3 {
+  // else, from c alone, c's m(0) plus the moment of the added tip force about the root with c's
+  // shape held (m(0) = m(1) + ∫ d3 × n ds, n the tip force: the chord × the force), which is
+  // m(0)'s derivative in the load up to the shape's own response. Quadratic prediction starts
+  // Newton nearer its root than the line did; the first step from the unloaded rod, predicted as
+  // m(0) unchanged, was rejected twice (Newton landed beyond 0.1 of it) before 1/16 was taken.
+  auto extrapolated = [&bend](const State& a, const State& b, const State& c, double load) -> Vec3 {
     if (c.load > b.load && b.load > a.load) {
       const double wa = ((load - b.load) * (load - c.load)) / ((a.load - b.load) * (a.load - c.load));
       const double wb = ((load - a.load) * (load - c.load)) / ((b.load - a.load) * (b.load - c.load));
@@ -222,7 +229,7 @@ PreGuide solve_preguide(const RootSet& roots, int i, const Boundary& boundary, c
       return wa * a.m0() + wb * b.m0() + wc * c.m0();
     }
     if (c.load > b.load) return c.m0() + (c.m0() - b.m0()) * ((load - c.load) / (c.load - b.load));
-    return c.m0();
+    return c.m0() + (load - c.load) * c.chord.cross(bend);
   };
   State current, previous;
   // The rod under its own weight first, by continuation in the weight from the straight rod: a
