@@ -177,7 +177,117 @@ ShootingResult predicted(const ShootingResult& at, const Vec3& root_moment) {
   return guess;
 }
 
-PreGuide solve_preguide(const RootSet& roots, int i, const Boundary& boundary, const PreguideOptions& o) {
+// A solved state of the cantilever at one load, with its rod's free end (rod units: the root at
+// the origin, lengths in L, the model's axes).
+struct MarchState {
+  double load = 0.0;
+  ShootingResult solution;  // m(0), and the pieces of a heavy rod
+  RodEnd end{Vec3::Zero(), Vec3::Zero()};
+  const Vec3& m0() const { return solution.root_moment; }
+};
+
+// The rod's end of a solution: as its solve traced it (single shooting), else traced again.
+RodEnd rod_end(const RodModel& model, const RodDiscretisation& rod, const ShootingResult& solution,
+               const std::optional<RodEnd>& traced) {
+  if (traced) return *traced;
+  const FibreShape shape = fibre_shape(model, Vec3::Zero(), 1.0, rod, solution);
+  return RodEnd{shape.nodes.back(), shape.tangents.back()};
+}
+
+// m(0) at `load` extrapolated along the branch from the solutions a, b, c (loads increasing):
+// the parabola through all three where their loads differ, else the line through the last two,
+// else, from c alone, c's m(0) plus the moment of the added tip force about the root with c's
+// shape held (m(0) = m(1) + ∫ d3 × n ds, n the tip force: the chord × the force), which is m(0)'s
+// derivative in the load up to the shape's own response. Quadratic prediction starts Newton
+// nearer its root than the line did; the first step from the unloaded rod, predicted as m(0)
+// unchanged, was rejected twice (Newton landed beyond 0.1 of it) before 1/16 was taken.
+Vec3 extrapolated(const MarchState& a, const MarchState& b, const MarchState& c, double load, const Vec3& bend) {
+  if (c.load > b.load && b.load > a.load) {
+    const double wa = ((load - b.load) * (load - c.load)) / ((a.load - b.load) * (a.load - c.load));
+    const double wb = ((load - a.load) * (load - c.load)) / ((b.load - a.load) * (b.load - c.load));
+    const double wc = ((load - a.load) * (load - b.load)) / ((c.load - a.load) * (c.load - b.load));
+    return wa * a.m0() + wb * b.m0() + wc * c.m0();
+  }
+  if (c.load > b.load) return c.m0() + (c.m0() - b.m0()) * ((load - c.load) / (c.load - b.load));
+  return c.m0() + (load - c.load) * c.end.position.cross(bend);
+}
+
+// Natural-parameter continuation in the load from `start`: visit(state) is called for `start`
+// and for every state accepted after it, in order, until it returns false, the load reaches
+// max_load, or the branch cannot be followed further (load steps below 1e-4 of the load, or the
+// Newton budget spent). A step is accepted where Newton lands near its predictor and the tip
+// turns by at most kMaxTipTurn, toward the pull, never back; else the step is halved.
+template <class Visit>
+void march_load(const Cantilever& cantilever, const RodModel& model, const RodDiscretisation& rod, const Vec3& bend,
+                const MarchState& start, double max_load, int& solves, Visit&& visit) {
+  if (!visit(start)) return;
+  MarchState earliest = start, previous = start, current = start;  // the last three accepted
+  double step = 0.25;
+  while (current.load < max_load && step > 1e-4 * (1.0 + current.load) && solves < kNewtonBudget) {
+    MarchState next;
+    next.load = std::min(max_load, current.load + step);
+    const Vec3 predictor = extrapolated(earliest, previous, current, next.load, bend);
+    next.solution = predicted(current.solution, predictor);
+    std::optional<RodEnd> traced;
+    bool accepted = cantilever.solve(model, next.load, next.solution, solves, traced) &&
+                    (next.m0() - predictor).norm() <= 0.1 * (1.0 + current.m0().norm());
+    if (accepted) {
+      next.end = rod_end(model, rod, next.solution, traced);
+      const Vec3& tip = next.end.tangent;
+      accepted = std::acos(std::clamp(tip.dot(current.end.tangent), -1.0, 1.0)) <= kMaxTipTurn &&
+                 tip.dot(bend) >= current.end.tangent.dot(bend) - 1e-9;
+    }
+    if (!accepted) {
+      step *= 0.5;
+      continue;
+    }
+    if (!visit(next)) return;
+    earliest = previous;
+    previous = current;
+    current = next;
+    step = std::min(step * 1.5, 0.3 * (1.0 + current.load));
+  }
+}
+
+// The load march of a rod whose loads are all at its tip and whose natural shape is straight (no
+// weight, no curl) depends only on its bending and twisting compliance: in the frame of its root
+// (direction d3, bending direction d1) it is the same dimensionless problem whatever the root,
+// direction and length. It is followed once per compliance, root frame the identity, pulled along
+// e1, and every such pre-guide replays it, rotated into its own root frame, until its tip reaches
+// its depth. On the paper-scale scene all 435 pre-guides share one march.
+struct PreguideMarch {
+  Vec3 compliance = Vec3::Zero();
+  std::vector<MarchState> states;  // every accepted state, the unloaded rod first
+  int solves = 0;                  // Newton steps the march took
+};
+
+bool replays_march(const RodModel& model, const PreguideOptions& o) {
+  if (!o.share_marches) return false;
+  const bool straight = std::all_of(model.kappa_hat.begin(), model.kappa_hat.end(), [](const Vec3& k) { return k.isZero(0.0); });
+  return straight && model.force_per_length.isZero(0.0) && o.max_load <= kHeavyRod;
+}
+
+PreguideMarch shared_march(const Vec3& compliance, const PreguideOptions& o) {
+  PreguideMarch m;
+  m.compliance = compliance;
+  RodModel model;
+  model.compliance = compliance;  // straight, weightless, root frame the identity
+  const Vec3 bend = Vec3::UnitX();
+  const Cantilever cantilever(bend, o.rod);
+  // The unloaded rod, solved as a pre-guide's weight continuation solves it.
+  MarchState start;
+  std::optional<RodEnd> traced;
+  cantilever.solve(model, 0.0, start.solution, m.solves, traced);
+  start.end = rod_end(model, o.rod, start.solution, traced);
+  march_load(cantilever, model, o.rod, bend, start, o.max_load, m.solves, [&](const MarchState& s) {
+    m.states.push_back(s);
+    return true;
+  });
+  return m;
+}
+
+PreGuide solve_preguide(const RootSet& roots, int i, const Boundary& boundary, const PreguideOptions& o,
+                        const std::vector<PreguideMarch>& shared) {
   PreGuide g;
   g.root = roots.positions[i];
   g.normal = roots.normals[i];
@@ -191,51 +301,54 @@ PreGuide solve_preguide(const RootSet& roots, int i, const Boundary& boundary, c
   g.thickness = std::max(0.0, -boundary.volume->value(g.root));
   const double share = o.depth_range[1] + (o.depth_range[0] - o.depth_range[1]) * std::clamp(g.height, 0.0, 1.0);
   g.target_depth = share * g.thickness;
-  // miss > 0: the tip is not yet deep enough.
 
-  struct State {
-    double load = 0.0;
-    ShootingResult solution;  // m(0), and the pieces of a heavy rod
+  // The states the march visits, with their misses (miss > 0: the tip is not yet deep enough):
+  // the best tip so far, and the bracket [above, below] once the tip passes its depth.
+  struct Visited {
+    MarchState state;
     double miss = 0.0;
-    Vec3 tip_tangent = Vec3::Zero();
-    Vec3 chord = Vec3::Zero();  // r(1) − r(0) in rod units: the tip force's moment arm about the root
-    std::optional<RodEnd> end;  // the solution's rod end, when its solve traced it
-    const Vec3& m0() const { return solution.root_moment; }
   };
-  auto settle = [&](State& st) {
-    if (st.end) {  // the tip as fibre_shape places it: root + length · r(1)
-      st.miss = boundary.volume->value(g.root + g.length * st.end->position) + g.target_depth;
-      st.tip_tangent = st.end->tangent;
-      st.chord = st.end->position;
-      return;
+  auto visited = [&](const MarchState& s) {
+    return Visited{s, boundary.volume->value(g.root + g.length * s.end.position) + g.target_depth};
+  };
+  std::optional<Visited> best, previous;
+  Visited above, below;
+  bool bracketed = false;
+  auto visit = [&](const MarchState& s) {
+    const Visited v = visited(s);
+    if (!best || std::fabs(v.miss) < std::fabs(best->miss)) best = v;
+    if (v.miss <= 0.0) {
+      above = previous ? *previous : v;
+      below = v;
+      bracketed = true;
+      return false;
     }
-    const FibreShape shape = fibre_shape(model, g.root, g.length, o.rod, st.solution);
-    st.miss = boundary.volume->value(shape.nodes.back()) + g.target_depth;
-    st.tip_tangent = shape.tangents.back();
-    st.chord = (shape.nodes.back() - g.root) / g.length;
+    previous = v;
+    return true;
   };
-  // m(0) at `load` extrapolated along the branch from the solutions a, b, c (loads increasing):
-  // the parabola through all three where their loads differ, else the line through the last two,
-  // else, from c alone, c's m(0) plus the moment of the added tip force about the root with c's
-  // shape held (m(0) = m(1) + ∫ d3 × n ds, n the tip force: the chord × the force), which is
-  // m(0)'s derivative in the load up to the shape's own response. Quadratic prediction starts
-  // Newton nearer its root than the line did; the first step from the unloaded rod, predicted as
-  // m(0) unchanged, was rejected twice (Newton landed beyond 0.1 of it) before 1/16 was taken.
-  auto extrapolated = [&bend](const State& a, const State& b, const State& c, double load) -> Vec3 {
-    if (c.load > b.load && b.load > a.load) {
-      const double wa = ((load - b.load) * (load - c.load)) / ((a.load - b.load) * (a.load - c.load));
-      const double wb = ((load - a.load) * (load - c.load)) / ((b.load - a.load) * (b.load - c.load));
-      const double wc = ((load - a.load) * (load - b.load)) / ((c.load - a.load) * (c.load - b.load));
-      return wa * a.m0() + wb * b.m0() + wc * c.m0();
+
+  const auto march = std::find_if(shared.begin(), shared.end(), [&](const PreguideMarch& m) {
+    return replays_march(model, o) && m.compliance == model.compliance;
+  });
+  if (march != shared.end()) {
+    // The shared march in this root frame: m(0), the end and the force rotate with it.
+    const Mat3& frame = model.root_frame;
+    for (const MarchState& s : march->states) {
+      MarchState w;
+      w.load = s.load;
+      w.solution.root_moment = frame * s.m0();
+      w.solution.terminal_force = s.load * bend;
+      w.solution.force_per_length = Vec3::Zero();
+      w.solution.converged = true;
+      w.end = RodEnd{frame * s.end.position, frame * s.end.tangent};
+      if (!visit(w)) break;
     }
-    if (c.load > b.load) return c.m0() + (c.m0() - b.m0()) * ((load - c.load) / (c.load - b.load));
-    return c.m0() + (load - c.load) * c.chord.cross(bend);
-  };
-  State current, previous;
-  // The rod under its own weight first, by continuation in the weight from the straight rod: a
-  // heavy hair (ρAgL³/EI is ~10³ for 30 cm of hair) has many equilibria, and only this path finds
-  // the drooping one. Beyond kHeavyRod each level starts from the pieces of the one before.
-  {
+  } else {
+    // The rod under its own weight first, by continuation in the weight from the straight rod: a
+    // heavy hair (ρAgL³/EI is ~10³ for 30 cm of hair) has many equilibria, and only this path
+    // finds the drooping one. Beyond kHeavyRod each level starts from the pieces of the one before.
+    MarchState start;
+    std::optional<RodEnd> start_traced;
     RodModel scaled = model;
     double share = 0.0, share_step = model.force_per_length.norm() > 0.0 ? 0.05 : 1.0;
     Vec3 m_prev = Vec3::Zero(), tip_prev = g.direction;
@@ -243,12 +356,12 @@ PreGuide solve_preguide(const RootSet& roots, int i, const Boundary& boundary, c
     while (share < 1.0 && share_step > 1e-5 && g.solves < kNewtonBudget) {
       const double next = std::min(1.0, share + share_step);
       scaled.force_per_length = next * model.force_per_length;
-      const Vec3 predictor = share > share_prev ? Vec3(current.m0() + (current.m0() - m_prev) * ((next - share) / (share - share_prev)))
-                                                : current.m0();
-      ShootingResult trial = predicted(current.solution, predictor);
+      const Vec3 predictor = share > share_prev ? Vec3(start.m0() + (start.m0() - m_prev) * ((next - share) / (share - share_prev)))
+                                                : start.m0();
+      ShootingResult trial = predicted(start.solution, predictor);
       std::optional<RodEnd> end;
       bool accepted = cantilever.solve(scaled, 0.0, trial, g.solves, end) &&
-                      (trial.root_moment - predictor).norm() <= 0.1 * (1.0 + current.m0().norm());
+                      (trial.root_moment - predictor).norm() <= 0.1 * (1.0 + start.m0().norm());
       Vec3 tip = tip_prev;
       if (accepted) {
         tip = end ? end->tangent : fibre_shape(scaled, g.root, g.length, o.rod, trial).tangents.back();
@@ -258,94 +371,62 @@ PreGuide solve_preguide(const RootSet& roots, int i, const Boundary& boundary, c
         share_step *= 0.5;
         continue;
       }
-      m_prev = current.m0();
+      m_prev = start.m0();
       share_prev = share;
-      current.solution = trial;
-      current.end = end;  // traced under the full weight once share reaches 1, as settle needs it
+      start.solution = trial;
+      start_traced = end;  // traced under the full weight once share reaches 1
       tip_prev = tip;
       share = next;
       share_step = std::min(share_step * 1.5, 0.25);
     }
     if (share < 1.0) {  // could not follow the weight: flagged below by the miss
-      current.solution = ShootingResult{};
-      current.end.reset();
+      start.solution = ShootingResult{};
+      start_traced.reset();
     }
-    current.solution.force_per_length = model.force_per_length;
+    start.solution.force_per_length = model.force_per_length;
+    start.end = rod_end(model, o.rod, start.solution, start_traced);
+    march_load(cantilever, model, o.rod, bend, start, o.max_load, g.solves, visit);
   }
-  settle(current);
-  previous = current;
-  State earliest = current;  // the solution before `previous`, for the predictor
-  State best = current;
+
   const double tolerance = 1e-3 * std::max(g.thickness, 1e-2);
-  double step = 0.25;
-  bool bracketed = current.miss <= 0.0;
-  State above = current, below = current;  // miss > 0 and miss ≤ 0 ends of the bracket
-  // The march ends at the target, at max_load, or where the branch cannot be followed further
-  // (load steps below 1e-4 of the load, or the Newton budget spent): the best tip so far is kept.
-  while (!bracketed && current.load < o.max_load && step > 1e-4 * (1.0 + current.load) && g.solves < kNewtonBudget) {
-    State next;
-    next.load = std::min(o.max_load, current.load + step);
-    const Vec3 predictor = extrapolated(earliest, previous, current, next.load);
-    next.solution = predicted(current.solution, predictor);
-    bool accepted = cantilever.solve(model, next.load, next.solution, g.solves, next.end) &&
-                    (next.m0() - predictor).norm() <= 0.1 * (1.0 + current.m0().norm());
-    if (accepted) {
-      settle(next);
-      // On the branch of the unloaded rod the tip turns steadily toward the pull, never back.
-      accepted = std::acos(std::clamp(next.tip_tangent.dot(current.tip_tangent), -1.0, 1.0)) <= kMaxTipTurn &&
-                 next.tip_tangent.dot(bend) >= current.tip_tangent.dot(bend) - 1e-9;
-    }
-    if (!accepted) {
-      step *= 0.5;
-      continue;
-    }
-    if (std::fabs(next.miss) < std::fabs(best.miss)) best = next;
-    if (next.miss <= 0.0) {
-      above = current;
-      below = next;
-      bracketed = true;
-    }
-    earliest = previous;
-    previous = current;
-    current = next;
-    step = std::min(step * 1.5, 0.3 * (1.0 + current.load));
-  }
   // Regula falsi on the load inside the bracket, Illinois' variant (an end kept twice in a row has
   // its miss halved, so both ends move), each solve started from m(0) interpolated between the
   // ends, or, should that fail, from the shallower end. On the paper-scale scene this took
   // 11 Newton steps a pre-guide where bisection from the shallower end took 28.
   double above_miss = above.miss, below_miss = below.miss;  // the ends' misses as the secant weighs them
   int kept = 0;  // the end kept by the last step: +1 above, −1 below
-  for (int k = 0; bracketed && k < 60 && std::fabs(best.miss) > tolerance && below.load > above.load &&
+  for (int k = 0; bracketed && k < 60 && std::fabs(best->miss) > tolerance && below.state.load > above.state.load &&
                   g.solves < 2 * kNewtonBudget;
        ++k) {
     const double t = std::clamp(above_miss / (above_miss - below_miss), 0.0, 1.0);
-    State mid = above;
-    mid.load = above.load + t * (below.load - above.load);
-    mid.solution = predicted(above.solution, above.m0() + t * (below.m0() - above.m0()));
-    if (!cantilever.solve(model, mid.load, mid.solution, g.solves, mid.end)) {
-      mid.solution = above.solution;
-      if (!cantilever.solve(model, mid.load, mid.solution, g.solves, mid.end)) break;
+    MarchState mid;
+    mid.load = above.state.load + t * (below.state.load - above.state.load);
+    mid.solution = predicted(above.state.solution, above.state.m0() + t * (below.state.m0() - above.state.m0()));
+    std::optional<RodEnd> traced;
+    if (!cantilever.solve(model, mid.load, mid.solution, g.solves, traced)) {
+      mid.solution = above.state.solution;
+      if (!cantilever.solve(model, mid.load, mid.solution, g.solves, traced)) break;
     }
-    settle(mid);
-    if (std::fabs(mid.miss) < std::fabs(best.miss)) best = mid;
-    if (mid.miss > 0.0) {
-      above = mid;
-      above_miss = mid.miss;
+    mid.end = rod_end(model, o.rod, mid.solution, traced);
+    const Visited v = visited(mid);
+    if (std::fabs(v.miss) < std::fabs(best->miss)) best = v;
+    if (v.miss > 0.0) {
+      above = v;
+      above_miss = v.miss;
       if (kept == -1) below_miss *= 0.5;
       kept = -1;
     } else {
-      below = mid;
-      below_miss = mid.miss;
+      below = v;
+      below_miss = v.miss;
       if (kept == 1) above_miss *= 0.5;
       kept = 1;
     }
   }
-  g.force = best.load * bend;
-  g.root_moment = best.m0();
-  g.shape = fibre_shape(model, g.root, g.length, o.rod, best.solution);
+  g.force = best->state.load * bend;
+  g.root_moment = best->state.m0();
+  g.shape = fibre_shape(model, g.root, g.length, o.rod, best->state.solution);
   g.depth = -boundary.volume->value(g.shape.nodes.back());
-  g.reached = best.miss <= tolerance;
+  g.reached = best->miss <= tolerance;
   return g;
 }
 
@@ -354,9 +435,18 @@ PreGuide solve_preguide(const RootSet& roots, int i, const Boundary& boundary, c
 PreGuides make_preguides(const RootSet& roots, const Boundary& boundary, const PreguideOptions& options) {
   PreGuides result;
   result.items.resize(roots.size());
+  // One shared march per distinct compliance among the pre-guides that can replay one.
+  std::vector<PreguideMarch> shared;
+  for (int i = 0; i < roots.size(); ++i) {
+    const RodModel model = make_rod_model(hair_rod(roots.lengths[i], options.material), RodRoot{});
+    if (!replays_march(model, options)) continue;
+    if (std::none_of(shared.begin(), shared.end(), [&](const PreguideMarch& m) { return m.compliance == model.compliance; }))
+      shared.push_back(shared_march(model.compliance, options));
+  }
+  for (const PreguideMarch& m : shared) result.shared_solves += m.solves;
   ProgressCounter progress(options.progress);
   parallel_for(roots.size(), options.threads, [&](int i) {
-    result.items[i] = solve_preguide(roots, i, boundary, options);
+    result.items[i] = solve_preguide(roots, i, boundary, options, shared);
     progress.item_done();
   });
   return result;

@@ -25,6 +25,10 @@ struct PreguideOptions {
   Vec3 front{0, 0, 1};
   int threads = 1;
   ProgressCallback progress;  // pre-guides finished so far (never changes results)
+  // Rods with their loads at the tip and a straight natural shape replay one shared load march per
+  // compliance (make_preguides). false: each follows its own, as a check of the sharing (the
+  // results agree to round-off).
+  bool share_marches = true;
 };
 
 // A solved rod shape as the guide objective compares it: per node, in world axes.
@@ -52,6 +56,10 @@ struct PreGuide {
 
 struct PreGuides {
   std::vector<PreGuide> items;
+  // Newton steps of the load marches the pre-guides share (make_preguides: rods with their loads
+  // at the tip and a straight natural shape follow one march per compliance); not in any item's
+  // `solves`.
+  int shared_solves = 0;
   int size() const { return static_cast<int>(items.size()); }
 };
 

@@ -365,6 +365,7 @@ class Runner {
     stage.add("reached_depth", static_cast<std::int64_t>(reached));
     stage.add("flagged", static_cast<std::int64_t>(v.preguides->size() - reached));
     stage.add("mean_newton_steps", v.preguides->size() ? solves / v.preguides->size() : 0.0);
+    stage.add("shared_newton_steps", static_cast<std::int64_t>(v.preguides->shared_solves));
   }
 
   void write_preguides() {

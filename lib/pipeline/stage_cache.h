@@ -13,7 +13,7 @@
 
 namespace hairfit {
 
-inline constexpr std::uint32_t kCacheFormatVersion = 1;
+inline constexpr std::uint32_t kCacheFormatVersion = 2;  // 2: PreGuides::shared_solves
 inline constexpr int kEntriesPerStage = 6;
 
 class StageCache {

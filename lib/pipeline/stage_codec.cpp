@@ -203,6 +203,7 @@ void members(IO& io, PreGuide& g) {
 template <class IO>
 void members(IO& io, PreGuides& p) {
   io.items(p.items);
+  io(p.shared_solves);
 }
 
 template <class IO>

@@ -361,3 +361,35 @@ TEST_CASE("pre-guides: each one that reached its depth is a cantilever in equili
   }
   CHECK(reached >= 8);  // the case exercises the root finder, not only the load cap
 }
+
+TEST_CASE("pre-guides replaying the shared load march agree with pre-guides that follow their own") {
+  // Rods loaded at the tip with a straight natural shape solve one dimensionless problem in the
+  // frame of their root; make_preguides follows its march once and rotates it into each root
+  // frame. Checked against every pre-guide following its own march in world axes.
+  PreguideOptions o;
+  o.rod.segments = 48;
+  std::vector<std::pair<double, double>> angles;
+  for (int k = 0; k < 10; ++k) angles.emplace_back(0.12 + 0.1 * k, 0.9 * k);
+  RootSet r = roots_at(angles, 5.0, 0.3);
+  for (std::size_t k = 0; k < angles.size(); ++k) r.lengths[k] = 4.0 + 0.7 * k;  // 4 to 10.3 cm
+  const PreGuides shared = make_preguides(r, world().boundary(), o);
+  o.share_marches = false;
+  const PreGuides own = make_preguides(r, world().boundary(), o);
+  CHECK(shared.shared_solves > 0);
+  CHECK(own.shared_solves == 0);
+  int reached = 0, saved = 0;
+  for (int i = 0; i < shared.size(); ++i) {
+    CAPTURE(i);
+    const PreGuide &a = shared.items[i], &b = own.items[i];
+    CHECK(a.reached == b.reached);
+    reached += a.reached;
+    saved += b.solves - a.solves;
+    const double scale = 1.0 + b.force.norm();
+    CHECK((a.force - b.force).norm() <= 1e-9 * scale);
+    CHECK((a.root_moment - b.root_moment).norm() <= 1e-9 * scale);
+    CHECK(max_node_distance(a.shape.nodes, b.shape.nodes) <= 1e-9 * a.length);
+    CHECK(std::fabs(a.depth - b.depth) <= 1e-9 * a.length);
+  }
+  CHECK(reached >= 3);
+  CHECK(saved > 0);
+}
