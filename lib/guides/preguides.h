@@ -63,6 +63,9 @@ struct PreGuides {
   int size() const { return static_cast<int>(items.size()); }
 };
 
+// One pre-guide per root, in root order; the same for any thread count. Rods loaded only at the
+// tip with a straight natural shape (no weight, no curl) solve one dimensionless problem in their
+// root frame, so the load march is followed once per compliance and replayed, rotated, by each.
 PreGuides make_preguides(const RootSet& roots, const Boundary& boundary, const PreguideOptions& options);
 
 // The shape of a rod with dimensionless loads (initial-value form: one forward integration), and,
