@@ -234,37 +234,38 @@ class GuideCost {
   bool boundary_and_density(const T* nodes, const T* frames, T* r) const {
     const GuideWeights& w = t_.weights;
     const std::size_t samples = t_.sample_nodes.size();
+    // One pass over the samples: each sample's two field values serve its boundary residuals
+    // (first, two per sample) and its density residuals (after them, `per_sample` each), where a
+    // pass per term looked the fields up twice.
+    const DensityTermOptions& d = t_.density_term;
+    const std::size_t per_sample = d.model == GuideDensityModel::continuous ? 2 : 3;
+    T* density_r = r + 2 * samples;
     for (std::size_t k = 0; k < samples; ++k) {
-      const T scale = T(std::sqrt(w.boundary * t_.sample_weights[k]));
+      const int node = t_.sample_nodes[k];
       T p[3];
-      for (int a = 0; a < 3; ++a) p[a] = T(t_.root[a]) + T(t_.length) * nodes[3 * t_.sample_nodes[k] + a];
+      for (int a = 0; a < 3; ++a) p[a] = T(t_.root[a]) + T(t_.length) * nodes[3 * node + a];
       const T beyond_scalp = -field_at(*t_.boundary->scalp, p);
       const T beyond_volume = field_at(*t_.boundary->volume, p);
-      *r++ = scale * boundary_residual(beyond_scalp, t_.form, t_.outside_penalty, t_.boundary_width);
-      *r++ = scale * boundary_residual(beyond_volume, t_.form, t_.outside_penalty, t_.boundary_width);
-    }
-    if (t_.density) {
-      const DensityTermOptions& d = t_.density_term;
-      for (std::size_t k = 0; k < samples; ++k) {
-        const int node = t_.sample_nodes[k];
-        T p[3];
-        for (int a = 0; a < 3; ++a) p[a] = T(t_.root[a]) + T(t_.length) * nodes[3 * node + a];
-        if (d.model == GuideDensityModel::continuous) {
-          const T scale = T(std::sqrt(w.density * d.strength * t_.sample_weights[k]));
-          *r++ = scale * density_slope(*t_.density, p, &frames[9 * node + 6]);
-        } else {
-          const T occupancy = density_at(*t_.density, p);
-          *r++ = T(std::sqrt(w.density * t_.sample_weights[k])) * occupancy;
-          *r++ = T(std::sqrt(w.density * d.surcharge * t_.sample_weights[k])) *
+      const T scale = T(std::sqrt(w.boundary * t_.sample_weights[k]));
+      r[2 * k] = scale * boundary_residual(beyond_scalp, t_.form, t_.outside_penalty, t_.boundary_width);
+      r[2 * k + 1] = scale * boundary_residual(beyond_volume, t_.form, t_.outside_penalty, t_.boundary_width);
+      if (!t_.density) continue;
+      T* out = density_r + per_sample * k;
+      if (d.model == GuideDensityModel::continuous) {
+        *out++ = T(std::sqrt(w.density * d.strength * t_.sample_weights[k])) *
+                 density_slope(*t_.density, p, &frames[9 * node + 6]);
+      } else {
+        const T occupancy = density_at(*t_.density, p);
+        *out++ = T(std::sqrt(w.density * t_.sample_weights[k])) * occupancy;
+        *out++ = T(std::sqrt(w.density * d.surcharge * t_.sample_weights[k])) *
                  surcharge_residual(occupancy, d.threshold, d.surcharge_width);
-        }
-        // Outside the acceptable region the sample pays the grid's largest F4 integrand on top
-        // (density_term.h, DensityTermOptions::outside): the head and the space beyond the volume
-        // count as full, so a guide never escapes crowding by leaving the region.
-        const double h = t_.density->geometry().voxel;
-        *r++ = T(std::sqrt(w.density * d.outside * t_.sample_weights[k])) *
-               (outside_step(-field_at(*t_.boundary->scalp, p), h) + outside_step(field_at(*t_.boundary->volume, p), h));
       }
+      // Outside the acceptable region the sample pays the grid's largest F4 integrand on top
+      // (density_term.h, DensityTermOptions::outside): the head and the space beyond the volume
+      // count as full, so a guide never escapes crowding by leaving the region.
+      const double h = t_.density->geometry().voxel;
+      *out = T(std::sqrt(w.density * d.outside * t_.sample_weights[k])) *
+             (outside_step(beyond_scalp, h) + outside_step(beyond_volume, h));
     }
     return true;
   }
