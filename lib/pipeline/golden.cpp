@@ -225,6 +225,7 @@ FigureTolerance figure_tolerance(const std::string& stage, const std::string& fi
       {"preguides.reached_depth", {1, 0.01}},
       {"preguides.flagged", {1, 0.01}},
       {"preguides.mean_newton_steps", {0, 0.05}},
+      {"preguides.shared_newton_steps", {0, 0.05}},
       {"guides.failures", {1, 0.02}},
       {"guides.mean_iterations", {0, 0.05}},
       {"guides.max_iterations", {10, 0}},
