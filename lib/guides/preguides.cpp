@@ -83,11 +83,10 @@ RodEnd end_of(const RodState<T>& state) {
                 Vec3(value_of(state.frame[6]), value_of(state.frame[7]), value_of(state.frame[8]))};
 }
 
-// Natural-parameter continuation of the cantilever m(1; P·b̂, m(0)) = 0 (t_L = 0) in the load P:
-// Newton on m(0) with the 3×3 Jacobian from jets, from a secant predictor. Several equilibria
-// exist at the same load (curled rods); a step is accepted only when Newton lands near the
-// predictor and the tip turns by less than kMaxTipTurn, else the load step is halved, so the
-// path stays on the branch connected to the unloaded rod.
+// The cantilever m(1; P·b̂, m(0)) = 0 (t_L = 0) at one load P: Newton on m(0) with the 3×3
+// Jacobian from jets, from a predictor. Several equilibria exist at the same load (curled rods),
+// so the loads are reached by continuation from the unloaded rod (march_load below), which keeps
+// the path on the branch connected to it.
 class Cantilever {
  public:
   Cantilever(const Vec3& bend, const RodDiscretisation& rod) : bend_(bend), rod_(rod) {}
@@ -327,9 +326,9 @@ PreGuide solve_preguide(const RootSet& roots, int i, const Boundary& boundary, c
     return true;
   };
 
-  const auto march = std::find_if(shared.begin(), shared.end(), [&](const PreguideMarch& m) {
-    return replays_march(model, o) && m.compliance == model.compliance;
-  });
+  const bool replay = replays_march(model, o);
+  const auto march = std::find_if(shared.begin(), shared.end(),
+                                  [&](const PreguideMarch& m) { return replay && m.compliance == model.compliance; });
   if (march != shared.end()) {
     // The shared march in this root frame: m(0), the end and the force rotate with it.
     const Mat3& frame = model.root_frame;
