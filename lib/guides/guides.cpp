@@ -335,14 +335,15 @@ DensityGuides make_guides_with_density(const RootSet& bases, const PreGuides& pr
   std::vector<std::vector<int>> pores_of(count);
   const std::size_t fibre_points = fibre_point_count(density.strands);
   std::vector<Vec3> grown;  // CDM: every pore's fibre, in its place
-  if (density.term.model == GuideDensityModel::continuous) {
+  // CDM deposits the fibres its guides will grow, BOM tubes along the guides.
+  const bool cdm = density.term.model == GuideDensityModel::continuous;
+  if (cdm) {
     for (std::size_t i = 0; i < density.pores.guide.size(); ++i) {
       const int g = density.pores.guide[i];
       if (g >= 0 && g < count) pores_of[g].push_back(static_cast<int>(i));
     }
     grown.resize(fibre_points * density.pores.positions.size());  // each written before it is read
   }
-  auto grown_at = [&](int pore) { return grown.data() + fibre_points * pore; };
   // The first solves do not see the density: the guides the scene would have without a density
   // model (FirstSolves, as make_guides). They are only the second solves' start, and those
   // minimise the whole objective to options.tolerance, so they stop at a relative decrease of
@@ -378,22 +379,21 @@ DensityGuides make_guides_with_density(const RootSet& bases, const PreGuides& pr
                      [&](int x, int y) { return plain[x].evaluations > plain[y].evaluations; });
     // CDM: each guide grows its fibres into their pores' places as soon as it is solved (they are
     // deposited below, in guide order).
-    const bool grow = density.term.model == GuideDensityModel::continuous;
     parallel_for(end - begin, options.threads, [&](int i) {
       const int g = order[i];
       out.guides.items[g] =
           solve_guide_with_density(bases, g, preguides, boundary, options, plain[g], frozen, term, density.stall);
-      if (grow) grow_guide_fibres(out.guides.items[g].shape.nodes, pores_of[g], density, grown_at(0));
+      if (cdm) grow_guide_fibres(out.guides.items[g].shape.nodes, pores_of[g], density, grown.data());
       progress.item_done();
     });
     // Released before the deposit, which then writes the grid in place (a frozen grid shares the
     // accumulator's buffer until then: DensityAccumulator::freeze).
     frozen = DensityGrid();
     std::vector<FibreSpan> fibres;
-    if (grow) {
+    if (cdm) {
       for (int g = begin; g < end; ++g) {
         if (pores_of[g].empty()) fibres.push_back({out.guides.items[g].shape.nodes.data(), out.guides.items[g].shape.nodes.size()});
-        for (int i : pores_of[g]) fibres.push_back({grown_at(i), fibre_points});
+        for (int i : pores_of[g]) fibres.push_back({grown.data() + fibre_points * i, fibre_points});
       }
     } else {  // BOM: the tubes' voxelisation scales over threads
       std::vector<Tube> tubes;
@@ -408,7 +408,7 @@ DensityGuides make_guides_with_density(const RootSet& bases, const PreGuides& pr
     const std::vector<int> next = last ? std::vector<int>() : first.others(end, batch_end(end));
     parallel_for(1 + static_cast<int>(next.size()), options.threads, [&](int i) {
       if (i > 0) return first.solve(next[i - 1]);
-      if (density.term.model == GuideDensityModel::continuous) accumulator.add_fibres(fibres, 1);
+      if (cdm) accumulator.add_fibres(fibres, 1);
       if (last) return;
       frozen = accumulator.freeze();
       outside = ceiling(frozen, 1);
