@@ -40,8 +40,8 @@ std::vector<Station> make_stations(const StrandOptions& o, int n) {
   return out;
 }
 
-// make_fibre's stations, kept per thread while the options stay the same (the guides' density
-// term grows fibres one by one with the same options).
+// The stations of grow_fibre and make_fibre, kept per thread while the options stay the same
+// (the guides' density term grows fibres one by one with the same options).
 const std::vector<Station>& stations_for(const StrandOptions& o, int n) {
   thread_local StrandOptions key;
   thread_local std::vector<Station> kept;
@@ -194,15 +194,6 @@ void fibre_kept_out(const GuideTrack& track, const Vec3& pore, double length, do
   }
 }
 
-std::vector<Vec3> one_fibre(const GuideTrack& track, const Vec3& pore, double length, double wisp_extent,
-                            const StrandOptions& options, const HeadExit& out_of_head) {
-  const std::vector<Station>& stations = stations_for(options, fibre_point_count(options));
-  std::vector<Vec3> points(stations.size());
-  std::vector<SweepPoint> layout(stations.size());
-  fibre_kept_out(track, pore, length, wisp_extent, stations, out_of_head, points.data(), layout.data());
-  return points;
-}
-
 }  // namespace
 
 int fibre_point_count(const StrandOptions& options) { return std::max(2, options.points); }
@@ -217,12 +208,11 @@ void grow_fibre(const GuideTrack& guide, const Vec3& pore, double length, double
 
 std::vector<Vec3> make_fibre(const std::vector<Vec3>& guide, const Vec3& pore, double length, double wisp_extent,
                              const StrandOptions& options, const HeadExit& out_of_head) {
-  return one_fibre(GuideTrack(guide), pore, length, wisp_extent, options, out_of_head);
-}
-
-std::vector<Vec3> make_fibre(const GuideTrack& guide, const Vec3& pore, double length, double wisp_extent,
-                             const StrandOptions& options, const HeadExit& out_of_head) {
-  return one_fibre(guide, pore, length, wisp_extent, options, out_of_head);
+  const std::vector<Station>& stations = stations_for(options, fibre_point_count(options));
+  std::vector<Vec3> points(stations.size());
+  std::vector<SweepPoint> layout(stations.size());
+  fibre_kept_out(GuideTrack(guide), pore, length, wisp_extent, stations, out_of_head, points.data(), layout.data());
+  return points;
 }
 
 Strands make_strands(const Curves& guides, const Pores& pores, const StrandOptions& options, const DistanceFunction& volume,

@@ -82,8 +82,5 @@ Strands make_strands(const Curves& guides, const Pores& pores, const StrandOptio
 // One fibre (exposed for tests): the wisp frame is rotation-minimising along the guide.
 std::vector<Vec3> make_fibre(const std::vector<Vec3>& guide, const Vec3& pore, double length, double wisp_extent,
                              const StrandOptions& options, const HeadExit& out_of_head = nullptr);
-// The same along a guide already prepared as a track (many fibres around one guide share it).
-std::vector<Vec3> make_fibre(const GuideTrack& guide, const Vec3& pore, double length, double wisp_extent,
-                             const StrandOptions& options, const HeadExit& out_of_head = nullptr);
 
 }  // namespace hairfit
