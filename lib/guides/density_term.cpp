@@ -82,16 +82,8 @@ double DensityCeiling::operator()(const DensityGrid& grid, int threads) {
 void grow_guide_fibres(const std::vector<Vec3>& guide, const std::vector<int>& pores_of_guide,
                        const GuideDensityOptions& options, Vec3* fibres) {
   if (pores_of_guide.empty()) return;
-  // The wisp extent exactly as make_strands measures it: the largest distance of the cluster's
-  // pores from the guide root in the plane of the root frame.
   const GuideTrack track(guide);
-  Vec3 g0, t0, d1, d2;
-  track.at(0.0, g0, t0, d1, d2);
-  double extent = 0.0;
-  for (int i : pores_of_guide) {
-    const Vec3 delta = options.pores.positions[i] - g0;
-    extent = std::max(extent, std::hypot(delta.dot(d1), delta.dot(d2)));
-  }
+  const double extent = wisp_extent(track, options.pores.positions, pores_of_guide);
   const std::size_t n = fibre_point_count(options.strands);
   for (int i : pores_of_guide)
     grow_fibre(track, options.pores.positions[i], options.pores.lengths[i], extent, options.strands, fibres + n * i);

@@ -198,6 +198,17 @@ void fibre_kept_out(const GuideTrack& track, const Vec3& pore, double length, do
 
 int fibre_point_count(const StrandOptions& options) { return std::max(2, options.points); }
 
+double wisp_extent(const GuideTrack& guide, const std::vector<Vec3>& positions, const std::vector<int>& pores) {
+  RootFrame root;
+  guide.at(0.0, root.position, root.tangent, root.d1, root.d2);
+  double extent = 0.0;
+  for (int i : pores) {
+    const Vec3 delta = positions[i] - root.position;
+    extent = std::max(extent, std::hypot(delta.dot(root.d1), delta.dot(root.d2)));
+  }
+  return extent;
+}
+
 void grow_fibre(const GuideTrack& guide, const Vec3& pore, double length, double wisp_extent,
                 const StrandOptions& options, Vec3* points) {
   const std::vector<Station>& stations = stations_for(options, fibre_point_count(options));
@@ -224,15 +235,10 @@ Strands make_strands(const Curves& guides, const Pores& pores, const StrandOptio
   for (int g = 0; g < guide_count; ++g)
     tracks.emplace_back(std::vector<Vec3>(guides.points.begin() + guides.offsets[g], guides.points.begin() + guides.offsets[g + 1]));
 
-  // A wisp's extent is the largest in-plane distance of its pores from the guide root.
-  std::vector<RootFrame> roots(guide_count);
-  for (int g = 0; g < guide_count; ++g) tracks[g].at(0.0, roots[g].position, roots[g].tangent, roots[g].d1, roots[g].d2);
+  std::vector<std::vector<int>> pores_of(guide_count);
+  for (std::size_t i = 0; i < pores.positions.size(); ++i) pores_of[pores.guide[i]].push_back(static_cast<int>(i));
   std::vector<double> extent(guide_count, 0.0);
-  for (std::size_t i = 0; i < pores.positions.size(); ++i) {
-    const RootFrame& root = roots[pores.guide[i]];
-    const Vec3 delta = pores.positions[i] - root.position;
-    extent[pores.guide[i]] = std::max(extent[pores.guide[i]], std::hypot(delta.dot(root.d1), delta.dot(root.d2)));
-  }
+  for (int g = 0; g < guide_count; ++g) extent[g] = wisp_extent(tracks[g], pores.positions, pores_of[g]);
 
   // Every fibre is grown (and cut) in place in its own slot of n points of the result; slots of
   // cut fibres are closed up afterwards.

@@ -55,9 +55,12 @@ struct FibrePointSides {
 // Points per fibre before cutting: options.points, at least 2.
 int fibre_point_count(const StrandOptions& options);
 
+// A wisp's extent, as make_strands measures it: the largest distance of its pores (indices into
+// `positions`) from the guide's root in the plane of the root frame's (d1, d2).
+double wisp_extent(const GuideTrack& guide, const std::vector<Vec3>& positions, const std::vector<int>& pores);
+
 // The fibre of `pore` along `guide`, as make_strands grows it before moving it out of the head and
-// cutting it, into points[0, fibre_point_count(options)). `wisp_extent` as make_strands measures
-// it: the largest distance of the guide's pores from its root in the root frame's (d1, d2) plane.
+// cutting it, into points[0, fibre_point_count(options)); `wisp_extent` as wisp_extent() gives it.
 void grow_fibre(const GuideTrack& guide, const Vec3& pore, double length, double wisp_extent,
                 const StrandOptions& options, Vec3* points);
 

@@ -316,14 +316,12 @@ TEST_CASE("make_strands takes over fibres grown beforehand (grow_fibre): the sam
   o.cut_threshold = 0.2;
   // The wisp extents as make_strands measures them.
   std::vector<GuideTrack> tracks;
-  std::vector<double> extent(2, 0.0);
-  for (int g = 0; g < 2; ++g) tracks.emplace_back(std::vector<Vec3>(guides.points.begin() + guides.offsets[g],
-                                                                    guides.points.begin() + guides.offsets[g + 1]));
-  for (std::size_t i = 0; i < pores.positions.size(); ++i) {
-    Vec3 g0, t0, d1, d2;
-    tracks[pores.guide[i]].at(0.0, g0, t0, d1, d2);
-    const Vec3 delta = pores.positions[i] - g0;
-    extent[pores.guide[i]] = std::max(extent[pores.guide[i]], std::hypot(delta.dot(d1), delta.dot(d2)));
+  std::vector<std::vector<int>> pores_of(2);
+  for (std::size_t i = 0; i < pores.positions.size(); ++i) pores_of[pores.guide[i]].push_back(static_cast<int>(i));
+  std::vector<double> extent;
+  for (int g = 0; g < 2; ++g) {
+    tracks.emplace_back(std::vector<Vec3>(guides.points.begin() + guides.offsets[g], guides.points.begin() + guides.offsets[g + 1]));
+    extent.push_back(wisp_extent(tracks[g], pores.positions, pores_of[g]));
   }
   const std::size_t n = fibre_point_count(o);
   REQUIRE(n == 24);
