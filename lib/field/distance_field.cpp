@@ -94,7 +94,28 @@ void require_field_fits(const Mesh& mesh, const FieldSpec& spec) {
   }
 }
 
-DistanceField make_distance_field(const Mesh& mesh, const FieldSpec& spec, int threads) {
+namespace {
+
+// Signs every finite sample by the test at its node: −|v| inside, |v| outside.
+void sign_by_test(std::vector<double>& values, const field::GridGeometry& grid, int stride, const InsideTest& inside,
+                  int threads) {
+  const int nx = grid.dims.x(), ny = grid.dims.y();
+  parallel_for(grid.dims.z(), threads, [&](int k) {
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        double& v = values[grid.index(i, j, k)];
+        if (v == std::numeric_limits<double>::infinity()) continue;
+        // The node's position as the fine grid computes it, also for coarse nodes (stride > 1),
+        // so that a node both grids share gets one answer.
+        const Vec3 p = grid.origin + (grid.h / stride) * Vec3(double(stride) * i, double(stride) * j, double(stride) * k);
+        v = inside(p) ? -std::abs(v) : std::abs(v);
+      }
+  });
+}
+
+}  // namespace
+
+DistanceField make_distance_field(const Mesh& mesh, const FieldSpec& spec, int threads, const InsideTest& inside) {
   require_field_fits(mesh, spec);
   const FieldGridPlan plan = plan_field_grid(mesh, spec);
   threads = resolve_thread_count(threads);
@@ -103,6 +124,15 @@ DistanceField make_distance_field(const Mesh& mesh, const FieldSpec& spec, int t
   const double r = spec.band * spec.voxel;
   field::BandScan band = field::scan_band(features, grid, r, threads);
   field::FarField far = field::make_far_field(features, grid, band, r, plan.coarse_factor, threads);
+  if (inside) {
+    sign_by_test(band.value, grid, 1, inside, threads);
+    const field::GridGeometry coarse{plan.origin, plan.coarse_factor * spec.voxel, far.dims};
+    sign_by_test(far.values, coarse, plan.coarse_factor, inside, threads);
+  }
+  std::vector<std::uint8_t> in_band(band.value.size());
+  for (std::size_t n = 0; n < in_band.size(); ++n) in_band[n] = band.key[n] >= 0;
+  std::vector<int32_t>().swap(band.key);
+  field::fill_beyond_band(features, grid, far, plan.coarse_factor, r, inside, band.value, threads);
 
   DistanceField out;
   out.origin_ = plan.origin;
@@ -110,10 +140,7 @@ DistanceField make_distance_field(const Mesh& mesh, const FieldSpec& spec, int t
   out.dims_ = plan.dims;
   out.band_cm_ = r;
   out.band_voxels_ = band.band_voxels;
-  out.coarse_factor_ = plan.coarse_factor;
-  out.coarse_dims_ = far.dims;
-  out.coarse_ = std::make_shared<const std::vector<double>>(std::move(far.values));
-  out.finish(std::move(band.value), threads);
+  out.finish(std::move(band.value), std::move(in_band), threads);
   return out;
 }
 
@@ -137,104 +164,47 @@ void trilinear(const double c[8], const double f[3], double& value, Vec3* gradie
   }
 }
 
-// Cell index and fraction along one axis for a coordinate u in grid units, clamped to [0, n−1].
-void locate(double u, int n, int& cell, double& frac) {
-  u = std::clamp(u, 0.0, double(n - 1));
-  cell = std::min(static_cast<int>(u), n - 2);
-  frac = u - cell;
+}  // namespace
+
+namespace {
+
+// Whether a cell whose corners differ in sign is a seam: no surface can pass between any pair of
+// its corners of opposite sign, since a surface point x on the segment between corners a and b
+// would make |d_a| + |d_b| ≤ |a − x| + |x − b| = |a − b|.
+bool is_seam(const double c[8], double h) {
+  for (int a = 0; a < 8; ++a) {
+    if (!(c[a] > 0)) continue;
+    for (int b = 0; b < 8; ++b) {
+      if (!(c[b] < 0)) continue;
+      const int differ = ((a ^ b) & 1) + ((a ^ b) >> 1 & 1) + ((a ^ b) >> 2 & 1);
+      if (c[a] - c[b] <= h * std::sqrt(double(differ)) * (1 + 1e-9)) return false;
+    }
+  }
+  return true;
 }
 
 }  // namespace
 
-void DistanceField::finish(std::vector<double> values, int threads) {
+void DistanceField::finish(std::vector<double> values, std::vector<std::uint8_t> in_band, int threads) {
   set_geometry();
   const int nx = dims_.x(), ny = dims_.y(), nz = dims_.z();
   const int64_t dy = nx, dz = int64_t(nx) * ny;
-  const int c = coarse_factor_;
-  const int64_t cdx = coarse_dims_.x(), cdy = coarse_dims_.y();
-  const std::vector<double>& coarse = *coarse_;
-  // Per axis and fine index: the coarse cell and fraction at which the node interpolates the
-  // coarse grid (locate(index / c)), and the coarse cells a lookup in the fine cell from this index
-  // may read (index / c rounds, so also the next one where the fine cell ends on a coarse node).
-  struct Axis {
-    std::vector<int> cell, first;
-    std::vector<char> one;  // the first candidate is the only one
-    std::vector<double> frac;
-  } axes[3];
-  for (int d = 0; d < 3; ++d) {
-    Axis& a = axes[d];
-    a.cell.resize(dims_[d]), a.frac.resize(dims_[d]), a.first.resize(dims_[d]), a.one.resize(dims_[d]);
-    for (int n = 0; n < dims_[d]; ++n) {
-      locate(double(n) / c, coarse_dims_[d], a.cell[n], a.frac[n]);
-      a.first[n] = std::min(static_cast<int>(double(n) / c), coarse_dims_[d] - 2);
-      a.one[n] = std::min(static_cast<int>(double(n + 1) / c), coarse_dims_[d] - 2) == a.first[n];
-    }
-  }
-  // Beyond the band: the trilinear interpolation of the coarse grid at the node.
-  std::vector<std::uint8_t> in_band(values.size(), 0);
-  parallel_for(nz, threads, [&](int k) {
-    const double fz = axes[2].frac[k];
-    for (int j = 0; j < ny; ++j) {
-      const double fy = axes[1].frac[j];
-      const int64_t row = index(0, j, k), coarse_yz = cdx * (axes[1].cell[j] + cdy * axes[2].cell[k]);
-      for (int i = 0; i < nx; ++i) {
-        if (values[row + i] != std::numeric_limits<double>::infinity()) {
-          in_band[row + i] = kInBand;
-          continue;
-        }
-        const double* s = coarse.data() + coarse_yz + axes[0].cell[i];
-        const double corners[8] = {s[0], s[1], s[cdx], s[cdx + 1], s[cdx * cdy], s[cdx * cdy + 1], s[cdx * cdy + cdx],
-                                   s[cdx * cdy + cdx + 1]};
-        const double frac[3] = {axes[0].frac[i], fy, fz};
-        trilinear<false>(corners, frac, values[row + i], nullptr);
-      }
-    }
-  });
-  // The lowest and highest node of every coarse cell, and of every block of 2×2×2 coarse cells
-  // (clamped to the grid): a far fine cell reads the coarse cell at its first candidate, or, where
-  // it ends on a coarse node, possibly the next one, within the block.
-  const int64_t cdz = coarse_dims_.z();
-  std::vector<double> cell_lo(coarse.size()), cell_hi(coarse.size()), block_lo(coarse.size()), block_hi(coarse.size());
-  for (int64_t z = 0; z < cdz; ++z)
-    for (int64_t y = 0; y < cdy; ++y)
-      for (int64_t x = 0; x < cdx; ++x)
-        for (int64_t reach : {1, 2}) {
-          double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-          for (int64_t cz = z; cz <= std::min(z + reach, cdz - 1); ++cz)
-            for (int64_t cy = y; cy <= std::min(y + reach, cdy - 1); ++cy)
-              for (int64_t cx = x; cx <= std::min(x + reach, cdx - 1); ++cx) {
-                lo = std::min(lo, coarse[cx + cdx * (cy + cdy * cz)]);
-                hi = std::max(hi, coarse[cx + cdx * (cy + cdy * cz)]);
-              }
-          (reach == 1 ? cell_lo : block_lo)[x + cdx * (y + cdy * z)] = lo;
-          (reach == 1 ? cell_hi : block_hi)[x + cdx * (y + cdy * z)] = hi;
-        }
-  // Flags of each cell (lowest node (i, j, k)), from the samples its lookups read: its 8 corners,
-  // or, when none is in the band, (a superset of) the coarse nodes it may interpolate.
+  // Flags of each cell (lowest node (i, j, k)), from its 8 corners.
   constexpr double kTiny = 1e-290;  // products with interpolation weights stay normal numbers
-  std::vector<std::uint8_t> flags(in_band.size(), 0);
+  std::vector<std::uint8_t> flags(values.size(), 0);
   parallel_for(nz, threads, [&](int k) {
     for (int j = 0; j < ny; ++j) {
       const int64_t row = index(0, j, k);
-      for (int i = 0; i < nx; ++i) flags[row + i] = in_band[row + i];
+      for (int i = 0; i < nx; ++i) flags[row + i] = in_band[row + i] ? kInBand : 0;
       if (j + 1 == ny || k + 1 == nz) continue;  // no cell has these lowest nodes
       for (int i = 0; i + 1 < nx; ++i) {
-        const int64_t at = row + i;
-        const std::uint8_t* b = in_band.data() + at;
-        double lo, hi;
-        if (b[0] | b[1] | b[dy] | b[dy + 1] | b[dz] | b[dz + 1] | b[dz + dy] | b[dz + dy + 1]) {
-          const double* s = values.data() + at;
-          lo = std::min({s[0], s[1], s[dy], s[dy + 1], s[dz], s[dz + 1], s[dz + dy], s[dz + dy + 1]});
-          hi = std::max({s[0], s[1], s[dy], s[dy + 1], s[dz], s[dz + 1], s[dz + dy], s[dz + dy + 1]});
-        } else {
-          flags[at] |= kCellFar;
-          const int64_t first = axes[0].first[i] + cdx * (axes[1].first[j] + cdy * axes[2].first[k]);
-          const bool one = axes[0].one[i] && axes[1].one[j] && axes[2].one[k];
-          lo = (one ? cell_lo : block_lo)[first];
-          hi = (one ? cell_hi : block_hi)[first];
-        }
-        if (lo > kTiny) flags[at] |= kCellPositive;
-        if (hi < -kTiny) flags[at] |= kCellNegative;
+        const double* s = values.data() + row + i;
+        const double c[8] = {s[0], s[1], s[dy], s[dy + 1], s[dz], s[dz + 1], s[dz + dy], s[dz + dy + 1]};
+        const double lo = std::min({c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7]});
+        const double hi = std::max({c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7]});
+        if (lo > kTiny) flags[row + i] |= kCellPositive;
+        else if (hi < -kTiny) flags[row + i] |= kCellNegative;
+        else if (lo < 0 && hi > 0 && is_seam(c, h_)) flags[row + i] |= kCellSeam;
       }
     }
   });
@@ -252,41 +222,33 @@ bool DistanceField::in_band(int i, int j, int k) const { return (*flags_)[index(
 
 double DistanceField::sample(int i, int j, int k) const { return (*samples_)[index(i, j, k)]; }
 
-int64_t DistanceField::memory_bytes() const {
-  return int64_t(sizeof(double)) * int64_t(samples_->size() + coarse_->size());
-}
+int64_t DistanceField::memory_bytes() const { return int64_t(sizeof(double)) * int64_t(samples_->size()); }
 
 
 template <bool kGradient>
 void DistanceField::inside_grid(const Vec3& p, double& value, Vec3* gradient) const {
   // The cell and fractions as locate() finds them, with the per-axis constants kept.
-  double u[3], frac[3];
+  double frac[3];
   int64_t base = 0;
   for (int d = 0; d < 3; ++d) {
-    u[d] = (p[d] - origin_[d]) / h_;
-    const double clamped = std::clamp(u[d], 0.0, last_node_[d]);
+    const double clamped = std::clamp((p[d] - origin_[d]) / h_, 0.0, last_node_[d]);
     const int cell = std::min(static_cast<int>(clamped), dims_[d] - 2);
     frac[d] = clamped - cell;
     base += stride_[d] * cell;
   }
-  if ((*flags_)[base] & kCellFar) {
-    // Every corner is beyond the band: the samples there are the coarse interpolant, which is
-    // trilinear over the whole coarse cell, so interpolating it directly gives the same value.
-    int cc[3];
-    double cf[3];
-    for (int d = 0; d < 3; ++d) locate(u[d] / coarse_factor_, coarse_dims_[d], cc[d], cf[d]);
-    const int64_t cy = coarse_dims_.x(), cz = int64_t(coarse_dims_.x()) * coarse_dims_.y();
-    const double* s = coarse_->data() + (cc[0] + cy * (cc[1] + int64_t(coarse_dims_.y()) * cc[2]));
-    const double corners[8] = {s[0], s[1], s[cy], s[cy + 1], s[cz], s[cz + 1], s[cz + cy], s[cz + cy + 1]};
-    trilinear<kGradient>(corners, cf, value, gradient);
-    if constexpr (kGradient) *gradient /= coarse_factor_ * h_;
-    return;
-  }
-  // Band samples and far samples alike (samples_ holds both).
   const int64_t dy = dims_.x(), dz = int64_t(dims_.x()) * dims_.y();
   const double* s = samples_->data() + base;
   const double corners[8] = {s[0], s[1], s[dy], s[dy + 1], s[dz], s[dz + 1], s[dz + dy], s[dz + dy + 1]};
   trilinear<kGradient>(corners, frac, value, gradient);
+  if ((*flags_)[base] & kCellSeam) {
+    // The sign of the interpolated samples, the magnitude of the interpolated magnitudes.
+    double magnitudes[8];
+    for (int q = 0; q < 8; ++q) magnitudes[q] = std::abs(corners[q]);
+    const double sign = value < 0 ? -1.0 : 1.0;
+    trilinear<kGradient>(magnitudes, frac, value, gradient);
+    value *= sign;
+    if constexpr (kGradient) *gradient *= sign;
+  }
   if constexpr (kGradient) *gradient /= h_;
 }
 

@@ -1,29 +1,34 @@
 // Narrow-band signed distance fields of raw triangle meshes (paper §3.2, DESIGN §2).
 //
 // What the values mean (full statement: spec/fields.md):
-// - Within the band (|d| ≤ band·voxel) a grid sample is the exact Euclidean distance from the
-//   sample point to the closest point of the mesh, to round-off (≤ 1e-9 voxel), found by the
-//   closest-point transform: every face, edge and vertex scan-converts a polyhedron bounding its
-//   Voronoi region within the band (Mauch 2003).
-// - Sign: from the angle-weighted pseudo-normal of the closest feature (Bærentzen & Aanæs 2005):
-//   negative behind the oriented surface (inside a closed outward-oriented mesh), positive in
-//   front. On an open mesh it says which side of the nearest sheet a point is on; it flips across
-//   the sheet's extension beyond an open rim, and where orientation is inconsistent (flipped
-//   patches) or the pseudo-normal vanishes (zero sum at a fold), the sign is unreliable (+ is used
-//   when the pseudo-normal is zero).
-// - Beyond the band: samples take the trilinear interpolation of a coarse signed distance grid
-//   (spacing H = floor(2·band) voxels). Coarse nodes within band + √3·H of the mesh are exact
-//   (a CPT scan of the coarse grid), farther ones hold the distance to a mesh point handed on by
-//   their neighbours (closest-point propagation, never below the true distance). So the field is
-//   defined everywhere, continuous with the band, and its gradient points away from the surface
-//   (−∇|d| leads back). Error beyond the band: O(H²·curvature) near it, up to √3·H near medial axes.
-//   Outside the grid, value = value at the clamped point + sign · distance to the grid box.
-// - Queries interpolate the samples trilinearly (a continuous, piecewise-trilinear field); the
-//   gradient is that of the interpolant. The guide optimiser builds Ceres jets from value and
-//   gradient by the chain rule (no Ceres here).
+// - Magnitude. Within the band (|d| ≤ band·voxel) a grid sample is the exact Euclidean distance
+//   from the sample point to the closest point of the mesh, to round-off (≤ 1e-9 voxel), found by
+//   the closest-point transform: every face, edge and vertex scan-converts a polyhedron bounding
+//   its Voronoi region within the band (Mauch 2003). Beyond the band a sample is the trilinear
+//   interpolation of a coarse grid (spacing H = floor(2·band) voxels) of distances to mesh points,
+//   never less than the band's width: coarse nodes within band + √3·H of the mesh are exact (a
+//   CPT scan of the coarse grid), farther ones hold the distance to a mesh point handed on by their
+//   neighbours (closest-point propagation, never below the true distance).
+// - Sign. With an InsideTest (the robust inside, DESIGN §2: generalized winding numbers), every
+//   band sample and every coarse node takes the sign the test gives at its own position; a sample
+//   beyond the band takes the sign its coarse cell agrees on (its 8 corners and every band sample
+//   in it), or the test's at its own position where the cell does not agree. Without one, the
+//   sign is the side of the closest feature's angle-weighted pseudo-normal (Bærentzen & Aanæs
+//   2005): behind the sheet itself, + beyond an open rim; beyond the band, the sign of the coarse
+//   node the distance was propagated from.
+// - No phantom surface. Where a cell's corners differ in sign although no surface can pass
+//   between them (|d_a| + |d_b| > |a − b| for every such pair of corners, as across the seam where
+//   an open mesh's inside changes in empty space), a lookup reads the interpolated magnitude with
+//   the sign of the interpolated signed samples: the value jumps there but never comes near zero,
+//   so the mesh is the field's only zero level set. Beyond the band |value| ≥ the band's width.
+// - Queries interpolate the samples trilinearly (a continuous, piecewise-trilinear field except
+//   across such seams); the gradient is that of the interpolant, defined everywhere. Outside the
+//   grid, value = value at the clamped point + sign · distance to the grid box. The guide optimiser
+//   builds Ceres jets from value and gradient by the chain rule (no Ceres here).
 #pragma once
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -40,6 +45,10 @@ struct FieldSpec {
   double max_memory_gib = 4.0; // refuse (InputError) grids whose build needs more than this
   std::string name = "mesh";   // names the mesh (its file) in error messages
 };
+
+// Whether a point lies inside the surface (where the field is negative). Called concurrently from
+// several threads; must be a pure function of the point.
+using InsideTest = std::function<bool(const Vec3&)>;
 
 struct FieldValueGradient {
   double value = 0.0;        // cm, signed
@@ -74,27 +83,25 @@ class DistanceField {
   std::vector<std::int8_t> sides_on_lattice(const std::vector<double>& x, const std::vector<double>& y,
                                             const std::vector<double>& z, int threads = 1) const;
 
-  // Bytes of the field's samples (fine grid + coarse far-field grid). The lookup flags (one byte
-  // per fine node, see below) are not counted: the figure is the one the reports have always shown.
+  // Bytes of the field's samples. The lookup flags (one byte per node, see below) are not counted.
   int64_t memory_bytes() const;
 
  private:
-  friend DistanceField make_distance_field(const Mesh&, const FieldSpec&, int);
+  friend DistanceField make_distance_field(const Mesh&, const FieldSpec&, int, const InsideTest&);
   friend struct StageCodecAccess;  // the stage cache (lib/pipeline/stage_codec.cpp) stores and restores it
   DistanceField() = default;  // built only by make_distance_field
-  // Fills every node beyond the band with the coarse grid's interpolant and sets the flags (the
-  // band's samples are given, +infinity elsewhere); `upper_` from the geometry. Called once the
-  // rest is set.
-  void finish(std::vector<double> band_values, int threads);
+  // Sets the lookup flags from the samples (every node's, band and beyond), and the geometry.
+  void finish(std::vector<double> samples, std::vector<std::uint8_t> in_band, int threads);
   void set_geometry();  // upper_, last_node_ and stride_ from origin_, h_ and dims_
   template <bool kGradient>
   void inside_grid(const Vec3& p, double& value, Vec3* gradient) const;  // p within the grid box
   int64_t index(int i, int j, int k) const { return i + int64_t(dims_.x()) * (j + int64_t(dims_.y()) * k); }
 
-  // flags_ bits: the node is in the band; the cell whose lowest corner is this node has all 8
-  // corners beyond the band (its lookups interpolate the coarse grid directly); every sample its
-  // lookups read is > 1e-290 (positive) or < −1e-290 (negative), so the value has that sign.
-  static constexpr std::uint8_t kInBand = 1, kCellFar = 2, kCellPositive = 4, kCellNegative = 8;
+  // flags_ bits: the node is in the band; the cell whose lowest corner is this node is a seam (its
+  // corners differ in sign but no surface passes between them: lookups read sign × magnitude);
+  // every sample its lookups read is > 1e-290 (positive) or < −1e-290 (negative), so the value
+  // has that sign.
+  static constexpr std::uint8_t kInBand = 1, kCellSeam = 2, kCellPositive = 4, kCellNegative = 8;
 
   Vec3 origin_ = Vec3::Zero();
   double h_ = 1.0;
@@ -104,22 +111,20 @@ class DistanceField {
   Vec3 upper_ = Vec3::Zero();      // the grid's far corner, origin + h·(dims − 1)
   Vec3 last_node_ = Vec3::Zero();  // dims − 1, as doubles
   std::array<int64_t, 3> stride_{};  // index steps along x, y, z
-  // Fine samples: the signed distance in the band, the coarse grid's interpolant elsewhere,
-  // so that a lookup reads its 8 corners without asking which kind each is.
+  // Samples: the signed distance in the band, the signed far-field value elsewhere, so that a
+  // lookup reads its 8 corners without asking which kind each is.
   std::shared_ptr<const std::vector<double>> samples_;
   std::shared_ptr<const std::vector<std::uint8_t>> flags_;
-  // Coarse far-field grid: node (I,J,K) at fine node c·(I,J,K).
-  int coarse_factor_ = 1;
-  Vec3i coarse_dims_ = Vec3i::Zero();
-  std::shared_ptr<const std::vector<double>> coarse_;
 };
 
 // Builds the field of `mesh` (positions in cm) on a grid covering its bounding box plus
-// spec.margin. Exact in the band; see the header comment for the rest. Throws InputError for an
-// empty mesh, a non-finite coordinate, an index out of range, a bad spec, or a grid needing more
-// than spec.max_memory_gib (the message names the grid and a voxel size that would fit).
-// `threads` (0 = all) changes only the speed: the result is bit-identical for any count.
-DistanceField make_distance_field(const Mesh& mesh, const FieldSpec& spec, int threads = 0);
+// spec.margin. Exact in the band; signed by `inside` where given (see the header comment for the
+// rest). Throws InputError for an empty mesh, a non-finite coordinate, an index out of range, a
+// bad spec, or a grid needing more than spec.max_memory_gib (the message names the grid and a
+// voxel size that would fit). `threads` (0 = all) changes only the speed: the result is
+// bit-identical for any count.
+DistanceField make_distance_field(const Mesh& mesh, const FieldSpec& spec, int threads = 0,
+                                  const InsideTest& inside = {});
 
 // The grid make_distance_field would allocate, and the bytes its build needs at peak.
 struct FieldGridPlan {

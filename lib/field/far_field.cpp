@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "core/parallel.h"
+
 namespace hairfit::field {
 
 FarField make_far_field(const MeshFeatures& features, const GridGeometry& grid, const BandScan& band, double r,
@@ -21,6 +23,7 @@ FarField make_far_field(const MeshFeatures& features, const GridGeometry& grid, 
   const BandScan near = scan_band(features, coarse, r + std::sqrt(3.0) * coarse.h, threads);
   const double inf = std::numeric_limits<double>::infinity();
   std::vector<Vec3> closest(count);
+  std::vector<int32_t> feature(count, -1);
   std::vector<double> distance(count, inf);
   std::vector<signed char> sign(count, 1);
   std::vector<char> fixed(count, 0);
@@ -29,6 +32,7 @@ FarField make_far_field(const MeshFeatures& features, const GridGeometry& grid, 
     if (near.key[q] < 0) continue;
     const int i = int(q % nx), j = int((q / nx) % ny), k = int(q / (int64_t(nx) * ny));
     closest[q] = closest_on_feature(features, near.key[q], node(i, j, k)).point;
+    feature[q] = near.key[q];
     distance[q] = std::abs(near.value[q]);
     sign[q] = near.value[q] < 0 ? -1 : 1;
     fixed[q] = 1;
@@ -60,6 +64,7 @@ FarField make_far_field(const MeshFeatures& features, const GridGeometry& grid, 
       if (d < distance[at(i, j, k)]) {
         distance[at(i, j, k)] = d;
         closest[at(i, j, k)] = fp.point;
+        feature[at(i, j, k)] = key;
         best_normal = fp.normal;
       }
     }
@@ -93,6 +98,7 @@ FarField make_far_field(const MeshFeatures& features, const GridGeometry& grid, 
               if (d < distance[here]) {
                 distance[here] = d;
                 closest[here] = closest[there];
+                feature[here] = feature[there];
                 sign[here] = sign[there];
                 changed = true;
               }
@@ -104,6 +110,7 @@ FarField make_far_field(const MeshFeatures& features, const GridGeometry& grid, 
     if (!changed) break;
   }
 
+  out.key = std::move(feature);
   out.values.resize(count);
   for (int k = 0; k < nz; ++k)
     for (int j = 0; j < ny; ++j)
@@ -117,6 +124,123 @@ FarField make_far_field(const MeshFeatures& features, const GridGeometry& grid, 
         }
       }
   return out;
+}
+
+}  // namespace hairfit::field
+
+namespace hairfit::field {
+
+namespace {
+
+// Per fine index along one axis: the coarse cell that holds the node (the last cell for the last
+// node) and the node's fraction in it.
+struct CoarseAxis {
+  std::vector<int> cell;
+  std::vector<double> frac;
+};
+
+CoarseAxis coarse_axis(int fine_count, int coarse_count, int c) {
+  CoarseAxis a;
+  a.cell.resize(fine_count);
+  a.frac.resize(fine_count);
+  for (int n = 0; n < fine_count; ++n) {
+    a.cell[n] = std::min(n / c, coarse_count - 2);
+    a.frac[n] = double(n - c * a.cell[n]) / c;
+  }
+  return a;
+}
+
+// The trilinear interpolation of 8 corner values (x fastest) at fractions (fx, fy, fz).
+double lerp3(const double v[8], double fx, double fy, double fz) {
+  const double x0 = 1 - fx, y0 = 1 - fy, z0 = 1 - fz;
+  const double c00 = v[0] * x0 + v[1] * fx, c10 = v[2] * x0 + v[3] * fx;
+  const double c01 = v[4] * x0 + v[5] * fx, c11 = v[6] * x0 + v[7] * fx;
+  return (c00 * y0 + c10 * fy) * z0 + (c01 * y0 + c11 * fy) * fz;
+}
+
+}  // namespace
+
+void fill_beyond_band(const MeshFeatures& features, const GridGeometry& grid, const FarField& far, int coarse_factor, double r,
+                      const InsideTest& inside, std::vector<double>& values, int threads) {
+  const int c = coarse_factor;
+  const int nx = grid.dims.x(), ny = grid.dims.y(), nz = grid.dims.z();
+  const int cx = far.dims.x(), cy = far.dims.y(), cz = far.dims.z();
+  const CoarseAxis ax = coarse_axis(nx, cx, c), ay = coarse_axis(ny, cy, c), az = coarse_axis(nz, cz, c);
+  auto coarse_at = [&](int i, int j, int k) { return i + int64_t(cx) * (j + int64_t(cy) * k); };
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+
+  // With a test: the sign each coarse cell agrees on (+1, −1, or 0 where its corners or the band
+  // samples within it, faces included, differ). Each coarse layer is written by one work item.
+  std::vector<signed char> agree;
+  if (inside) {
+    const int64_t cells = int64_t(cx - 1) * (cy - 1) * (cz - 1);
+    agree.assign(cells, 0);
+    auto cell_at = [&](int i, int j, int k) { return i + int64_t(cx - 1) * (j + int64_t(cy - 1) * k); };
+    parallel_for(cz - 1, threads, [&](int k) {
+      for (int j = 0; j + 1 < cy; ++j)
+        for (int i = 0; i + 1 < cx; ++i) {
+          int positive = 0;
+          for (int q = 0; q < 8; ++q) positive += far.values[coarse_at(i + (q & 1), j + (q >> 1 & 1), k + (q >> 2))] >= 0;
+          agree[cell_at(i, j, k)] = positive == 8 ? 1 : positive == 0 ? -1 : 0;
+        }
+      // The band samples of the layer's cells: fine layers c·k to c·(k + 1), faces included.
+      for (int fk = c * k; fk <= std::min(nz - 1, c * (k + 1)); ++fk)
+        for (int fj = 0; fj < ny; ++fj) {
+          const int64_t row = grid.index(0, fj, fk);
+          for (int fi = 0; fi < nx; ++fi) {
+            const double v = values[row + fi];
+            if (v == kInf) continue;
+            const signed char s = v < 0 ? -1 : 1;
+            // The cells whose closed box holds the node (two per axis on a cell face).
+            const int i1 = std::min(fi / c, cx - 2), i0 = fi % c == 0 && fi > 0 ? fi / c - 1 : i1;
+            const int j1 = std::min(fj / c, cy - 2), j0 = fj % c == 0 && fj > 0 ? fj / c - 1 : j1;
+            for (int ci = i0; ci <= i1; ++ci)
+              for (int cj = j0; cj <= j1; ++cj) {
+                signed char& a = agree[cell_at(ci, cj, k)];
+                if (a != s) a = 0;
+              }
+          }
+        }
+    });
+  }
+
+  parallel_for(nz, threads, [&](int k) {
+    for (int j = 0; j < ny; ++j) {
+      const int64_t row = grid.index(0, j, k);
+      for (int i = 0; i < nx; ++i) {
+        if (values[row + i] != kInf) continue;
+        const int64_t base = coarse_at(ax.cell[i], ay.cell[j], az.cell[k]);
+        const int64_t dy = cx, dz = int64_t(cx) * cy;
+        const double* s = far.values.data() + base;
+        const Vec3 p = grid.node(i, j, k);
+        double signed_corners[8], magnitudes[8];
+        for (int q = 0; q < 8; ++q) {
+          signed_corners[q] = s[(q & 1) + dy * (q >> 1 & 1) + dz * (q >> 2)];
+          magnitudes[q] = std::abs(signed_corners[q]);
+        }
+        double magnitude = lerp3(magnitudes, ax.frac[i], ay.frac[j], az.frac[k]);
+        if (!(magnitude > r)) {
+          // The interpolant dips below the band's width (a concave distance, as inside a curved
+          // surface): the distance to the nearest of the features the corners are closest to
+          // instead, which is never below the true distance, itself beyond the band here.
+          double best = kInf;
+          for (int q = 0; q < 8; ++q) {
+            const int32_t feature = far.key[base + (q & 1) + dy * (q >> 1 & 1) + dz * (q >> 2)];
+            if (feature >= 0) best = std::min(best, (p - closest_on_feature(features, feature, p).point).squaredNorm());
+          }
+          magnitude = std::max(r, std::sqrt(best));
+        }
+        int sign;
+        if (inside) {
+          const signed char a = agree[ax.cell[i] + int64_t(cx - 1) * (ay.cell[j] + int64_t(cy - 1) * az.cell[k])];
+          sign = a != 0 ? a : inside(p) ? -1 : 1;
+        } else {
+          sign = lerp3(signed_corners, ax.frac[i], ay.frac[j], az.frac[k]) < 0 ? -1 : 1;
+        }
+        values[row + i] = sign * magnitude;
+      }
+    }
+  });
 }
 
 }  // namespace hairfit::field

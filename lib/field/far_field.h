@@ -5,12 +5,14 @@
 #include <vector>
 
 #include "field/band_scan.h"
+#include "field/distance_field.h"
 
 namespace hairfit::field {
 
 struct FarField {
   Vec3i dims = Vec3i::Zero();  // coarse node (I,J,K) is fine node coarse_factor·(I,J,K)
   std::vector<double> values;  // signed distance (cm), x fastest
+  std::vector<int32_t> key;    // the feature (band_scan.h's keys) each value is the distance to
 };
 
 // Coarse nodes within r + √3·(coarse spacing) of the mesh get their exact signed distance (a CPT
@@ -20,5 +22,14 @@ struct FarField {
 // with that neighbour's sign: a distance to an actual mesh point, never below the true distance.
 FarField make_far_field(const MeshFeatures& features, const GridGeometry& grid, const BandScan& band, double r,
                         int coarse_factor, int threads);
+
+// Every node of `values` beyond the band (+infinity there) gets its far-field sample: the trilinear
+// interpolation of its coarse cell's magnitudes, or, where that is not above r (the band's width),
+// the distance to the nearest of the features the cell's corners are closest to (never below the
+// true distance, which exceeds r there), signed as distance_field.h states it
+// (with `inside`: the sign its coarse cell agrees on, or the test's at the node; without: the sign
+// of the interpolated signed coarse values). Deterministic for any thread count.
+void fill_beyond_band(const MeshFeatures& features, const GridGeometry& grid, const FarField& far, int coarse_factor, double r,
+                      const InsideTest& inside, std::vector<double>& values, int threads);
 
 }  // namespace hairfit::field

@@ -25,9 +25,6 @@ struct StageCodecAccess {
     out.put(f.band_voxels_);
     out.put(*f.samples_);
     out.put(*f.flags_);
-    out.put(f.coarse_factor_);
-    out.put(f.coarse_dims_);
-    out.put(*f.coarse_);
   }
   static DistanceField decode_field(ByteReader& in) {
     DistanceField f;
@@ -36,22 +33,16 @@ struct StageCodecAccess {
     in.get(f.dims_);
     in.get(f.band_cm_);
     in.get(f.band_voxels_);
-    std::vector<double> samples, coarse;
+    std::vector<double> samples;
     std::vector<std::uint8_t> flags;
     in.get(samples);
     in.get(flags);
-    in.get(f.coarse_factor_);
-    in.get(f.coarse_dims_);
-    in.get(coarse);
     const Vec3i& d = f.dims_;
-    const Vec3i& c = f.coarse_dims_;
-    if (d.minCoeff() < 0 || c.minCoeff() < 0 || samples.size() != std::size_t(d.x()) * d.y() * d.z() ||
-        flags.size() != samples.size() || coarse.size() != std::size_t(c.x()) * c.y() * c.z())
+    if (d.minCoeff() < 0 || samples.size() != std::size_t(d.x()) * d.y() * d.z() || flags.size() != samples.size())
       throw CodecError("distance field grid sizes do not match their samples");
     f.set_geometry();
     f.samples_ = std::make_shared<const std::vector<double>>(std::move(samples));
     f.flags_ = std::make_shared<const std::vector<std::uint8_t>>(std::move(flags));
-    f.coarse_ = std::make_shared<const std::vector<double>>(std::move(coarse));
     return f;
   }
   static void encode(ByteWriter& out, const DensityGrid& g) {
