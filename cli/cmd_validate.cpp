@@ -26,21 +26,28 @@ int command_validate(const Arguments& argv) {
 
   std::printf("%s: valid scene (%s)\n", scene.file.string().c_str(), scene.format.c_str());
   const MeshTopology& st = s.scalp_topology;
-  std::printf("  scalp    %s\n           %d triangles, %d vertices, %.2f cm², %zu boundary loop(s), Euler "
-              "characteristic %d: %s\n",
-              scene.inputs.scalp.string().c_str(), st.faces, st.vertices, s.scalp_area, st.boundary_loops.size(),
-              st.euler_characteristic, st.is_disk() ? "a topological disk" : "NOT a disk");
+  std::printf("  scalp    %s\n           %d triangles, %d vertices, %.2f cm², Euler characteristic %d: %s\n",
+              scene.inputs.scalp.string().c_str(), st.faces, st.vertices, s.scalp_area, st.euler_characteristic,
+              st.is_disk() ? "a topological disk" : "NOT a disk");
+  std::printf("           found %s\n", describe(inputs.scalp_report).c_str());
   if (inputs.scalp.welded_duplicates || inputs.scalp.dropped_degenerate)
-    std::printf("           welded %d duplicate vertices, dropped %d zero-area triangles\n",
+    std::printf("           on reading: welded %d duplicate vertices, dropped %d zero-area triangles\n",
                 inputs.scalp.welded_duplicates, inputs.scalp.dropped_degenerate);
+  if (inputs.scalp_reversed) std::printf("           its triangles faced into the head: reversed\n");
   const MeshTopology& vt = s.volume_topology;
-  std::printf("  volume   %s\n           %d triangles, %d vertices, %.2f cm², closed: %s, consistently oriented: "
-              "%s, encloses the scalp: %.0f%% of sampled scalp vertices\n",
-              scene.inputs.volume.string().c_str(), vt.faces, vt.vertices, s.volume_area, yes_no(vt.closed()),
-              yes_no(vt.orientation_consistent), 100.0 * s.scalp_inside_fraction);
+  std::printf("  volume   %s\n           %d triangles, %d vertices, %.2f cm², closed: %s\n",
+              scene.inputs.volume.string().c_str(), vt.faces, vt.vertices, s.volume_area,
+              yes_no(inputs.volume_report.closed()));
+  std::printf("           found %s\n", describe(inputs.volume_report).c_str());
   if (inputs.volume.welded_duplicates || inputs.volume.dropped_degenerate)
-    std::printf("           welded %d duplicate vertices, dropped %d zero-area triangles\n",
+    std::printf("           on reading: welded %d duplicate vertices, dropped %d zero-area triangles\n",
                 inputs.volume.welded_duplicates, inputs.volume.dropped_degenerate);
+  if (inputs.volume_reversed) std::printf("           its triangles faced inward: reversed\n");
+  std::printf("  region   %s; %.1f%% of the scalp lies inside it, %.1f%% outside (one probe per triangle, "
+              "generalized winding numbers)\n",
+              inputs.volume_report.closed() ? "inside the closed volume, in front of the scalp"
+                                            : "the shell the open volume encloses with the scalp reversed",
+              100.0 * s.scalp_inside_fraction, 100.0 * (1.0 - s.scalp_inside_fraction));
   print_map("density", inputs.density_map);
   print_map("tilt", inputs.tilt_map);
   print_map("length", inputs.length_map);

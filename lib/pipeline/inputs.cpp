@@ -8,7 +8,7 @@
 
 #include "io/png_map.h"
 #include "pipeline/stage_options.h"
-#include "pipeline/winding.h"
+#include "field/hair_region.h"
 #include "scalp/chart.h"
 
 namespace hairfit {
@@ -30,30 +30,19 @@ void require_plausible_coordinates(const Mesh& mesh, const std::string& file, co
   }
 }
 
-// The volume's inside must be well defined: the distance field's sign and the winding number both
-// assume a closed, manifold, consistently oriented surface.
-void require_closed_volume(const Mesh& volume, const std::string& file) {
-  const MeshTopology topo = analyse_topology(volume);
-  std::string what;
-  if (!topo.nonmanifold_vertices.empty()) {
-    const Vec3& p = volume.positions[topo.nonmanifold_vertices.front()];
-    char text[160];
-    std::snprintf(text, sizeof text, "has edges shared by 3 or more triangles (at (%.6g, %.6g, %.6g) and %zu other vertices)",
-                  p.x(), p.y(), p.z(), topo.nonmanifold_vertices.size() - 1);
-    what = text;
-  } else if (!topo.boundary_loops.empty()) {
-    const Vec3& p = volume.positions[topo.boundary_loops.front().front()];
-    char text[160];
-    std::snprintf(text, sizeof text, "has %zu hole(s) (a boundary loop passes (%.6g, %.6g, %.6g))", topo.boundary_loops.size(),
-                  p.x(), p.y(), p.z());
-    what = text;
-  } else if (!topo.orientation_consistent) {
-    what = "is not consistently oriented (some neighbouring triangles turn the other way)";
-  } else {
-    return;
-  }
-  throw InputError(file, "the hair volume must be a closed surface whose every edge joins two triangles turning the same "
-                         "way, but it " + what + "; make it watertight with outward normals");
+// Vertices of a raw mesh closer than this share of its bounding box's diagonal are one vertex: far
+// below any feature of a head (1e-7 of 30 cm is 30 nm), far above the round-off of exported
+// coordinates.
+constexpr double kWeldShare = 1e-7;
+
+CleanMesh clean(const Mesh& raw) {
+  const auto box = bounding_box(raw);
+  return clean_mesh(raw, kWeldShare * (box.second - box.first).norm());
+}
+
+Mesh reversed(Mesh mesh) {
+  for (Vec3i& t : mesh.triangles) std::swap(t[1], t[2]);
+  return mesh;
 }
 
 // Under gravity a fibre's dimensionless weight w = ρAgL³/EI sets how stiff its equations are; far
@@ -80,51 +69,51 @@ void require_integrable_weight(const Scene& scene) {
   throw InputError({Diagnostic{{scene.file.string(), line, column}, text, ""}});
 }
 
-// Shares of (up to ~200 evenly picked) scalp vertices whose winding number in the volume is > ½
-// (inside) and < −½ (inside a volume whose triangles face inward). Scalp vertices that are also
-// volume vertices lie on it, neither in nor out (a prepared scene's hairline, on the volume's thin
-// rim, reads a winding number near 0): they are not picked.
-struct Enclosure {
-  double inside = 0.0;
-  double inside_inverted = 0.0;
-};
-
-Enclosure scalp_enclosure(const Mesh& scalp, const Mesh& volume) {
-  std::vector<std::array<double, 3>> on_volume;
-  for (const Vec3& p : volume.positions) on_volume.push_back({p.x(), p.y(), p.z()});
-  std::sort(on_volume.begin(), on_volume.end());
-  std::vector<int> picked;
-  for (std::size_t v = 0; v < scalp.positions.size(); ++v) {
-    const Vec3& p = scalp.positions[v];
-    if (!std::binary_search(on_volume.begin(), on_volume.end(), std::array<double, 3>{p.x(), p.y(), p.z()}))
-      picked.push_back(static_cast<int>(v));
+// Points just in front of the scalp, one per triangle (up to ~400 evenly picked): its centroid moved
+// along its normal by 1e-4 of the scalp's size, off the surface where a shared hairline makes the
+// winding number ½.
+std::vector<Vec3> scalp_probes(const Mesh& scalp) {
+  const auto box = bounding_box(scalp);
+  const double offset = 1e-4 * (box.second - box.first).norm();
+  const int count = static_cast<int>(scalp.triangles.size());
+  const int step = std::max(1, count / 400);
+  std::vector<Vec3> probes;
+  for (int t = 0; t < count; t += step) {
+    const Vec3i& f = scalp.triangles[t];
+    const Vec3 centroid = (scalp.positions[f[0]] + scalp.positions[f[1]] + scalp.positions[f[2]]) / 3.0;
+    probes.push_back(centroid + offset * triangle_normal(scalp, t));
   }
-  const int step = std::max<int>(1, static_cast<int>(picked.size()) / 200);
-  int inside = 0, inverted = 0, tested = 0;
-  for (std::size_t i = 0; i < picked.size(); i += step, ++tested) {
-    const double w = closed_winding_number(volume, scalp.positions[picked[i]]);  // the volume is closed (checked)
-    inside += w > 0.5;
-    inverted += w < -0.5;
-  }
-  if (tested == 0) return {};
-  return {static_cast<double>(inside) / tested, static_cast<double>(inverted) / tested};
+  return probes;
 }
 
-void require_enclosure(const Scene& scene, const Inputs& in) {
-  const Enclosure e = scalp_enclosure(in.scalp.mesh, in.volume.mesh);
-  if (e.inside >= 0.9) return;
+double share_inside(const HairRegion& region, const std::vector<Vec3>& probes) {
+  int inside = 0;
+  for (const Vec3& p : probes) inside += region.inside_hull(p);
+  return probes.empty() ? 0.0 : static_cast<double>(inside) / probes.size();
+}
+
+// Orients the hull so that it encloses the scalp: a hull whose triangles face inward (every part
+// of it, or its largest) puts the scalp outside; reversed, the same hull puts it inside. Returns
+// the share of the scalp inside, and refuses a hull with the scalp entirely outside either way.
+double enclose_scalp(const Scene& scene, Inputs& in) {
+  const std::vector<Vec3> probes = scalp_probes(in.scalp.mesh);
+  const bool closed = in.volume_report.closed();
+  const double as_given = share_inside(HairRegion(in.volume.mesh, in.scalp.mesh, closed), probes);
+  if (as_given >= 0.5) return as_given;
+  Mesh flipped = reversed(in.volume.mesh);
+  const double share = share_inside(HairRegion(flipped, in.scalp.mesh, closed), probes);
+  if (share > as_given) {
+    in.volume.mesh = std::move(flipped);
+    in.volume_reversed = true;
+    return share;
+  }
+  if (as_given > 0.0) return as_given;
   char text[400];
-  if (e.inside_inverted >= 0.9)
-    std::snprintf(text, sizeof text,
-                  "the hair volume's triangles face inward (its winding number about %.0f%% of the scalp's vertices "
-                  "is −1); reverse the order of every face's vertices so its normals face outward",
-                  100.0 * e.inside_inverted);
-  else
-    std::snprintf(text, sizeof text,
-                  "the hair volume must enclose the scalp, but only %.0f%% of the scalp's vertices lie inside it "
-                  "(check that both meshes use units.length = \"%s\", that the volume's normals face outward, and "
-                  "that inputs.scalp and inputs.volume are not swapped)",
-                  100.0 * e.inside, scene.units.length.c_str());
+  std::snprintf(text, sizeof text,
+                "no part of the scalp lies inside the hair volume, so there is no region to fill: check that both "
+                "meshes use units.length = \"%s\", that inputs.scalp and inputs.volume are not swapped, and that the "
+                "volume covers the scalp",
+                scene.units.length.c_str());
   throw InputError(scene.inputs.volume.string(), text);
 }
 
@@ -141,15 +130,28 @@ Inputs load_inputs(const Scene& scene, int threads) {
   if (threads > 1) volume = std::async(std::launch::async, [&] { return load_obj_mesh(scene.inputs.volume, to_cm); });
   in.scalp = load_obj_mesh(scene.inputs.scalp, to_cm);
   require_plausible_coordinates(in.scalp.mesh, scalp_file, scene.units.length);
-  check_scalp_for_chart(in.scalp.mesh, scene.units.front, scene.units.down, scalp_file);
+  CleanMesh scalp = clean(in.scalp.mesh);
+  in.scalp_report = scalp.report;
+  in.scalp.mesh = std::move(scalp.mesh);
+  // The chart takes a scalp facing either way; the fields and the winding numbers take it facing
+  // out of the head.
+  if (check_scalp_for_chart(in.scalp.mesh, scene.units.front, scene.units.down, scalp_file) < 0) {
+    in.scalp.mesh = reversed(in.scalp.mesh);
+    in.scalp_reversed = true;
+  }
   in.volume = volume.valid() ? volume.get() : load_obj_mesh(scene.inputs.volume, to_cm);
   require_plausible_coordinates(in.volume.mesh, volume_file, scene.units.length);
-  require_closed_volume(in.volume.mesh, volume_file);
+  CleanMesh hull = clean(in.volume.mesh);
+  if (hull.mesh.triangles.empty())
+    throw InputError(volume_file, "the hair volume has no triangle of non-zero area left once its duplicate and "
+                                  "degenerate triangles are dropped; export the hair's outer surface");
+  in.volume_report = hull.report;
+  in.volume.mesh = std::move(hull.mesh);
   if (scene.effects.uses_map("density")) in.density_map = load_grey_map(*scene.maps.density);
   if (scene.effects.uses_map("tilt")) in.tilt_map = load_grey_map(*scene.maps.tilt);
   if (scene.effects.uses_map("length")) in.length_map = load_grey_map(*scene.maps.length);
 
-  require_enclosure(scene, in);
+  in.scalp_inside_share = enclose_scalp(scene, in);
   // What later stages would refuse for its size, refused now, before anything is written.
   require_field_fits(in.scalp.mesh, field_spec(scene, scalp_file));
   require_field_fits(in.volume.mesh, field_spec(scene, volume_file));
@@ -163,7 +165,7 @@ InputsSummary summarise_inputs(const Inputs& inputs) {
   s.scalp_area = surface_area(inputs.scalp.mesh);
   s.volume_topology = analyse_topology(inputs.volume.mesh);
   s.volume_area = surface_area(inputs.volume.mesh);
-  s.scalp_inside_fraction = scalp_enclosure(inputs.scalp.mesh, inputs.volume.mesh).inside;
+  s.scalp_inside_fraction = inputs.scalp_inside_share;
   return s;
 }
 

@@ -15,6 +15,7 @@
 #include "io/atomic_file.h"
 #include "io/curve_files.h"
 #include "field/field_nrrd.h"
+#include "field/hair_region.h"
 #include "pipeline/stage_cache.h"
 #include "pipeline/stage_codec.h"
 #include "pipeline/stage_options.h"
@@ -280,8 +281,14 @@ class Runner {
     StageValues& v = result_.values;
     v.scalp_field = std::make_shared<const DistanceField>(
         make_distance_field(inputs_.scalp.mesh, field_spec(scene_, scene_.inputs.scalp.string()), options_.threads));
-    v.volume_field = std::make_shared<const DistanceField>(
-        make_distance_field(inputs_.volume.mesh, field_spec(scene_, scene_.inputs.volume.string()), options_.threads));
+    // The volume's inside is the region's (HairRegion) together with the head, so that its field
+    // keeps its sign across the scalp, as a prepared volume's floor under the scalp makes it: the
+    // acceptable region, inside the volume and not behind the scalp, is the region's shell.
+    const HairRegion region(inputs_.volume.mesh, inputs_.scalp.mesh, inputs_.volume_report.closed());
+    const DistanceField& scalp = *v.scalp_field;
+    const InsideTest inside_volume = [&region, &scalp](const Vec3& p) { return scalp.value(p) < 0.0 || region.inside_hull(p); };
+    v.volume_field = std::make_shared<const DistanceField>(make_distance_field(
+        inputs_.volume.mesh, field_spec(scene_, scene_.inputs.volume.string()), options_.threads, inside_volume));
     Digest d;
     std::array<NrrdVolume, 2> volumes{field_to_nrrd(*v.scalp_field, options_.threads), field_to_nrrd(*v.volume_field, options_.threads)};
     for (const NrrdVolume& volume : volumes) d.add_bytes(volume.data.data(), volume.data.size() * sizeof(float));

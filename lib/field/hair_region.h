@@ -1,0 +1,35 @@
+// The acceptable region's robust inside (DESIGN §2): the shell that the hull encloses together with
+// the scalp, the scalp's orientation reversed, decided by generalized winding numbers (Jacobson,
+// Kavan and Sorkine-Hornung 2013) evaluated hierarchically (Barill et al. 2018), so that open hulls
+// in several parts, with holes, overlaps and sheets that dip under the skin still have an inside.
+#pragma once
+#include "core/fast_winding.h"
+#include "core/mesh.h"
+
+namespace hairfit {
+
+class HairRegion {
+ public:
+  // `hull` and `scalp` in cm, cleaned (core/mesh_repair.h), the scalp facing out of the head.
+  // A closed hull (no boundary loop, no non-manifold edge) encloses its inside by itself: the
+  // scalp lies within it (a volume from `hairfit prepare` closes under the scalp with a floor).
+  HairRegion(const Mesh& hull, const Mesh& scalp, bool hull_closed);
+
+  // H(p): w_hull(p) for a closed hull; w_hull(p) − w_scalp(p) for an open one, which is 1 in the
+  // shell an open hull and the scalp close between them where they share a hairline, 0 outside,
+  // and in between where they do not meet (a hull hovering above the scalp, a gap, a hole).
+  double winding(const Vec3& p) const;
+  // Whether H(p) > ½, decided as the direct sums over every triangle decide it: the hierarchical
+  // values decide where they are farther from ½ than their error bounds.
+  bool inside_hull(const Vec3& p) const;
+  bool hull_closed() const { return closed_; }
+
+  const FastWindingNumber& hull_winding() const { return hull_; }
+  const FastWindingNumber& scalp_winding() const { return scalp_; }
+
+ private:
+  FastWindingNumber hull_, scalp_;
+  bool closed_;
+};
+
+}  // namespace hairfit
