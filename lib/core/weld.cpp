@@ -14,7 +14,9 @@ using Cell = std::array<long long, 3>;
 
 struct CellHash {
   std::size_t operator()(const Cell& c) const {
-    return static_cast<std::size_t>(c[0] * 73856093LL ^ c[1] * 19349663LL ^ c[2] * 83492791LL);
+    // Unsigned arithmetic: cell indices reach 2⁴⁰, and the products wrap around.
+    const auto u = [](long long x) { return static_cast<std::size_t>(static_cast<unsigned long long>(x)); };
+    return u(c[0]) * 73856093u ^ u(c[1]) * 19349663u ^ u(c[2]) * 83492791u;
   }
 };
 
@@ -37,16 +39,18 @@ std::vector<int> weld_points(const std::vector<Vec3>& points, double tolerance) 
                 static_cast<long long>(std::floor(p.z() / cell))};
   };
 
+  const int reach = tolerance > 0.0 ? 1 : 0;  // equal points share a cell; near ones may be next door
   const int n = static_cast<int>(points.size());
   std::vector<int> kept_as(n, -1);
   std::unordered_map<Cell, std::vector<int>, CellHash> cells;  // kept points, ascending, per cell
+  cells.reserve(points.size());
   for (int i = 0; i < n; ++i) {
     const Vec3& p = points[i];
     const Cell c = cell_of(p);
     int partner = -1;
-    for (int dx = -1; dx <= 1; ++dx)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dz = -1; dz <= 1; ++dz) {
+    for (int dx = -reach; dx <= reach; ++dx)
+      for (int dy = -reach; dy <= reach; ++dy)
+        for (int dz = -reach; dz <= reach; ++dz) {
           const auto it = cells.find({c[0] + dx, c[1] + dy, c[2] + dz});
           if (it == cells.end()) continue;
           for (int k : it->second) {
