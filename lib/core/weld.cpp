@@ -55,7 +55,8 @@ std::vector<int> weld_points(const std::vector<Vec3>& points, double tolerance) 
           if (it == cells.end()) continue;
           for (int k : it->second) {
             if (partner >= 0 && k > partner) break;
-            if ((points[k] - p).norm() <= tolerance) {
+            // Exact welding compares coordinates, as the norm of a difference below 1e-154 underflows to 0.
+            if (reach == 0 ? points[k] == p : (points[k] - p).norm() <= tolerance) {
               partner = k;
               break;
             }
