@@ -15,9 +15,10 @@ struct Welded {
   int dropped_triangles = 0;     // triangles collapsed by the merge, or repeating another's vertices
 };
 
-// Merges every vertex within `tolerance` (cm, ≥ 0) of an earlier kept vertex into it (greedy, in
-// input order, so the result is deterministic); keeps the earlier position. Triangles that lose a
-// corner or repeat another triangle's three vertices are dropped.
+// Merges every vertex within `tolerance` (cm, ≥ 0) of an earlier kept vertex into the lowest-indexed
+// such vertex (core/weld.h's weld_points: greedy, in input order, so the result is deterministic);
+// keeps the earlier position. Triangles that lose a corner or repeat another triangle's three
+// vertices are dropped.
 Welded weld_vertices(const Mesh& mesh, double tolerance);
 
 }  // namespace hairfit
