@@ -4,11 +4,13 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
 #include <string>
 
 #include "core/error.h"
 #include "core/parallel.h"
 #include "field/band_scan.h"
+#include "field/band_sign.h"
 #include "field/far_field.h"
 #include "field/mesh_features.h"
 
@@ -124,15 +126,17 @@ DistanceField make_distance_field(const Mesh& mesh, const FieldSpec& spec, int t
   const double r = spec.band * spec.voxel;
   field::BandScan band = field::scan_band(features, grid, r, threads);
   field::FarField far = field::make_far_field(features, grid, band, r, plan.coarse_factor, threads);
+  std::optional<field::SettledSigns> signs;
   if (inside) {
-    sign_by_test(band.value, grid, 1, inside, threads);
+    signs.emplace(features, r, spec.voxel, inside, threads);
+    field::sign_band(*signs, grid, band, threads);
     const field::GridGeometry coarse{plan.origin, plan.coarse_factor * spec.voxel, far.dims};
     sign_by_test(far.values, coarse, plan.coarse_factor, inside, threads);
   }
   std::vector<std::uint8_t> in_band(band.value.size());
   for (std::size_t n = 0; n < in_band.size(); ++n) in_band[n] = band.key[n] >= 0;
   std::vector<int32_t>().swap(band.key);
-  field::fill_beyond_band(features, grid, far, plan.coarse_factor, r, inside, band.value, threads);
+  field::fill_beyond_band(features, grid, far, plan.coarse_factor, r, signs ? &*signs : nullptr, band.value, threads);
 
   DistanceField out;
   out.origin_ = plan.origin;

@@ -158,10 +158,114 @@ double lerp3(const double v[8], double fx, double fy, double fz) {
   return (c00 * y0 + c10 * fy) * z0 + (c01 * y0 + c11 * fy) * fz;
 }
 
+// Whether the coarse cell at `base` is a seam of the inside at its own scale: corners of opposite
+// sign with no surface between them (|d_a| + |d_b| > |a − b|), so the sign changes inside it in
+// empty space, where no flood from the band can tell where.
+bool coarse_seam(const FarField& far, int64_t base, double spacing) {
+  const int64_t dy = far.dims.x(), dz = int64_t(far.dims.x()) * far.dims.y();
+  for (int a = 0; a < 8; ++a) {
+    const double va = far.values[base + (a & 1) + dy * (a >> 1 & 1) + dz * (a >> 2)];
+    if (!(va > 0)) continue;
+    for (int b = 0; b < 8; ++b) {
+      const double vb = far.values[base + (b & 1) + dy * (b >> 1 & 1) + dz * (b >> 2)];
+      if (!(vb < 0)) continue;
+      const int differ = ((a ^ b) & 1) + ((a ^ b) >> 1 & 1) + ((a ^ b) >> 2 & 1);
+      if (va - vb <= spacing * std::sqrt(double(differ)) * (1 + 1e-9)) return false;
+    }
+  }
+  return true;
+}
+
+// Signs the pending far samples of every coarse cell whose corners and band samples differ: a
+// flood through the cell's far samples from the samples whose sign is known (the band's, the
+// coarse nodes', and far samples of agreeing cells), in index order; where two signs meet, where
+// nothing reaches, and in cells that are seams at the coarse scale, the test decides. A cell
+// writes only the samples it holds (lowest index), so cells run in parallel.
+void settle_pending(const GridGeometry& grid, const FarField& far, int c, const SettledSigns& inside,
+                    const std::vector<char>& known, std::vector<char>& pending, std::vector<double>& values, int threads) {
+  const int nx = grid.dims.x(), ny = grid.dims.y(), nz = grid.dims.z();
+  const int cx = far.dims.x(), cy = far.dims.y(), cz = far.dims.z();
+  auto owner = [c](int n, int cells) { return std::min(n / c, cells - 1); };
+  parallel_for(cz - 1, threads, [&](int ck) {
+    const int w = c + 1, cells_x = cx - 1, cells_y = cy - 1, cells_z = cz - 1;
+    std::vector<signed char> sign(w * w * w);
+    std::vector<int> queue;
+    for (int cj = 0; cj < cells_y; ++cj)
+      for (int ci = 0; ci < cells_x; ++ci) {
+        const int i0 = c * ci, j0 = c * cj, k0 = c * ck;
+        // The samples this cell holds, and whether any is pending.
+        auto held = [&](int i, int j, int k) {
+          return owner(i, cells_x) == ci && owner(j, cells_y) == cj && owner(k, cells_z) == ck;
+        };
+        bool any = false;
+        for (int k = k0; k <= std::min(nz - 1, k0 + c) && !any; ++k)
+          for (int j = j0; j <= std::min(ny - 1, j0 + c) && !any; ++j)
+            for (int i = i0; i <= std::min(nx - 1, i0 + c); ++i)
+              if (pending[grid.index(i, j, k)] && held(i, j, k)) {
+                any = true;
+                break;
+              }
+        if (!any) continue;
+        const int64_t base = ci + int64_t(cx) * (cj + int64_t(cy) * ck);
+        const bool seam = coarse_seam(far, base, c * grid.h);
+        // Seeds: every sample of the cell's closed box whose sign is known.
+        queue.clear();
+        for (int k = 0; k < w; ++k)
+          for (int j = 0; j < w; ++j)
+            for (int i = 0; i < w; ++i) {
+              const int local = i + w * (j + w * k);
+              sign[local] = 0;
+              if (i0 + i >= nx || j0 + j >= ny || k0 + k >= nz) continue;
+              const int64_t n = grid.index(i0 + i, j0 + j, k0 + k);
+              const bool corner = i % c == 0 && j % c == 0 && k % c == 0;
+              if (corner) {
+                const int64_t coarse = (i0 + i) / c + int64_t(cx) * ((j0 + j) / c + int64_t(cy) * ((k0 + k) / c));
+                sign[local] = far.values[coarse] < 0 ? -1 : 1;
+                queue.push_back(local);
+              } else if (known[n] || !pending[n]) {
+                sign[local] = values[n] < 0 ? -1 : 1;
+                queue.push_back(local);
+              }
+            }
+        std::vector<char> conflict(seam ? 0 : w * w * w, 0);
+        for (std::size_t q = 0; q < queue.size() && !seam; ++q) {
+          const int local = queue[q];
+          const int i = local % w, j = (local / w) % w, k = local / (w * w);
+          const int steps[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+          for (const auto& st : steps) {
+            const int a = i + st[0], b = j + st[1], d = k + st[2];
+            if (a < 0 || b < 0 || d < 0 || a >= w || b >= w || d >= w) continue;
+            if (i0 + a >= nx || j0 + b >= ny || k0 + d >= nz) continue;
+            const int there = a + w * (b + w * d);
+            const int64_t n = grid.index(i0 + a, j0 + b, k0 + d);
+            if (!pending[n] || known[n] || sign[there] == 2) continue;
+            if (sign[there] == 0) {
+              sign[there] = sign[local];
+              queue.push_back(there);
+            } else if (sign[there] != sign[local]) {
+              conflict[there] = 1;
+            }
+          }
+        }
+        for (int k = 0; k < w; ++k)
+          for (int j = 0; j < w; ++j)
+            for (int i = 0; i < w; ++i) {
+              if (i0 + i >= nx || j0 + j >= ny || k0 + k >= nz || !held(i0 + i, j0 + j, k0 + k)) continue;
+              const int64_t n = grid.index(i0 + i, j0 + j, k0 + k);
+              if (!pending[n]) continue;
+              const int local = i + w * (j + w * k);
+              int s = sign[local];
+              if (seam || s == 0 || conflict[local]) s = inside.inside(grid.node(i0 + i, j0 + j, k0 + k), -1, 0) ? -1 : 1;
+              values[n] = s * std::abs(values[n]);
+            }
+      }
+  });
+}
+
 }  // namespace
 
 void fill_beyond_band(const MeshFeatures& features, const GridGeometry& grid, const FarField& far, int coarse_factor, double r,
-                      const InsideTest& inside, std::vector<double>& values, int threads) {
+                      const SettledSigns* inside, std::vector<double>& values, int threads) {
   const int c = coarse_factor;
   const int nx = grid.dims.x(), ny = grid.dims.y(), nz = grid.dims.z();
   const int cx = far.dims.x(), cy = far.dims.y(), cz = far.dims.z();
@@ -204,6 +308,10 @@ void fill_beyond_band(const MeshFeatures& features, const GridGeometry& grid, co
     });
   }
 
+  std::vector<char> known(inside ? values.size() : 0, 0);  // band samples: signed by the test
+  std::vector<char> pending(inside ? values.size() : 0, 0);  // far samples whose cell did not agree
+  if (inside)
+    for (std::size_t n = 0; n < values.size(); ++n) known[n] = values[n] != kInf;
   parallel_for(nz, threads, [&](int k) {
     for (int j = 0; j < ny; ++j) {
       const int64_t row = grid.index(0, j, k);
@@ -219,6 +327,8 @@ void fill_beyond_band(const MeshFeatures& features, const GridGeometry& grid, co
           magnitudes[q] = std::abs(signed_corners[q]);
         }
         double magnitude = lerp3(magnitudes, ax.frac[i], ay.frac[j], az.frac[k]);
+        signed char agreed = 0;
+        if (inside) agreed = agree[ax.cell[i] + int64_t(cx - 1) * (ay.cell[j] + int64_t(cy - 1) * az.cell[k])];
         if (!(magnitude > r)) {
           // The interpolant dips below the band's width (a concave distance, as inside a curved
           // surface): the distance to the nearest of the features the corners are closest to
@@ -232,15 +342,16 @@ void fill_beyond_band(const MeshFeatures& features, const GridGeometry& grid, co
         }
         int sign;
         if (inside) {
-          const signed char a = agree[ax.cell[i] + int64_t(cx - 1) * (ay.cell[j] + int64_t(cy - 1) * az.cell[k])];
-          sign = a != 0 ? a : inside(p) ? -1 : 1;
+          sign = agreed;  // 0: pending, settled below
+          if (agreed == 0) pending[row + i] = 1;
         } else {
           sign = lerp3(signed_corners, ax.frac[i], ay.frac[j], az.frac[k]) < 0 ? -1 : 1;
         }
-        values[row + i] = sign * magnitude;
+        values[row + i] = sign == 0 ? magnitude : sign * magnitude;
       }
     }
   });
+  if (inside) settle_pending(grid, far, c, *inside, known, pending, values, threads);
 }
 
 }  // namespace hairfit::field

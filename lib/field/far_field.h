@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "field/band_scan.h"
+#include "field/band_sign.h"
 #include "field/distance_field.h"
 
 namespace hairfit::field {
@@ -27,9 +28,10 @@ FarField make_far_field(const MeshFeatures& features, const GridGeometry& grid, 
 // interpolation of its coarse cell's magnitudes, or, where that is not above r (the band's width),
 // the distance to the nearest of the features the cell's corners are closest to (never below the
 // true distance, which exceeds r there), signed as distance_field.h states it
-// (with `inside`: the sign its coarse cell agrees on, or the test's at the node; without: the sign
-// of the interpolated signed coarse values). Deterministic for any thread count.
+// (with `inside`: the sign its coarse cell agrees on, or the test's at the node, asked through the
+// settled answer of the nearest feature its cell's corners are closest to; without: the sign of
+// the interpolated signed coarse values). Deterministic for any thread count.
 void fill_beyond_band(const MeshFeatures& features, const GridGeometry& grid, const FarField& far, int coarse_factor, double r,
-                      const InsideTest& inside, std::vector<double>& values, int threads);
+                      const SettledSigns* inside, std::vector<double>& values, int threads);
 
 }  // namespace hairfit::field

@@ -19,9 +19,13 @@ class HairRegion {
   // shell an open hull and the scalp close between them where they share a hairline, 0 outside,
   // and in between where they do not meet (a hull hovering above the scalp, a gap, a hole).
   double winding(const Vec3& p) const;
-  // Whether H(p) > ½, decided as the direct sums over every triangle decide it: the hierarchical
-  // values decide where they are farther from ½ than their error bounds.
+  // Whether H(p) > ½. The hierarchical values decide where they are farther than kDecisive from
+  // ½, the direct sums over every triangle elsewhere. kDecisive is 20 times the largest error of
+  // the hierarchical evaluation at β = 2 measured against the direct sums (bench/results/
+  // fast_winding.md); its rigorous bound (FastWindingNumber::estimate) is too loose near the
+  // surface to decide anything at that β.
   bool inside_hull(const Vec3& p) const;
+  static constexpr double kDecisive = 0.02;
   bool hull_closed() const { return closed_; }
 
   const FastWindingNumber& hull_winding() const { return hull_; }

@@ -1,0 +1,139 @@
+#include "field/band_sign.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <unordered_map>
+
+#include "core/parallel.h"
+
+namespace hairfit::field {
+
+namespace {
+
+// Whether face t runs along edge a→b (rather than b→a).
+bool runs_forward(const MeshFeatures& f, int t, int a, int b) {
+  const Vec3i& v = f.faces[t];
+  for (int k = 0; k < 3; ++k)
+    if (v[k] == a && v[(k + 1) % 3] == b) return true;
+  return false;
+}
+
+// Where the inside may change along the surface: edges that are not shared by exactly two faces
+// turning opposite ways (rims, non-manifold edges, the borders of flipped patches).
+bool irregular(const MeshFeatures& f, int e) {
+  const int first = f.edge_face_offsets[e];
+  if (f.edge_face_offsets[e + 1] - first != 2) return true;
+  const auto [a, b] = f.edges[e];
+  return runs_forward(f, f.edge_faces[first], a, b) == runs_forward(f, f.edge_faces[first + 1], a, b);
+}
+
+// Faces with an irregular edge within `reach` of any of their points.
+std::vector<char> near_rims(const MeshFeatures& f, double reach) {
+  std::vector<Vec3> rim;
+  const int ne = static_cast<int>(f.edges.size());
+  for (int e = 0; e < ne; ++e) {
+    if (!irregular(f, e)) continue;
+    const Vec3& a = f.vertices[f.edges[e].first];
+    const Vec3& b = f.vertices[f.edges[e].second];
+    const int steps = std::max(1, static_cast<int>(std::ceil((b - a).norm() / reach)));
+    for (int s = 0; s <= steps; ++s) rim.push_back(a + (b - a) * (double(s) / steps));
+  }
+  std::vector<char> near(f.faces.size(), 0);
+  if (rim.empty()) return near;
+  // A hash of the rim points in cells of `reach`.
+  auto cell_of = [reach](const Vec3& p) {
+    return Eigen::Vector3i(int(std::floor(p.x() / reach)), int(std::floor(p.y() / reach)), int(std::floor(p.z() / reach)));
+  };
+  auto key = [](const Eigen::Vector3i& c) {
+    return (static_cast<std::uint64_t>(c.x() & 0x1fffff) << 42) | (static_cast<std::uint64_t>(c.y() & 0x1fffff) << 21) |
+           static_cast<std::uint64_t>(c.z() & 0x1fffff);
+  };
+  std::unordered_map<std::uint64_t, std::vector<int>> cells;
+  for (int i = 0; i < static_cast<int>(rim.size()); ++i) cells[key(cell_of(rim[i]))].push_back(i);
+  for (std::size_t t = 0; t < f.faces.size(); ++t) {
+    const Vec3i& v = f.faces[t];
+    const Vec3 c = (f.vertices[v[0]] + f.vertices[v[1]] + f.vertices[v[2]]) / 3.0;
+    double radius = 0;
+    for (int k = 0; k < 3; ++k) radius = std::max(radius, (f.vertices[v[k]] - c).norm());
+    const double within = reach + radius;
+    const int span = static_cast<int>(std::ceil(within / reach));
+    const Eigen::Vector3i home = cell_of(c);
+    for (int dz = -span; dz <= span && !near[t]; ++dz)
+      for (int dy = -span; dy <= span && !near[t]; ++dy)
+        for (int dx = -span; dx <= span && !near[t]; ++dx) {
+          const auto it = cells.find(key(home + Eigen::Vector3i(dx, dy, dz)));
+          if (it == cells.end()) continue;
+          for (int i : it->second)
+            if ((rim[i] - c).norm() <= within) {
+              near[t] = 1;
+              break;
+            }
+        }
+  }
+  return near;
+}
+
+}  // namespace
+
+SettledSigns::SettledSigns(const MeshFeatures& f, double r, double h, const InsideTest& inside, int threads)
+    : features_(f), inside_(inside), faces_(f.faces.size(), {-1, -1}) {
+  const std::vector<char> near = near_rims(f, 2 * r);
+  parallel_for(static_cast<int>(f.faces.size()), threads, [&](int t) {
+    if (near[t]) return;
+    const Vec3i& v = f.faces[t];
+    const Vec3 c = (f.vertices[v[0]] + f.vertices[v[1]] + f.vertices[v[2]]) / 3.0;
+    const Vec3& n = f.face_normals[t];
+    for (int side = 0; side < 2; ++side) {
+      const double s = side == 0 ? 1.0 : -1.0;
+      const bool close = inside(c + s * 1e-3 * h * n);
+      if (inside(c + s * r * n) == close && inside(c + s * 4 * r * n) == close) faces_[t][side] = close;
+    }
+  });
+}
+
+int SettledSigns::settled(int key, int side) const {
+  const MeshFeatures& f = features_;
+  const int nf = static_cast<int>(f.faces.size()), ne = static_cast<int>(f.edges.size());
+  if (key < nf) return faces_[key][side];
+  int answer = -2;
+  auto edge = [&](int e) {
+    if (irregular(f, e)) return false;
+    for (int i = f.edge_face_offsets[e]; i < f.edge_face_offsets[e + 1]; ++i) {
+      const int a = faces_[f.edge_faces[i]][side];
+      if (a < 0 || (answer != -2 && a != answer)) return false;
+      answer = a;
+    }
+    return true;
+  };
+  if (key < nf + ne) return edge(key - nf) ? answer : -1;
+  const int v = key - nf - ne;
+  for (int i = f.vertex_edge_offsets[v]; i < f.vertex_edge_offsets[v + 1]; ++i)
+    if (!edge(f.vertex_edges[i])) return -1;
+  return answer == -2 ? -1 : answer;
+}
+
+bool SettledSigns::inside(const Vec3& p, int key, int side) const {
+  const int answer = key >= 0 ? settled(key, side) : -1;
+  if (answer >= 0) return answer;
+  asked_.fetch_add(1, std::memory_order_relaxed);
+  return inside_(p);
+}
+
+void sign_band(const SettledSigns& signs, const GridGeometry& grid, BandScan& band, int threads) {
+  const int nx = grid.dims.x(), ny = grid.dims.y();
+  parallel_for(grid.dims.z(), threads, [&](int k) {
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        const int64_t n = grid.index(i, j, k);
+        if (band.key[n] < 0) continue;
+        double& v = band.value[n];
+        // The pseudo-normal's side: in front of the surface where the scan's sign is +.
+        const bool in = signs.inside(grid.node(i, j, k), band.key[n], v < 0 ? 1 : 0);
+        v = in ? -std::abs(v) : std::abs(v);
+      }
+  });
+}
+
+}  // namespace hairfit::field
