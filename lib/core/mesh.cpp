@@ -129,17 +129,10 @@ std::pair<Vec3, Vec3> bounding_box(const Mesh& mesh) {
 }
 
 double winding_number(const Mesh& mesh, const Vec3& point) {
-  // Solid angle of each triangle by Van Oosterom and Strackee's formula.
   double total = 0.0;
-  for (const Vec3i& t : mesh.triangles) {
-    const Vec3 a = mesh.positions[t[0]] - point;
-    const Vec3 b = mesh.positions[t[1]] - point;
-    const Vec3 c = mesh.positions[t[2]] - point;
-    const double la = a.norm(), lb = b.norm(), lc = c.norm();
-    const double numerator = a.dot(b.cross(c));
-    const double denominator = la * lb * lc + a.dot(b) * lc + b.dot(c) * la + c.dot(a) * lb;
-    total += 2.0 * std::atan2(numerator, denominator);
-  }
+  for (const Vec3i& t : mesh.triangles)
+    total += triangle_solid_angle(mesh.positions[t[0]] - point, mesh.positions[t[1]] - point,
+                                  mesh.positions[t[2]] - point);
   return total / (4.0 * M_PI);
 }
 

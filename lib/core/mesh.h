@@ -2,6 +2,7 @@
 // and counter-clockwise triangles (the outward side is the one the vertices turn around
 // counter-clockwise when seen from it).
 #pragma once
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -47,6 +48,19 @@ double surface_area(const Mesh& mesh);
 Vec3 triangle_normal(const Mesh& mesh, int triangle);
 // Axis-aligned bounds of the used positions: {min, max}.
 std::pair<Vec3, Vec3> bounding_box(const Mesh& mesh);
+
+// Signed solid angle of the triangle with vertices a, b, c (relative to the viewpoint), by Van
+// Oosterom and Strackee's formula: positive when the viewpoint lies behind the triangle (on the
+// side its normal (b−a)×(c−a) points away from), as the inside of a closed outward-oriented mesh
+// does. In [−2π, 2π] and never NaN for finite input. For a viewpoint in the triangle's plane
+// inside it, or on a zero-area triangle, the numerator is zero up to rounding and the result is
+// 0 or ±2π as its rounding falls.
+inline double triangle_solid_angle(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const double la = a.norm(), lb = b.norm(), lc = c.norm();
+  const double numerator = a.dot(b.cross(c));
+  const double denominator = la * lb * lc + a.dot(b) * lc + b.dot(c) * la + c.dot(a) * lb;
+  return 2.0 * std::atan2(numerator, denominator);
+}
 
 // Generalised winding number of a point with respect to the mesh (Jacobson et al. 2013): 1 inside
 // a closed outward-oriented mesh, 0 outside, fractional near holes. O(triangles) per query.
