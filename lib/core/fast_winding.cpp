@@ -1,0 +1,280 @@
+#include "core/fast_winding.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+// The far field. With F(y) = y/|y|³, a triangle's solid angle seen from p is ∫ n·F(x − p) dA.
+// Expanding F about a centre c, with r = c − p and d = x − c, to first order,
+//   n·F(r + d) ≈ n·r/|r|³ + nᵀ (I/|r|³ − 3 r rᵀ/|r|⁵) d,
+// and integrating over triangles (n is constant on each, so ∫ n dA = a_t n_t and
+// ∫ n dᵀ dA = a_t n_t (g_t − c)ᵀ exactly) gives their solid angle to second order:
+//   Ω ≈ (N·r + tr M)/|r|³ − 3 rᵀ M r/|r|⁵,  N = Σ a_t n_t,  M = Σ a_t n_t (g_t − c)ᵀ.
+// About a single triangle's centroid M = 0.
+//
+// Its error, with D = |r|, R the radius of a ball about c holding the triangles, ρ = R/D < 1 and
+// Q = ∫ |d|² dA; both bounds below are rigorous and the smaller is taken.
+// (1) Taylor: along the segment c→x (inside the ball, so |ξ − p| ≥ D − R) the remainder is
+// ½ dᵀ H d with H_jk = −n_i ∂i∂j∂k(1/|y|) at y = ξ − p. With ŷ = y/|y|, α = ŷ·n, μ = ŷ·u for a
+// unit u and γ = n·u, |y|⁴ ∂³(1/|y|)[n, u, u] = −15 α μ² + 6 μ γ + 3 α. Writing
+// γ = α μ + √((1 − α²)(1 − μ²)) cos φ, this is α (3 − 9 μ²) + 6 μ √((1 − α²)(1 − μ²)) cos φ,
+// at most √((3 − 9 μ²)² + 36 μ² (1 − μ²)) = √(9 − 18 μ² + 45 μ⁴) in magnitude over α and φ:
+// convex in μ², so at most its value 6 at μ² = 1. Hence the remainder is within
+// 3 |d|²/(D − R)⁴ at x and within 3 Q/(D − R)⁴ = Q/D⁴ · 3/(1 − ρ)⁴ over the triangles: K = 3 in
+// the form A R² K/(4π (D − R)⁴), as Q ≤ A R² (bounding the three terms one by one gives 12).
+// (2) Multipoles: 1/|r + d| = Σ_l H_l(d), H_l homogeneous harmonic of degree l with
+// |H_l| = |d|^l |P_l(cos θ)|/D^(l+1), and the expansion keeps the degrees 0 and 1 of
+// n·F = −n·∇_d(1/|r + d|), i.e. l = 1, 2. In spherical coordinates
+// |∇H_l|² D^(2l+2)/|d|^(2l−2) = l² P_l² + (1 − t²) P_l'², and g = P_l² + (1 − t²) P_l'²/(l(l+1))
+// has g' = 2 t P_l'²/(l(l+1)) (Legendre's equation), so g ≤ g(±1) = 1 and
+// |∇H_l| ≤ √(l(l+1)) |d|^(l−1)/D^(l+1). The remainder at x is within
+// Σ_{l≥3} √(l(l+1)) |d|^(l−1)/D^(l+1), which over |d|² increases with |d| ≤ R, so over the
+// triangles within Q/D⁴ · (√12 + Σ_{k≥1} (k + 3.5) ρ^k) = Q/D⁴ · (√12 + ρ/(1 − ρ)² + 3.5 ρ/(1 − ρ))
+// (√(l(l+1)) ≤ l + ½). At ρ = ½ that is 9.0 against (1)'s 48.
+//
+// Round-off, to first order in the unit round-off u. A far triangle's |Ω_t| ≤ a_t/(D − R)² and
+// an expansion's magnitude is at most (1 + 4ρ) A/D² ≤ 5 A/(D − R)² (|N| ≤ A, |tr M|, |rᵀ M r|/D²
+// ≤ A R), so S = Σ_near |Ω_t| + 5 Σ_far A/(D − R)² bounds the Σ|terms| of both sums. The direct
+// sum of n terms and the fast one of m terms are each within (count − 1) u S of their exact
+// values; the coefficients, each a sum over at most n triangles, are within n u S in effect;
+// the expansions' few dozen operations within 128 u S. A far triangle's computed solid angle,
+// which only the direct sum evaluates, is off by twice (|δ num| + |δ den|)/|(num, den)| plus a
+// few ulps: with a, b, c its vertices relative to p, |(num, den)|² = 2 (1 + â·b̂)(1 + b̂·ĉ)(1 + ĉ·â)
+// |a|²|b|²|c|², each 1 + cos ≥ 2 (1 − 1/beta²) as the vertices lie within asin(1/beta) of the
+// direction of the centre, and the perturbations are within 128 u |a||b||c| (about 90 by a term
+// by term count). The near triangles' terms are the same function of the same numbers in both
+// sums and agree bit for bit.
+
+namespace hairfit {
+
+namespace {
+
+constexpr double kUnitRoundoff = std::numeric_limits<double>::epsilon() / 2;
+constexpr int kLeafSize = 8;
+constexpr int kStackSize = 64;  // the tree's depth is at most log2(triangles) + 1 ≤ 32
+
+// The expansion's remainder bound over Q/D⁴, at ρ = R/D < 1, given s = 1/(1 − ρ).
+inline double remainder_factor(double rho, double s) {
+  const double taylor = 3.0 * (s * s) * (s * s);
+  const double multipole = std::sqrt(12.0) + rho * s * (s + 3.5);
+  return std::min(taylor, multipole);
+}
+
+}  // namespace
+
+// What a traversal accumulates; without kBound the value alone, summed in the same order and so
+// the same bits.
+template <bool kBound>
+struct FastWindingNumber::Sums {
+  double solid_angle = 0.0;  // in traversal order
+  double truncation = 0.0;   // the expansions' remainder bounds
+  double near_abs = 0.0;     // Σ |Ω_t| over the triangles summed directly
+  double far_abs = 0.0;      // Σ A/(D − R)² over the expansions
+  double terms = 0.0;
+  double far_triangles = 0.0;
+
+  void add_direct(double omega) {
+    solid_angle += omega;
+    if (kBound) {
+      near_abs += std::fabs(omega);
+      terms += 1.0;
+    }
+  }
+  // One expansion, at distance d from its centre: `numerator` is N·r (+ tr M − 3 rᵀ M r/d²) and
+  // inv_d3 = 1/d³.
+  void add_expansion(double numerator, double inv_d3, double d, const Extent& e, int count) {
+    solid_angle += numerator * inv_d3;
+    if (kBound) {
+      // d > beta R > R; should rounding leave no gap, the bound is infinite (and so still a bound).
+      const double gap = std::max(d - e.radius, 0.0), inv_gap = 1.0 / gap;
+      const double inv_d = 1.0 / d, inv_d2 = inv_d * inv_d, s = d * inv_gap;  // s = 1/(1 − ρ)
+      truncation += e.second * (inv_d2 * inv_d2) * remainder_factor(e.radius * inv_d, s);
+      far_abs += e.area * (inv_gap * inv_gap);
+      terms += 1.0;
+      far_triangles += count;
+    }
+  }
+};
+
+struct FastWindingNumber::Summary {
+  Corners corners;
+  Triangle triangle;
+  Extent extent;
+};
+
+FastWindingNumber::FastWindingNumber(const Mesh& mesh, double beta) : beta_(beta), size_(mesh.triangles.size()) {
+  if (!(beta > 1.0)) throw std::invalid_argument("FastWindingNumber: beta must exceed 1");
+  const double kappa = std::sqrt(2.0) * std::pow(2.0 - 2.0 / (beta * beta), 1.5);
+  far_roundoff_ = 8.0 + 256.0 / kappa;
+
+  // Zero-area triangles have solid angle 0 from everywhere off them: they are left out.
+  std::vector<Summary> all;
+  for (const Vec3i& f : mesh.triangles) {
+    Summary t;
+    const Vec3 &a = mesh.positions[f[0]], &b = mesh.positions[f[1]], &c = mesh.positions[f[2]];
+    t.corners = {a, b, c};
+    t.triangle.vector_area = 0.5 * (b - a).cross(c - a);
+    if (t.triangle.vector_area == Vec3::Zero()) continue;
+    const Vec3 g = (a + b + c) / 3.0, da = a - g, db = b - g, dc = c - g;
+    t.triangle.ball.centre = g;
+    t.extent.area = t.triangle.vector_area.norm();
+    // ∫ (x − g)(x − g)ᵀ dA = a/12 Σ_i (v_i − g)(v_i − g)ᵀ over a triangle.
+    t.extent.second = t.extent.area / 12.0 * (da.squaredNorm() + db.squaredNorm() + dc.squaredNorm());
+    // Enlarged by a few ulps so that the ball holds every vertex despite rounding.
+    t.extent.radius = std::max({da.norm(), db.norm(), dc.norm()}) * (1.0 + 8.0 * kUnitRoundoff);
+    t.triangle.ball.radius2 = t.extent.radius * t.extent.radius;
+    all.push_back(t);
+  }
+  if (all.empty()) return;
+
+  std::vector<int> order(all.size());
+  for (int i = 0; i < static_cast<int>(order.size()); ++i) order[i] = i;
+  const std::size_t node_count = 2 * (order.size() / kLeafSize + 1);
+  nodes_.reserve(node_count);
+  node_terms_.reserve(node_count);
+  node_extents_.reserve(node_count);
+  build(all, order, 0, static_cast<int>(order.size()));
+  for (int i : order) {
+    triangles_.push_back(all[i].triangle);
+    triangle_extents_.push_back(all[i].extent);
+    corners_.push_back(all[i].corners);
+  }
+}
+
+int FastWindingNumber::build(const std::vector<Summary>& all, std::vector<int>& order, int lo, int hi) {
+  const int index = static_cast<int>(nodes_.size());
+  nodes_.emplace_back();
+  node_terms_.emplace_back();
+  node_extents_.emplace_back();
+  Node node;
+  Terms terms;
+  Extent extent;
+  node.first = lo;
+  node.count = hi - lo;
+
+  Vec3 weighted = Vec3::Zero();
+  for (int i = lo; i < hi; ++i) {
+    extent.area += all[order[i]].extent.area;
+    weighted += all[order[i]].extent.area * all[order[i]].triangle.ball.centre;
+  }
+  const Vec3 centre = weighted / extent.area;
+  terms.normal = Vec3::Zero();
+  terms.moment = Mat3::Zero();
+  for (int i = lo; i < hi; ++i) {
+    const Summary& t = all[order[i]];
+    const Vec3 offset = t.triangle.ball.centre - centre;
+    terms.normal += t.triangle.vector_area;
+    terms.moment += t.triangle.vector_area * offset.transpose();
+    extent.second += t.extent.second + t.extent.area * offset.squaredNorm();  // parallel axes
+    for (const Vec3* v : {&t.corners.a, &t.corners.b, &t.corners.c})
+      extent.radius = std::max(extent.radius, (*v - centre).norm());
+  }
+  extent.radius *= 1.0 + 8.0 * kUnitRoundoff;
+  terms.trace = terms.moment.trace();
+  node.ball = {centre, extent.radius * extent.radius};
+
+  if (hi - lo <= kLeafSize) {
+    std::sort(order.begin() + lo, order.begin() + hi);  // a leaf keeps the mesh's order
+  } else {
+    // Median split along the longest side of the centroids' box; ties broken by index, so the
+    // halves are the same sets whatever the standard library's nth_element does.
+    Vec3 low = Vec3::Constant(INFINITY), high = Vec3::Constant(-INFINITY);
+    for (int i = lo; i < hi; ++i) {
+      low = low.cwiseMin(all[order[i]].triangle.ball.centre);
+      high = high.cwiseMax(all[order[i]].triangle.ball.centre);
+    }
+    int axis = 0;
+    (high - low).maxCoeff(&axis);
+    const int mid = lo + (hi - lo) / 2;
+    std::nth_element(order.begin() + lo, order.begin() + mid, order.begin() + hi, [&](int x, int y) {
+      const double cx = all[x].triangle.ball.centre[axis], cy = all[y].triangle.ball.centre[axis];
+      return cx < cy || (cx == cy && x < y);
+    });
+    build(all, order, lo, mid);  // the next node
+    node.right = build(all, order, mid, hi);
+  }
+  nodes_[index] = node;
+  node_terms_[index] = terms;
+  node_extents_[index] = extent;
+  return index;
+}
+
+template <bool kBound>
+FastWindingNumber::Sums<kBound> FastWindingNumber::traverse(const Vec3& p, double beta2) const {
+  Sums<kBound> sums;  // a local (the result is a copy), so that it lives in registers
+  int stack[kStackSize];
+  int top = 0;
+  int i = 0;
+  while (!nodes_.empty()) {
+    const Node& node = nodes_[i];
+    const Vec3 r = node.ball.centre - p;
+    const double d2 = r.squaredNorm();
+    if (d2 > beta2 * node.ball.radius2) {
+      const Terms& t = node_terms_[i];
+      const double d = std::sqrt(d2), inv_d3 = 1.0 / (d2 * d), inv_d2 = inv_d3 * d;
+      const Mat3& m = t.moment;
+      const double rmr = r[0] * (m(0, 0) * r[0] + m(0, 1) * r[1] + m(0, 2) * r[2]) +
+                         r[1] * (m(1, 0) * r[0] + m(1, 1) * r[1] + m(1, 2) * r[2]) +
+                         r[2] * (m(2, 0) * r[0] + m(2, 1) * r[1] + m(2, 2) * r[2]);
+      const double numerator = t.normal.dot(r) + (t.trace - 3.0 * rmr * inv_d2);
+      sums.add_expansion(numerator, inv_d3, d, node_extents_[i], node.count);
+    } else if (node.right < 0) {
+      for (int k = node.first; k < node.first + node.count; ++k) {
+        const Triangle& t = triangles_[k];
+        const Vec3 rt = t.ball.centre - p;
+        const double dt2 = rt.squaredNorm();
+        if (dt2 > beta2 * t.ball.radius2) {
+          const double dt = std::sqrt(dt2);
+          sums.add_expansion(t.vector_area.dot(rt), 1.0 / (dt2 * dt), dt, triangle_extents_[k], 1);
+        } else {
+          const Corners& c = corners_[k];
+          sums.add_direct(triangle_solid_angle(c.a - p, c.b - p, c.c - p));
+        }
+      }
+    } else {
+      stack[top++] = node.right;
+      ++i;
+      continue;
+    }
+    if (top == 0) break;
+    i = stack[--top];
+  }
+  const Sums<kBound> result = sums;
+  return result;
+}
+
+WindingEstimate FastWindingNumber::evaluate(const Vec3& p, double beta2) const {
+  const Sums<true> sums = traverse<true>(p, beta2);
+  const double n = static_cast<double>(triangles_.size());
+  const double roundoff = kUnitRoundoff * ((2.0 * n + sums.terms + 128.0) * (sums.near_abs + 5.0 * sums.far_abs) +
+                                           sums.far_triangles * far_roundoff_);
+  return {sums.solid_angle / (4.0 * M_PI), (sums.truncation + roundoff) / (4.0 * M_PI)};
+}
+
+double FastWindingNumber::operator()(const Vec3& p) const {
+  return traverse<false>(p, beta_ * beta_).solid_angle / (4.0 * M_PI);
+}
+
+WindingEstimate FastWindingNumber::estimate(const Vec3& p) const { return evaluate(p, beta_ * beta_); }
+
+double FastWindingNumber::direct(const Vec3& p) const {
+  double sum = 0.0;
+  for (const Corners& c : corners_) sum += triangle_solid_angle(c.a - p, c.b - p, c.c - p);
+  return sum / (4.0 * M_PI);
+}
+
+bool FastWindingNumber::above(const Vec3& p, double threshold) const {
+  // The rigorous bound is some ten times the actual error: at beta = 2 it reaches ½ near a closed
+  // surface and decides ½ for under half of the points in its box, at 3 for nearly all of them.
+  // So the estimates start at beta 3 at least and double twice before the direct sum.
+  double beta = std::max(beta_, 3.0);
+  for (int pass = 0; pass < 3; ++pass, beta *= 2.0) {
+    const WindingEstimate e = evaluate(p, beta * beta);
+    if (e.value - threshold > e.error_bound) return true;
+    if (threshold - e.value > e.error_bound) return false;
+  }
+  return direct(p) > threshold;
+}
+
+}  // namespace hairfit
