@@ -86,7 +86,8 @@ struct FastWindingNumber::Sums {
   void add_expansion(double numerator, double inv_d3, double d, const Extent& e, int count) {
     solid_angle += numerator * inv_d3;
     if (kBound) {
-      const double gap = d - e.radius, inv_gap = 1.0 / gap;
+      // d > beta R > R; should rounding leave no gap, the bound is infinite (and so still a bound).
+      const double gap = std::max(d - e.radius, 0.0), inv_gap = 1.0 / gap;
       const double inv_d = 1.0 / d, inv_d2 = inv_d * inv_d, s = d * inv_gap;  // s = 1/(1 − ρ)
       truncation += e.second * (inv_d2 * inv_d2) * remainder_factor(e.radius * inv_d, s);
       far_abs += e.area * (inv_gap * inv_gap);
@@ -264,10 +265,10 @@ double FastWindingNumber::direct(const Vec3& p) const {
 }
 
 bool FastWindingNumber::above(const Vec3& p, double threshold) const {
-  // The bound is rigorous and so pessimistic (tens of times the actual error): where the estimate
-  // at beta does not decide, estimates at 2 beta and 4 beta (each about 4 times the work) usually
-  // do before the direct sum is needed.
-  double beta = beta_;
+  // The rigorous bound is some ten times the actual error: at beta = 2 it reaches ½ near a closed
+  // surface and decides ½ for under half of the points in its box, at 3 for nearly all of them.
+  // So the estimates start at beta 3 at least and double twice before the direct sum.
+  double beta = std::max(beta_, 3.0);
   for (int pass = 0; pass < 3; ++pass, beta *= 2.0) {
     const WindingEstimate e = evaluate(p, beta * beta);
     if (e.value - threshold > e.error_bound) return true;

@@ -29,10 +29,15 @@ class FastWindingNumber {
 
   double operator()(const Vec3& p) const;  // estimate(p).value, bit for bit, without the bound
   WindingEstimate estimate(const Vec3& p) const;
-  // The sum of every triangle's solid angle (triangle_solid_angle) over 4π.
+  // The sum of every triangle's solid angle (triangle_solid_angle) over 4π, in tree order (so
+  // within round-off of winding_number(mesh, p)). On the surface it is what that formula gives:
+  // a triangle containing p adds 0 or ±2π as rounding falls (a closed mesh's w is 0 or 1 at a
+  // face's centroid, ½ at a vertex); never NaN.
   double direct(const Vec3& p) const;
-  // Whether direct(p) > threshold: the estimate decides where it lies farther from the threshold
-  // than its error bound, the direct sum elsewhere (only within the bound of the threshold).
+  // Whether direct(p) > threshold, exactly: an estimate decides where it lies farther from the
+  // threshold than its error bound, tried at b = max(beta, 3), 2b and 4b (the rigorous bound is
+  // some ten times the actual error); the direct sum decides elsewhere, i.e. within about the
+  // bound of the threshold (on or right next to the surface, for a closed mesh and threshold ½).
   bool above(const Vec3& p, double threshold) const;
 
   std::size_t size() const { return size_; }  // triangles of the mesh, zero-area ones included
