@@ -15,4 +15,19 @@ bool HairRegion::inside_hull(const Vec3& p) const {
   return closed_ ? hull_.direct(p) > 0.5 : hull_.direct(p) - scalp_.direct(p) > 0.5;
 }
 
+Mesh closed_head(const Mesh& scalp) {
+  const MeshTopology topology = analyse_topology(scalp);
+  Mesh head = scalp;
+  for (const std::vector<int>& loop : topology.boundary_loops) {
+    // Boundary loops run along the triangles' turning (a→b on the scalp), so the floor runs b→a.
+    Vec3 centre = Vec3::Zero();
+    for (int v : loop) centre += scalp.positions[v];
+    centre /= static_cast<double>(loop.size());
+    const int hub = static_cast<int>(head.positions.size());
+    head.positions.push_back(centre);
+    for (std::size_t k = 0; k < loop.size(); ++k) head.triangles.push_back({loop[(k + 1) % loop.size()], loop[k], hub});
+  }
+  return head;
+}
+
 }  // namespace hairfit

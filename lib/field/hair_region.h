@@ -19,13 +19,14 @@ class HairRegion {
   // shell an open hull and the scalp close between them where they share a hairline, 0 outside,
   // and in between where they do not meet (a hull hovering above the scalp, a gap, a hole).
   double winding(const Vec3& p) const;
-  // Whether H(p) > ½. The hierarchical values decide where they are farther than kDecisive from
-  // ½, the direct sums over every triangle elsewhere. kDecisive is 20 times the largest error of
-  // the hierarchical evaluation at β = 2 measured against the direct sums (bench/results/
-  // fast_winding.md); its rigorous bound (FastWindingNumber::estimate) is too loose near the
-  // surface to decide anything at that β.
+  // Whether H(p) > ½. The hierarchical values (β = 2) decide where they are farther than
+  // kDecisive from ½, the direct sums over every triangle elsewhere. kDecisive is about three
+  // times the largest error of one hierarchical value at β = 2 measured against the direct sums
+  // (0.07, on closed meshes 0.05 of their size from the surface: tests/core/fast_winding_test.cpp,
+  // bench/results/fast_winding.md); the rigorous bound (FastWindingNumber::estimate) is 8–40
+  // times the actual error, too loose near the surface to decide anything at that β.
   bool inside_hull(const Vec3& p) const;
-  static constexpr double kDecisive = 0.02;
+  static constexpr double kDecisive = 0.2;
   bool hull_closed() const { return closed_; }
 
   const FastWindingNumber& hull_winding() const { return hull_; }
@@ -35,5 +36,11 @@ class HairRegion {
   FastWindingNumber hull_, scalp_;
   bool closed_;
 };
+
+// The head as a closed surface: the scalp (a disk facing out of the head) and a floor across its
+// hairline, a fan from the hairline's centroid wound so that the two face outward together. Its
+// inside is what the scalp's field counts as the head: bounded, so hair that hangs below the
+// hairline past the ears and the neck is outside it, as it would be on the real head.
+Mesh closed_head(const Mesh& scalp);
 
 }  // namespace hairfit

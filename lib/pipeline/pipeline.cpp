@@ -279,8 +279,13 @@ class Runner {
 
   void fields(StageReport& stage) {
     StageValues& v = result_.values;
-    v.scalp_field = std::make_shared<const DistanceField>(
-        make_distance_field(inputs_.scalp.mesh, field_spec(scene_, scene_.inputs.scalp.string()), options_.threads));
+    // The scalp's field: the distance to the head closed under the scalp by a floor across the
+    // hairline, negative inside it.
+    const Mesh head = closed_head(inputs_.scalp.mesh);
+    const FastWindingNumber head_winding(head);
+    const InsideTest inside_head = [&head_winding](const Vec3& p) { return head_winding.above(p, 0.5); };
+    v.scalp_field = std::make_shared<const DistanceField>(make_distance_field(
+        head, field_spec(scene_, scene_.inputs.scalp.string()), options_.threads, inside_head));
     // The volume's inside is the region's (HairRegion) together with the head, so that its field
     // keeps its sign across the scalp, as a prepared volume's floor under the scalp makes it: the
     // acceptable region, inside the volume and not behind the scalp, is the region's shell.
