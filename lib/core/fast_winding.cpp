@@ -256,6 +256,10 @@ double FastWindingNumber::operator()(const Vec3& p) const {
   return traverse<false>(p, beta_ * beta_).solid_angle / (4.0 * M_PI);
 }
 
+double FastWindingNumber::at_beta(const Vec3& p, double beta) const {
+  return traverse<false>(p, beta * beta).solid_angle / (4.0 * M_PI);
+}
+
 WindingEstimate FastWindingNumber::estimate(const Vec3& p) const { return evaluate(p, beta_ * beta_); }
 
 double FastWindingNumber::direct(const Vec3& p) const {

@@ -28,6 +28,8 @@ class FastWindingNumber {
   explicit FastWindingNumber(const Mesh& mesh, double beta = 2.0);
 
   double operator()(const Vec3& p) const;  // estimate(p).value, bit for bit, without the bound
+  // The hierarchical value with another accuracy parameter (> 1) than the constructor's.
+  double at_beta(const Vec3& p, double beta) const;
   WindingEstimate estimate(const Vec3& p) const;
   // The sum of every triangle's solid angle (triangle_solid_angle) over 4π, in tree order (so
   // within round-off of winding_number(mesh, p)). On the surface it is what that formula gives:

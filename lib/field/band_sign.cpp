@@ -88,7 +88,7 @@ SettledSigns::SettledSigns(const MeshFeatures& f, double r, double h, const Insi
     for (int side = 0; side < 2; ++side) {
       const double s = side == 0 ? 1.0 : -1.0;
       const bool close = inside(c + s * 1e-3 * h * n);
-      if (inside(c + s * r * n) == close && inside(c + s * 4 * r * n) == close) faces_[t][side] = close;
+      if (inside(c + s * r * n) == close) faces_[t][side] = close;
     }
   });
 }

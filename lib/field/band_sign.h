@@ -3,8 +3,8 @@
 //
 // Across a sheet the inside changes exactly where the sheet is, and along it only where something
 // else is near: a rim, a non-manifold edge, or a seam where an open mesh's inside changes in empty
-// space. So each face is probed on both sides of its centroid, just off it, one band width out and
-// four; where the three probes of a side agree and no rim, non-manifold edge or flipped patch's
+// space. So each face is probed on both sides of its centroid, just off it and one band width out;
+// where the two probes of a side agree and no rim, non-manifold edge or flipped patch's
 // border lies within two band widths, every sample on that side of the face (its closest feature
 // the face, or an edge or vertex all of whose faces agree) takes that answer. Every other sample
 // is asked itself.

@@ -12,7 +12,14 @@ double HairRegion::winding(const Vec3& p) const { return closed_ ? hull_(p) : hu
 bool HairRegion::inside_hull(const Vec3& p) const {
   const double value = winding(p);
   if (std::abs(value - 0.5) > kDecisive) return value > 0.5;
-  return closed_ ? hull_.direct(p) > 0.5 : hull_.direct(p) - scalp_.direct(p) > 0.5;
+  const double close = closed_ ? hull_.at_beta(p, kCloseBeta) : hull_.at_beta(p, kCloseBeta) - scalp_.at_beta(p, kCloseBeta);
+  return close > 0.5;
+}
+
+bool winding_above_half(const FastWindingNumber& winding, const Vec3& p) {
+  const double value = winding(p);
+  if (std::abs(value - 0.5) > HairRegion::kDecisive) return value > 0.5;
+  return winding.at_beta(p, HairRegion::kCloseBeta) > 0.5;
 }
 
 Mesh closed_head(const Mesh& scalp) {

@@ -19,13 +19,16 @@ class HairRegion {
   // shell an open hull and the scalp close between them where they share a hairline, 0 outside,
   // and in between where they do not meet (a hull hovering above the scalp, a gap, a hole).
   double winding(const Vec3& p) const;
-  // Whether H(p) > ½. The hierarchical values (β = 2) decide where they are farther than
-  // kDecisive from ½, the direct sums over every triangle elsewhere. kDecisive is about three
-  // times the largest error of one hierarchical value at β = 2 measured against the direct sums
-  // (0.07, on closed meshes 0.05 of their size from the surface: tests/core/fast_winding_test.cpp,
-  // bench/results/fast_winding.md); the rigorous bound (FastWindingNumber::estimate) is 8–40
-  // times the actual error, too loose near the surface to decide anything at that β.
+  // Whether H(p) > ½. The hierarchical value at β = 2 decides where it is farther than kDecisive
+  // from ½: about three times the largest error of one such value measured against the direct
+  // sums (0.07, on closed meshes 0.05 of their size from the surface: tests/core/
+  // fast_winding_test.cpp, bench/results/fast_winding.md). Elsewhere the value at β = kCloseBeta
+  // decides (measured error about 0.01), so the answer is the direct sums' wherever H is farther
+  // than that from ½. Closer, H itself says the point is on the fence (a card's own front reads
+  // ½); the direct sums over every triangle would cost a thousand evaluations there, and raw card
+  // hair has thousands of such points.
   bool inside_hull(const Vec3& p) const;
+  static constexpr double kCloseBeta = 4.0;
   static constexpr double kDecisive = 0.2;
   bool hull_closed() const { return closed_; }
 
@@ -42,5 +45,9 @@ class HairRegion {
 // inside is what the scalp's field counts as the head: bounded, so hair that hangs below the
 // hairline past the ears and the neck is outside it, as it would be on the real head.
 Mesh closed_head(const Mesh& scalp);
+
+// Whether the winding number of `winding`'s mesh at p exceeds ½, decided as HairRegion::inside_hull
+// decides it (the hierarchical value where it is decisive, the direct sum elsewhere).
+bool winding_above_half(const FastWindingNumber& winding, const Vec3& p);
 
 }  // namespace hairfit

@@ -283,7 +283,7 @@ class Runner {
     // hairline, negative inside it.
     const Mesh head = closed_head(inputs_.scalp.mesh);
     const FastWindingNumber head_winding(head);
-    const InsideTest inside_head = [&head_winding](const Vec3& p) { return head_winding.above(p, 0.5); };
+    const InsideTest inside_head = [&head_winding](const Vec3& p) { return winding_above_half(head_winding, p); };
     v.scalp_field = std::make_shared<const DistanceField>(make_distance_field(
         head, field_spec(scene_, scene_.inputs.scalp.string()), options_.threads, inside_head));
     // The volume's inside is the region's (HairRegion) together with the head, so that its field
