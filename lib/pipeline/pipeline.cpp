@@ -53,23 +53,25 @@ void add_widths(Curves& curves, double cross_section, int threads) {
   });
 }
 
-// Moves a point behind the scalp (Φ_S < 0) onto it by Newton steps along the field's gradient,
-// to a clearance of 10 µm so that it counts as outside the head. Most points are well in front of
-// the scalp, which the field's side() tells without interpolating (reported as +infinity).
+// Moves a point behind the scalp, or in front of it by less than a clearance, out to that clearance
+// by Newton steps along the field's gradient. The clearance (0.5 mm) is the sagitta of a 2 cm
+// chord over a head of 10 cm radius: a fibre lying along the scalp has its points that far out, so
+// the straight segments between them do not dip under it. Most points are well in front of the
+// scalp, which the field's side() tells without interpolating (reported as +infinity).
 HeadExit scalp_exit(const DistanceField& scalp) {
   return [&scalp](const Vec3& p, double& value_at_p) {
     if (scalp.side(p) > 0) {
       value_at_p = std::numeric_limits<double>::infinity();
       return p;
     }
-    value_at_p = scalp.value(p);  // = value_and_gradient(p).value; the gradient only when it is < 0
-    if (!(value_at_p < 0.0)) return p;
-    constexpr double kClearance = 1e-3;  // cm
+    constexpr double kClearance = 0.05;  // cm
+    value_at_p = scalp.value(p);  // = value_and_gradient(p).value; the gradient only when it is near
+    if (!(value_at_p < kClearance)) return p;
     Vec3 q = p;
     for (int step = 0; step < 4; ++step) {
       const FieldValueGradient vg = scalp.value_and_gradient(q);
       const double g2 = vg.gradient.squaredNorm();
-      if (vg.value >= 0.0 || !(g2 > 1e-12)) break;
+      if (vg.value >= 0.9 * kClearance || !(g2 > 1e-12)) break;
       q -= (vg.value - kClearance) / g2 * vg.gradient;
     }
     return q;
