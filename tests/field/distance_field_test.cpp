@@ -13,16 +13,9 @@
 #include "test_meshes.h"
 
 using namespace hairfit;
+using hairfit::test::spec_for;
 
 namespace {
-
-FieldSpec spec_for(double voxel, double band, double margin) {
-  FieldSpec s;
-  s.voxel = voxel;
-  s.band = band;
-  s.margin = margin;
-  return s;
-}
 
 struct BandCheck {
   double max_error = 0;     // cm, |sample| vs brute force over band voxels

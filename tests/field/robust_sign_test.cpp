@@ -12,16 +12,9 @@
 #include "test_meshes.h"
 
 using namespace hairfit;
+using hairfit::test::spec_for;
 
 namespace {
-
-FieldSpec spec_for(double voxel, double band, double margin) {
-  FieldSpec s;
-  s.voxel = voxel;
-  s.band = band;
-  s.margin = margin;
-  return s;
-}
 
 struct SignCheck {
   int nodes = 0;           // nodes more than half a voxel from the surface that were checked

@@ -1,4 +1,5 @@
-// Small procedural meshes for the distance-field tests, and an independent brute-force distance.
+// Small procedural meshes for the distance-field tests, their specs, and an independent brute-force
+// distance.
 #pragma once
 #include <algorithm>
 #include <cmath>
@@ -8,10 +9,20 @@
 
 #include "core/mesh.h"
 #include "core/shapes.h"
+#include "field/distance_field.h"
 
 namespace hairfit::test {
 
 using hairfit::icosphere;
+
+// A field spec with everything but the grid at its defaults.
+inline FieldSpec spec_for(double voxel, double band, double margin) {
+  FieldSpec s;
+  s.voxel = voxel;
+  s.band = band;
+  s.margin = margin;
+  return s;
+}
 
 // Axis-aligned cube [-s, s]³, outward counter-clockwise, two triangles per side.
 inline Mesh cube(double s) {
