@@ -77,7 +77,7 @@ std::vector<char> near_rims(const MeshFeatures& f, double reach) {
 
 }  // namespace
 
-SettledSigns::SettledSigns(const MeshFeatures& f, double r, double h, const InsideTest& inside, int threads)
+SettledSigns::SettledSigns(const MeshFeatures& f, double r, const InsideTest& inside, int threads)
     : features_(f), inside_(inside), faces_(f.faces.size(), {-1, -1}) {
   const std::vector<char> near = near_rims(f, 2 * r);
   parallel_for(static_cast<int>(f.faces.size()), threads, [&](int t) {
@@ -87,7 +87,8 @@ SettledSigns::SettledSigns(const MeshFeatures& f, double r, double h, const Insi
     const Vec3& n = f.face_normals[t];
     for (int side = 0; side < 2; ++side) {
       const double s = side == 0 ? 1.0 : -1.0;
-      const bool close = inside(c + s * 1e-3 * h * n);
+      // Two probes: one just off the face (a hundredth of the band's width), one a band width out.
+      const bool close = inside(c + s * 0.01 * r * n);
       if (inside(c + s * r * n) == close) faces_[t][side] = close;
     }
   });

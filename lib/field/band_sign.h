@@ -3,9 +3,9 @@
 //
 // Across a sheet the inside changes exactly where the sheet is, and along it only where something
 // else is near: a rim, a non-manifold edge, or a seam where an open mesh's inside changes in empty
-// space. So each face is probed on both sides of its centroid, just off it and one band width out;
-// where the two probes of a side agree and no rim, non-manifold edge or flipped patch's
-// border lies within two band widths, every sample on that side of the face (its closest feature
+// space. So each face is probed on both sides of its centroid, just off it and a band width out;
+// where the two probes of a side agree and no rim, non-manifold edge or flipped patch's border lies
+// within two band widths, every sample on that side of the face (its closest feature
 // the face, or an edge or vertex all of whose faces agree) takes that answer. Every other sample
 // is asked itself.
 #pragma once
@@ -21,7 +21,7 @@ namespace hairfit::field {
 // The faces' settled answers, and the test for everything else.
 class SettledSigns {
  public:
-  SettledSigns(const MeshFeatures& features, double r, double h, const InsideTest& inside, int threads);
+  SettledSigns(const MeshFeatures& features, double r, const InsideTest& inside, int threads);
   // The test's answer at p, whose closest feature is `key` (band_scan.h's keys) and which lies in
   // front of it (side 0) or behind it (side 1): the settled answer where there is one, the test's
   // own elsewhere (counted).
