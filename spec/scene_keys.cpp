@@ -171,7 +171,7 @@ std::vector<SceneKey> build_keys() {
   keys.push_back(path("inputs.scalp", PATH_REF(inputs.scalp), true, "fields, chart, roots",
                       "Scalp mesh (OBJ): an open topological disk, outward normals, hair grows from it."));
   keys.push_back(path("inputs.volume", PATH_REF(inputs.volume), true, "fields",
-                      "Outer boundary of the hair volume (OBJ), enclosing the scalp."));
+                      "Outer boundary of the hair volume (OBJ): closed, or open and raw (in parts, with holes, non-manifold); with the scalp reversed it encloses the hair."));
 
   keys.push_back(boolean("effects.gravity", REF(effects.gravity), "preguides, guides",
                          "Load every rod by its weight per length ρ·A·g along units.down."));
