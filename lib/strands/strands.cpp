@@ -111,8 +111,44 @@ struct Scratch {
   std::vector<Vec3> before_cut;
 };
 
+// Where along a segment keep_out looks for it dipping into the head: the midpoint, and on the
+// first segment also near the root, where a chord that leaves the pore below its tangent plane
+// enters the head at once.
+constexpr double kFirstSegmentProbes[] = {0.25, 0.5};
+constexpr double kSegmentProbes[] = {0.5};
+
+// Whether the segment a→b dips into the head at one of its probes (a point the exit moves).
+template <std::size_t N>
+bool dips(const HeadExit& out_of_head, const Vec3& a, const Vec3& b, const double (&probes)[N]) {
+  double unused;
+  for (double t : probes) {
+    const Vec3 q = a + t * (b - a);
+    if (out_of_head(q, unused) != q) return true;
+  }
+  return false;
+}
+
+// Passes every point but the root through `out_of_head`, then, root to tip, every segment's
+// probes: where a chord dips into the head at the fraction t of its length (the exit moves that
+// point by Δ), its far end moves out by Δ / t, which lifts the probe out with it.
+void keep_out(const HeadExit& out_of_head, Vec3* points, int n) {
+  double unused;
+  for (int i = 1; i < n; ++i) points[i] = out_of_head(points[i], unused);
+  for (int i = 1; i < n; ++i) {
+    auto lift = [&](double t) {
+      const Vec3 q = points[i - 1] + t * (points[i] - points[i - 1]);
+      const Vec3 moved = out_of_head(q, unused);
+      if (moved != q) points[i] = out_of_head(points[i] + (moved - q) / t, unused);
+    };
+    if (i == 1)
+      for (double t : kFirstSegmentProbes) lift(t);
+    else
+      for (double t : kSegmentProbes) lift(t);
+  }
+}
+
 // The fibre of exactly `length` along the track, into points[0..n) (n = stations.size()); with
-// `out_of_head`, every point but the root is passed through it inside the length solve, so the
+// `out_of_head`, the fibre is kept out of the head (keep_out) inside the length solve, so the
 // moved fibre still has exactly its length.
 void fibre_along(const GuideTrack& track, const Vec3& pore, double length, double wisp_extent,
                  const std::vector<Station>& stations, const HeadExit* out_of_head, Vec3* points, SweepPoint* layout) {
@@ -134,9 +170,7 @@ void fibre_along(const GuideTrack& track, const Vec3& pore, double length, doubl
   // scene this takes 4.7 sweeps a fibre where regula falsi on [0, length] (Illinois) took 6.7.
   auto excess = [&](double reach) {
     sweep(track, layout, n, root, reach, points);
-    double unused;
-    if (out_of_head)
-      for (int i = 1; i < n; ++i) points[i] = (*out_of_head)(points[i], unused);
+    if (out_of_head) keep_out(*out_of_head, points, n);
     return polyline_length(points, n) - length;
   };
   const double tolerance = 1e-12 * length;
@@ -172,7 +206,8 @@ void fibre_along(const GuideTrack& track, const Vec3& pore, double length, doubl
   points[0] = pore;  // exactly, not up to round-off
 }
 
-// fibre_along, with the points behind the scalp moved out when `out_of_head` is given. Most
+// fibre_along, with the points behind the scalp (or segments dipping into it) moved out when
+// `out_of_head` is given. Most
 // fibres never enter the head; only those that do pay for field lookups inside the length solve.
 // `in_head` (if given) receives FibrePointSides::in_head of each point of the result (−1 at the
 // root and throughout a moved fibre). `grown`: `points` already hold fibre_along's result.
@@ -185,7 +220,9 @@ void fibre_kept_out(const GuideTrack& track, const Vec3& pore, double length, do
   if (in_head) in_head[0] = -1;
   for (int i = 1; i < n; ++i) {
     double value = std::numeric_limits<double>::quiet_NaN();
-    if (out_of_head(points[i], value) != points[i]) {
+    const bool chord_dips = i == 1 ? dips(out_of_head, points[0], points[1], kFirstSegmentProbes)
+                                   : dips(out_of_head, points[i - 1], points[i], kSegmentProbes);
+    if (out_of_head(points[i], value) != points[i] || chord_dips) {
       fibre_along(track, pore, length, wisp_extent, stations, &out_of_head, points, layout);
       if (in_head) std::fill(in_head, in_head + n, std::int8_t(-1));
       return;
