@@ -5,7 +5,7 @@
 namespace hairfit {
 
 HairRegion::HairRegion(const Mesh& hull, const Mesh& scalp, bool hull_closed)
-    : hull_(hull), scalp_(hull_closed ? Mesh{} : scalp), closed_(hull_closed) {}
+    : hull_(hull, kFirstBeta), scalp_(hull_closed ? Mesh{} : scalp, kFirstBeta), closed_(hull_closed) {}
 
 double HairRegion::winding(const Vec3& p) const { return closed_ ? hull_(p) : hull_(p) - scalp_(p); }
 

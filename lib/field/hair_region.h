@@ -19,17 +19,19 @@ class HairRegion {
   // shell an open hull and the scalp close between them where they share a hairline, 0 outside,
   // and in between where they do not meet (a hull hovering above the scalp, a gap, a hole).
   double winding(const Vec3& p) const;
-  // Whether H(p) > ½. The hierarchical value at β = 2 decides where it is farther than kDecisive
-  // from ½: about three times the largest error of one such value measured against the direct
-  // sums (0.07, on closed meshes 0.05 of their size from the surface: tests/core/
-  // fast_winding_test.cpp, bench/results/fast_winding.md). Elsewhere the value at β = kCloseBeta
-  // decides (measured error about 0.01), so the answer is the direct sums' wherever H is farther
-  // than that from ½. Closer, H itself says the point is on the fence (a card's own front reads
-  // ½); the direct sums over every triangle would cost a thousand evaluations there, and raw card
-  // hair has thousands of such points.
+  // Whether H(p) > ½. The hierarchical value at β = kFirstBeta decides where it is farther than
+  // kDecisive from ½: three times the largest error of one such value measured against the
+  // direct sums (0.084 at β = 1.5, over points in the box and near the surface of an 8k-triangle
+  // torus: bench/results/fast_winding.md; 0.07 at β = 2 on closed meshes 0.05 of their size from
+  // the surface, tests/core/fast_winding_test.cpp). Elsewhere the value at β = kCloseBeta decides
+  // (measured error about 0.01), so the answer is the direct sums' wherever H is farther than
+  // that from ½. Closer, H itself says the point is on the fence (a card's own front reads ½);
+  // the direct sums over every triangle would cost a thousand evaluations there, and raw card
+  // hair has thousands of such points. The trees are built with β = kFirstBeta.
   bool inside_hull(const Vec3& p) const;
   static constexpr double kCloseBeta = 4.0;
-  static constexpr double kDecisive = 0.2;
+  static constexpr double kFirstBeta = 1.5;
+  static constexpr double kDecisive = 0.25;
   bool hull_closed() const { return closed_; }
 
   const FastWindingNumber& hull_winding() const { return hull_; }

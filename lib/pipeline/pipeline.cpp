@@ -284,7 +284,7 @@ class Runner {
     // The scalp's field: the distance to the head closed under the scalp by a floor across the
     // hairline, negative inside it.
     const Mesh head = closed_head(inputs_.scalp.mesh);
-    const FastWindingNumber head_winding(head);
+    const FastWindingNumber head_winding(head, HairRegion::kFirstBeta);
     const InsideTest inside_head = [&head_winding](const Vec3& p) { return winding_above_half(head_winding, p); };
     v.scalp_field = std::make_shared<const DistanceField>(make_distance_field(
         head, field_spec(scene_, scene_.inputs.scalp.string()), options_.threads, inside_head));
