@@ -308,6 +308,16 @@ class Runner {
                                  std::to_string(v.volume_field->dims().y()) + "x" + std::to_string(v.volume_field->dims().z()));
     stage.add("band_voxels", static_cast<std::int64_t>(v.scalp_field->band_voxels() + v.volume_field->band_voxels()));
     stage.add("memory_bytes", static_cast<std::int64_t>(v.scalp_field->memory_bytes() + v.volume_field->memory_bytes()));
+    // What the inputs were found to be, and how much of the scalp the region covers.
+    const MeshReport& hull = inputs_.volume_report;
+    stage.add("volume_closed", hull.closed());
+    stage.add("volume_parts", static_cast<std::int64_t>(hull.parts));
+    stage.add("volume_boundary_loops", static_cast<std::int64_t>(hull.boundary_loops));
+    stage.add("volume_nonmanifold_edges", static_cast<std::int64_t>(hull.nonmanifold_edges));
+    stage.add("volume_flipped_patches", static_cast<std::int64_t>(hull.flipped_patches));
+    stage.add("volume_reversed", inputs_.volume_reversed);
+    stage.add("scalp_inside_share", inputs_.scalp_inside_share);
+    stage.add("scalp_outside_share", 1.0 - inputs_.scalp_inside_share);
   }
 
   void write_fields() {
