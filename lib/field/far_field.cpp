@@ -189,6 +189,7 @@ void settle_pending(const GridGeometry& grid, const FarField& far, int c, const 
   parallel_for(cz - 1, threads, [&](int ck) {
     const int w = c + 1, cells_x = cx - 1, cells_y = cy - 1, cells_z = cz - 1;
     std::vector<signed char> sign(w * w * w);
+    std::vector<char> conflict(w * w * w);
     std::vector<int> queue;
     for (int cj = 0; cj < cells_y; ++cj)
       for (int ci = 0; ci < cells_x; ++ci) {
@@ -227,7 +228,7 @@ void settle_pending(const GridGeometry& grid, const FarField& far, int c, const 
                 queue.push_back(local);
               }
             }
-        std::vector<char> conflict(seam ? 0 : w * w * w, 0);
+        std::fill(conflict.begin(), conflict.end(), 0);
         for (std::size_t q = 0; q < queue.size() && !seam; ++q) {
           const int local = queue[q];
           const int i = local % w, j = (local / w) % w, k = local / (w * w);
@@ -238,7 +239,7 @@ void settle_pending(const GridGeometry& grid, const FarField& far, int c, const 
             if (i0 + a >= nx || j0 + b >= ny || k0 + d >= nz) continue;
             const int there = a + w * (b + w * d);
             const int64_t n = grid.index(i0 + a, j0 + b, k0 + d);
-            if (!pending[n] || known[n] || sign[there] == 2) continue;
+            if (!pending[n] || known[n]) continue;
             if (sign[there] == 0) {
               sign[there] = sign[local];
               queue.push_back(there);
