@@ -117,9 +117,7 @@ int SettledSigns::settled(int key, int side) const {
 
 bool SettledSigns::inside(const Vec3& p, int key, int side) const {
   const int answer = key >= 0 ? settled(key, side) : -1;
-  if (answer >= 0) return answer;
-  asked_.fetch_add(1, std::memory_order_relaxed);
-  return inside_(p);
+  return answer >= 0 ? answer == 1 : inside_(p);
 }
 
 void sign_band(const SettledSigns& signs, const GridGeometry& grid, BandScan& band, int threads) {

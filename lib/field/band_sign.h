@@ -10,7 +10,6 @@
 // is asked itself.
 #pragma once
 #include <array>
-#include <atomic>
 #include <vector>
 
 #include "field/band_scan.h"
@@ -22,11 +21,10 @@ namespace hairfit::field {
 class SettledSigns {
  public:
   SettledSigns(const MeshFeatures& features, double r, const InsideTest& inside, int threads);
-  // The test's answer at p, whose closest feature is `key` (band_scan.h's keys) and which lies in
-  // front of it (side 0) or behind it (side 1): the settled answer where there is one, the test's
-  // own elsewhere (counted).
+  // The test's answer at p, whose closest feature is `key` (band_scan.h's keys; −1 for none) and
+  // which lies in front of it (side 0) or behind it (side 1): the settled answer where there is
+  // one, the test's own elsewhere.
   bool inside(const Vec3& p, int key, int side) const;
-  int64_t asked() const { return asked_; }
 
  private:
   int settled(int key, int side) const;  // 0 or 1, or −1 where unsettled
@@ -34,7 +32,6 @@ class SettledSigns {
   const MeshFeatures& features_;
   const InsideTest& inside_;
   std::vector<std::array<signed char, 2>> faces_;  // per face and side: −1 unsettled, 0 outside, 1 inside
-  mutable std::atomic<int64_t> asked_{0};
 };
 
 // Replaces the sign of every band sample (band.value, signed by the pseudo-normal's side) with the

@@ -11,6 +11,7 @@
 #include "core/parallel.h"
 #include "field/band_scan.h"
 #include "field/band_sign.h"
+#include "field/cell_corners.h"
 #include "field/far_field.h"
 #include "field/mesh_features.h"
 
@@ -136,7 +137,8 @@ DistanceField make_distance_field(const Mesh& mesh, const FieldSpec& spec, int t
   std::vector<std::uint8_t> in_band(band.value.size());
   for (std::size_t n = 0; n < in_band.size(); ++n) in_band[n] = band.key[n] >= 0;
   std::vector<int32_t>().swap(band.key);
-  field::fill_beyond_band(features, grid, far, plan.coarse_factor, r, signs ? &*signs : nullptr, band.value, threads);
+  field::fill_beyond_band(features, grid, far, plan.coarse_factor, r, signs ? &*signs : nullptr, in_band, band.value,
+                          threads);
 
   DistanceField out;
   out.origin_ = plan.origin;
@@ -150,42 +152,11 @@ DistanceField make_distance_field(const Mesh& mesh, const FieldSpec& spec, int t
 
 namespace {
 
-// Trilinear interpolation of the 8 corner values c[x + 2y + 4z] at fractions f ∈ [0,1]³, and
-// (kGradient) its derivative with respect to f. The value is the same expression either way, so
-// value() and value_and_gradient() agree bit for bit.
-template <bool kGradient>
-void trilinear(const double c[8], const double f[3], double& value, Vec3* gradient) {
-  const double x0 = 1 - f[0], y0 = 1 - f[1], z0 = 1 - f[2];
-  const double c00 = c[0] * x0 + c[1] * f[0], c10 = c[2] * x0 + c[3] * f[0];
-  const double c01 = c[4] * x0 + c[5] * f[0], c11 = c[6] * x0 + c[7] * f[0];
-  const double c0 = c00 * y0 + c10 * f[1], c1 = c01 * y0 + c11 * f[1];
-  value = c0 * z0 + c1 * f[2];
-  if constexpr (kGradient) {
-    gradient->z() = c1 - c0;
-    gradient->y() = (c10 - c00) * z0 + (c11 - c01) * f[2];
-    const double dx00 = c[1] - c[0], dx10 = c[3] - c[2], dx01 = c[5] - c[4], dx11 = c[7] - c[6];
-    gradient->x() = (dx00 * y0 + dx10 * f[1]) * z0 + (dx01 * y0 + dx11 * f[1]) * f[2];
-  }
-}
 
 }  // namespace
 
 namespace {
 
-// Whether a cell whose corners differ in sign is a seam: no surface can pass between any pair of
-// its corners of opposite sign, since a surface point x on the segment between corners a and b
-// would make |d_a| + |d_b| ≤ |a − x| + |x − b| = |a − b|.
-bool is_seam(const double c[8], double h) {
-  for (int a = 0; a < 8; ++a) {
-    if (!(c[a] > 0)) continue;
-    for (int b = 0; b < 8; ++b) {
-      if (!(c[b] < 0)) continue;
-      const int differ = ((a ^ b) & 1) + ((a ^ b) >> 1 & 1) + ((a ^ b) >> 2 & 1);
-      if (c[a] - c[b] <= h * std::sqrt(double(differ)) * (1 + 1e-9)) return false;
-    }
-  }
-  return true;
-}
 
 }  // namespace
 
@@ -208,7 +179,7 @@ void DistanceField::finish(std::vector<double> values, std::vector<std::uint8_t>
         const double hi = std::max({c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7]});
         if (lo > kTiny) flags[row + i] |= kCellPositive;
         else if (hi < -kTiny) flags[row + i] |= kCellNegative;
-        else if (lo < 0 && hi > 0 && is_seam(c, h_)) flags[row + i] |= kCellSeam;
+        else if (lo < 0 && hi > 0 && field::is_seam(c, h_)) flags[row + i] |= kCellSeam;
       }
     }
   });
@@ -243,13 +214,13 @@ void DistanceField::inside_grid(const Vec3& p, double& value, Vec3* gradient) co
   const int64_t dy = dims_.x(), dz = int64_t(dims_.x()) * dims_.y();
   const double* s = samples_->data() + base;
   const double corners[8] = {s[0], s[1], s[dy], s[dy + 1], s[dz], s[dz + 1], s[dz + dy], s[dz + dy + 1]};
-  trilinear<kGradient>(corners, frac, value, gradient);
+  field::trilinear<kGradient>(corners, frac, value, gradient);
   if ((*flags_)[base] & kCellSeam) {
     // The sign of the interpolated samples, the magnitude of the interpolated magnitudes.
     double magnitudes[8];
     for (int q = 0; q < 8; ++q) magnitudes[q] = std::abs(corners[q]);
     const double sign = value < 0 ? -1.0 : 1.0;
-    trilinear<kGradient>(magnitudes, frac, value, gradient);
+    field::trilinear<kGradient>(magnitudes, frac, value, gradient);
     value *= sign;
     if constexpr (kGradient) *gradient *= sign;
   }

@@ -5,17 +5,21 @@
 //   from the sample point to the closest point of the mesh, to round-off (≤ 1e-9 voxel), found by
 //   the closest-point transform: every face, edge and vertex scan-converts a polyhedron bounding
 //   its Voronoi region within the band (Mauch 2003). Beyond the band a sample is the trilinear
-//   interpolation of a coarse grid (spacing H = floor(2·band) voxels) of distances to mesh points,
-//   never less than the band's width: coarse nodes within band + √3·H of the mesh are exact (a
-//   CPT scan of the coarse grid), farther ones hold the distance to a mesh point handed on by their
-//   neighbours (closest-point propagation, never below the true distance).
+//   interpolation of a coarse grid (spacing H = floor(2·band) voxels) of distances to mesh points:
+//   coarse nodes within band + √3·H of the mesh are exact (a CPT scan of the coarse grid), farther
+//   ones hold the distance to a mesh point handed on by their neighbours (closest-point
+//   propagation, never below the true distance). Where that interpolant is not above the band's
+//   width, the sample is the exact distance to the nearest of the features the cell's corners are
+//   closest to, so no sample beyond the band reads less than the band's width.
 // - Sign. With an InsideTest (the robust inside, DESIGN §2: generalized winding numbers), every
-//   band sample and every coarse node takes the sign the test gives at its own position; a sample
-//   beyond the band takes the sign its coarse cell agrees on (its 8 corners and every band sample
-//   in it), or the test's at its own position where the cell does not agree. Without one, the
-//   sign is the side of the closest feature's angle-weighted pseudo-normal (Bærentzen & Aanæs
-//   2005): behind the sheet itself, + beyond an open rim; beyond the band, the sign of the coarse
-//   node the distance was propagated from.
+//   band sample and every coarse node takes the sign the test gives at its own position (band
+//   samples beside faces whose sides the test settles take that answer, field/band_sign.h); a
+//   sample beyond the band takes the sign its coarse cell agrees on (its 8 corners and every band
+//   sample in it), or, where the cell does not agree, the sign flooded to it through the cell's
+//   far samples, the test deciding where signs meet. Without one, the sign is the side of the
+//   closest feature's angle-weighted pseudo-normal (Bærentzen & Aanæs 2005): behind the sheet
+//   itself, + beyond an open rim; beyond the band, the sign of the interpolated signed coarse
+//   values.
 // - No phantom surface. Where a cell's corners differ in sign although no surface can pass
 //   between them (|d_a| + |d_b| > |a − b| for every such pair of corners, as across the seam where
 //   an open mesh's inside changes in empty space), a lookup reads the interpolated magnitude with

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "core/parallel.h"
+#include "field/cell_corners.h"
 
 namespace hairfit::field {
 
@@ -150,39 +151,32 @@ CoarseAxis coarse_axis(int fine_count, int coarse_count, int c) {
   return a;
 }
 
-// The trilinear interpolation of 8 corner values (x fastest) at fractions (fx, fy, fz).
-double lerp3(const double v[8], double fx, double fy, double fz) {
-  const double x0 = 1 - fx, y0 = 1 - fy, z0 = 1 - fz;
-  const double c00 = v[0] * x0 + v[1] * fx, c10 = v[2] * x0 + v[3] * fx;
-  const double c01 = v[4] * x0 + v[5] * fx, c11 = v[6] * x0 + v[7] * fx;
-  return (c00 * y0 + c10 * fy) * z0 + (c01 * y0 + c11 * fy) * fz;
-}
 
-// Whether the coarse cell at `base` is a seam of the inside at its own scale: corners of opposite
-// sign with no surface between them (|d_a| + |d_b| > |a − b|), so the sign changes inside it in
-// empty space, where no flood from the band can tell where.
-bool coarse_seam(const FarField& far, int64_t base, double spacing) {
+// Whether the test must decide every pending sample of the (disagreeing) coarse cell at `base`:
+// where it is a seam of the inside at its own scale (is_seam), the sign changes inside it in empty
+// space, where no flood from the band can tell where; where its corners all share a sign, the band
+// samples that disagree with them bound a pocket the corners do not see, and a flood from them
+// could run past it.
+bool ask_every_sample(const FarField& far, int64_t base, double spacing) {
   const int64_t dy = far.dims.x(), dz = int64_t(far.dims.x()) * far.dims.y();
-  for (int a = 0; a < 8; ++a) {
-    const double va = far.values[base + (a & 1) + dy * (a >> 1 & 1) + dz * (a >> 2)];
-    if (!(va > 0)) continue;
-    for (int b = 0; b < 8; ++b) {
-      const double vb = far.values[base + (b & 1) + dy * (b >> 1 & 1) + dz * (b >> 2)];
-      if (!(vb < 0)) continue;
-      const int differ = ((a ^ b) & 1) + ((a ^ b) >> 1 & 1) + ((a ^ b) >> 2 & 1);
-      if (va - vb <= spacing * std::sqrt(double(differ)) * (1 + 1e-9)) return false;
-    }
+  double corners[8];
+  bool positive = false, negative = false;
+  for (int q = 0; q < 8; ++q) {
+    corners[q] = far.values[base + (q & 1) + dy * (q >> 1 & 1) + dz * (q >> 2)];
+    positive = positive || corners[q] > 0;
+    negative = negative || corners[q] < 0;
   }
-  return true;
+  return !(positive && negative) || is_seam(corners, spacing);
 }
 
 // Signs the pending far samples of every coarse cell whose corners and band samples differ: a
 // flood through the cell's far samples from the samples whose sign is known (the band's, the
 // coarse nodes', and far samples of agreeing cells), in index order; where two signs meet, where
-// nothing reaches, and in cells that are seams at the coarse scale, the test decides. A cell
+// nothing reaches, and in cells ask_every_sample names, the test decides. A cell
 // writes only the samples it holds (lowest index), so cells run in parallel.
 void settle_pending(const GridGeometry& grid, const FarField& far, int c, const SettledSigns& inside,
-                    const std::vector<char>& known, std::vector<char>& pending, std::vector<double>& values, int threads) {
+                    const std::vector<std::uint8_t>& in_band, std::vector<char>& pending, std::vector<double>& values,
+                    int threads) {
   const int nx = grid.dims.x(), ny = grid.dims.y(), nz = grid.dims.z();
   const int cx = far.dims.x(), cy = far.dims.y(), cz = far.dims.z();
   auto owner = [c](int n, int cells) { return std::min(n / c, cells - 1); };
@@ -208,7 +202,7 @@ void settle_pending(const GridGeometry& grid, const FarField& far, int c, const 
               }
         if (!any) continue;
         const int64_t base = ci + int64_t(cx) * (cj + int64_t(cy) * ck);
-        const bool seam = coarse_seam(far, base, c * grid.h);
+        const bool seam = ask_every_sample(far, base, c * grid.h);
         // Seeds: every sample of the cell's closed box whose sign is known.
         queue.clear();
         for (int k = 0; k < w; ++k)
@@ -223,7 +217,7 @@ void settle_pending(const GridGeometry& grid, const FarField& far, int c, const 
                 const int64_t coarse = (i0 + i) / c + int64_t(cx) * ((j0 + j) / c + int64_t(cy) * ((k0 + k) / c));
                 sign[local] = far.values[coarse] < 0 ? -1 : 1;
                 queue.push_back(local);
-              } else if (known[n] || !pending[n]) {
+              } else if (in_band[n] || !pending[n]) {
                 sign[local] = values[n] < 0 ? -1 : 1;
                 queue.push_back(local);
               }
@@ -239,7 +233,7 @@ void settle_pending(const GridGeometry& grid, const FarField& far, int c, const 
             if (i0 + a >= nx || j0 + b >= ny || k0 + d >= nz) continue;
             const int there = a + w * (b + w * d);
             const int64_t n = grid.index(i0 + a, j0 + b, k0 + d);
-            if (!pending[n] || known[n]) continue;
+            if (!pending[n] || in_band[n]) continue;
             if (sign[there] == 0) {
               sign[there] = sign[local];
               queue.push_back(there);
@@ -266,7 +260,8 @@ void settle_pending(const GridGeometry& grid, const FarField& far, int c, const 
 }  // namespace
 
 void fill_beyond_band(const MeshFeatures& features, const GridGeometry& grid, const FarField& far, int coarse_factor, double r,
-                      const SettledSigns* inside, std::vector<double>& values, int threads) {
+                      const SettledSigns* inside, const std::vector<std::uint8_t>& in_band, std::vector<double>& values,
+                      int threads) {
   const int c = coarse_factor;
   const int nx = grid.dims.x(), ny = grid.dims.y(), nz = grid.dims.z();
   const int cx = far.dims.x(), cy = far.dims.y(), cz = far.dims.z();
@@ -293,9 +288,8 @@ void fill_beyond_band(const MeshFeatures& features, const GridGeometry& grid, co
         for (int fj = 0; fj < ny; ++fj) {
           const int64_t row = grid.index(0, fj, fk);
           for (int fi = 0; fi < nx; ++fi) {
-            const double v = values[row + fi];
-            if (v == kInf) continue;
-            const signed char s = v < 0 ? -1 : 1;
+            if (!in_band[row + fi]) continue;
+            const signed char s = values[row + fi] < 0 ? -1 : 1;
             // The cells whose closed box holds the node (two per axis on a cell face).
             const int i1 = std::min(fi / c, cx - 2), i0 = fi % c == 0 && fi > 0 ? fi / c - 1 : i1;
             const int j1 = std::min(fj / c, cy - 2), j0 = fj % c == 0 && fj > 0 ? fj / c - 1 : j1;
@@ -309,15 +303,12 @@ void fill_beyond_band(const MeshFeatures& features, const GridGeometry& grid, co
     });
   }
 
-  std::vector<char> known(inside ? values.size() : 0, 0);  // band samples: signed by the test
   std::vector<char> pending(inside ? values.size() : 0, 0);  // far samples whose cell did not agree
-  if (inside)
-    for (std::size_t n = 0; n < values.size(); ++n) known[n] = values[n] != kInf;
   parallel_for(nz, threads, [&](int k) {
     for (int j = 0; j < ny; ++j) {
       const int64_t row = grid.index(0, j, k);
       for (int i = 0; i < nx; ++i) {
-        if (values[row + i] != kInf) continue;
+        if (in_band[row + i]) continue;
         const int64_t base = coarse_at(ax.cell[i], ay.cell[j], az.cell[k]);
         const int64_t dy = cx, dz = int64_t(cx) * cy;
         const double* s = far.values.data() + base;
@@ -327,7 +318,9 @@ void fill_beyond_band(const MeshFeatures& features, const GridGeometry& grid, co
           signed_corners[q] = s[(q & 1) + dy * (q >> 1 & 1) + dz * (q >> 2)];
           magnitudes[q] = std::abs(signed_corners[q]);
         }
-        double magnitude = lerp3(magnitudes, ax.frac[i], ay.frac[j], az.frac[k]);
+        const double frac[3] = {ax.frac[i], ay.frac[j], az.frac[k]};
+        double magnitude;
+        trilinear<false>(magnitudes, frac, magnitude, nullptr);
         signed char agreed = 0;
         if (inside) agreed = agree[ax.cell[i] + int64_t(cx - 1) * (ay.cell[j] + int64_t(cy - 1) * az.cell[k])];
         if (!(magnitude > r)) {
@@ -346,13 +339,15 @@ void fill_beyond_band(const MeshFeatures& features, const GridGeometry& grid, co
           sign = agreed;  // 0: pending, settled below
           if (agreed == 0) pending[row + i] = 1;
         } else {
-          sign = lerp3(signed_corners, ax.frac[i], ay.frac[j], az.frac[k]) < 0 ? -1 : 1;
+          double interpolated;
+          trilinear<false>(signed_corners, frac, interpolated, nullptr);
+          sign = interpolated < 0 ? -1 : 1;
         }
         values[row + i] = sign == 0 ? magnitude : sign * magnitude;
       }
     }
   });
-  if (inside) settle_pending(grid, far, c, *inside, known, pending, values, threads);
+  if (inside) settle_pending(grid, far, c, *inside, in_band, pending, values, threads);
 }
 
 }  // namespace hairfit::field

@@ -31,7 +31,9 @@ FarField make_far_field(const MeshFeatures& features, const GridGeometry& grid, 
 // (with `inside`: the sign its coarse cell agrees on, or the test's at the node, asked through the
 // settled answer of the nearest feature its cell's corners are closest to; without: the sign of
 // the interpolated signed coarse values). Deterministic for any thread count.
+// `in_band` marks the band's samples (1), whose values are final.
 void fill_beyond_band(const MeshFeatures& features, const GridGeometry& grid, const FarField& far, int coarse_factor, double r,
-                      const SettledSigns* inside, std::vector<double>& values, int threads);
+                      const SettledSigns* inside, const std::vector<std::uint8_t>& in_band, std::vector<double>& values,
+                      int threads);
 
 }  // namespace hairfit::field

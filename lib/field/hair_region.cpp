@@ -7,19 +7,29 @@ namespace hairfit {
 HairRegion::HairRegion(const Mesh& hull, const Mesh& scalp, bool hull_closed)
     : hull_(hull, kFirstBeta), scalp_(hull_closed ? Mesh{} : scalp, kFirstBeta), closed_(hull_closed) {}
 
+namespace {
+
+// Whether a winding number exceeds ½, as HairRegion::inside_hull states the rule: `at(β)` is its
+// hierarchical value with accuracy parameter β.
+template <class At>
+bool above_half(At&& at) {
+  const double first = at(HairRegion::kFirstBeta);
+  if (std::abs(first - 0.5) > HairRegion::kDecisive) return first > 0.5;
+  return at(HairRegion::kCloseBeta) > 0.5;
+}
+
+}  // namespace
+
 double HairRegion::winding(const Vec3& p) const { return closed_ ? hull_(p) : hull_(p) - scalp_(p); }
 
 bool HairRegion::inside_hull(const Vec3& p) const {
-  const double value = winding(p);
-  if (std::abs(value - 0.5) > kDecisive) return value > 0.5;
-  const double close = closed_ ? hull_.at_beta(p, kCloseBeta) : hull_.at_beta(p, kCloseBeta) - scalp_.at_beta(p, kCloseBeta);
-  return close > 0.5;
+  return above_half([&](double beta) {
+    return closed_ ? hull_.at_beta(p, beta) : hull_.at_beta(p, beta) - scalp_.at_beta(p, beta);
+  });
 }
 
 bool winding_above_half(const FastWindingNumber& winding, const Vec3& p) {
-  const double value = winding(p);
-  if (std::abs(value - 0.5) > HairRegion::kDecisive) return value > 0.5;
-  return winding.at_beta(p, HairRegion::kCloseBeta) > 0.5;
+  return above_half([&](double beta) { return winding.at_beta(p, beta); });
 }
 
 Mesh closed_head(const Mesh& scalp) {
