@@ -4,9 +4,9 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <unordered_map>
 
 #include "core/parallel.h"
+#include "core/point_grid.h"
 
 namespace hairfit::field {
 
@@ -42,35 +42,13 @@ std::vector<char> near_rims(const MeshFeatures& f, double reach) {
   }
   std::vector<char> near(f.faces.size(), 0);
   if (rim.empty()) return near;
-  // A hash of the rim points in cells of `reach`.
-  auto cell_of = [reach](const Vec3& p) {
-    return Eigen::Vector3i(int(std::floor(p.x() / reach)), int(std::floor(p.y() / reach)), int(std::floor(p.z() / reach)));
-  };
-  auto key = [](const Eigen::Vector3i& c) {
-    return (static_cast<std::uint64_t>(c.x() & 0x1fffff) << 42) | (static_cast<std::uint64_t>(c.y() & 0x1fffff) << 21) |
-           static_cast<std::uint64_t>(c.z() & 0x1fffff);
-  };
-  std::unordered_map<std::uint64_t, std::vector<int>> cells;
-  for (int i = 0; i < static_cast<int>(rim.size()); ++i) cells[key(cell_of(rim[i]))].push_back(i);
+  const PointGrid grid(rim, reach);
   for (std::size_t t = 0; t < f.faces.size(); ++t) {
     const Vec3i& v = f.faces[t];
     const Vec3 c = (f.vertices[v[0]] + f.vertices[v[1]] + f.vertices[v[2]]) / 3.0;
     double radius = 0;
     for (int k = 0; k < 3; ++k) radius = std::max(radius, (f.vertices[v[k]] - c).norm());
-    const double within = reach + radius;
-    const int span = static_cast<int>(std::ceil(within / reach));
-    const Eigen::Vector3i home = cell_of(c);
-    for (int dz = -span; dz <= span && !near[t]; ++dz)
-      for (int dy = -span; dy <= span && !near[t]; ++dy)
-        for (int dx = -span; dx <= span && !near[t]; ++dx) {
-          const auto it = cells.find(key(home + Eigen::Vector3i(dx, dy, dz)));
-          if (it == cells.end()) continue;
-          for (int i : it->second)
-            if ((rim[i] - c).norm() <= within) {
-              near[t] = 1;
-              break;
-            }
-        }
+    grid.for_each_within(c, reach + radius, [&](int, double) { near[t] = 1; });
   }
   return near;
 }

@@ -6,7 +6,7 @@
 #include "core/parallel.h"
 #include "core/random.h"
 #include "scalp/disk_grid.h"
-#include "scalp/point_grid.h"
+#include "core/point_grid.h"
 #include "scalp/roots.h"
 #include "scalp/sample_elimination.h"
 

@@ -8,7 +8,7 @@
 
 #include "core/huge_pages.h"
 #include "core/parallel.h"
-#include "scalp/point_grid.h"
+#include "core/point_grid.h"
 
 namespace hairfit {
 

@@ -6,7 +6,7 @@
 #include <tuple>
 
 #include "core/random.h"
-#include "scalp/point_grid.h"
+#include "core/point_grid.h"
 #include "scalp/sample_elimination.h"
 
 using namespace hairfit;

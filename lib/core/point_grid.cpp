@@ -1,4 +1,4 @@
-#include "scalp/point_grid.h"
+#include "core/point_grid.h"
 
 #include <algorithm>
 #include <stdexcept>
