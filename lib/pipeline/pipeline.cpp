@@ -11,6 +11,7 @@
 #include "core/parallel.h"
 #include "density/accumulator.h"
 #include "density/statistics.h"
+#include "guides/flow_crossing.h"
 #include "guides/guide_outputs.h"
 #include "io/atomic_file.h"
 #include "io/curve_files.h"
@@ -21,6 +22,7 @@
 #include "pipeline/stage_options.h"
 #include "pipeline/stage_plan.h"
 #include "scalp/scalp_outputs.h"
+#include "strands/coverage.h"
 
 namespace hairfit {
 
@@ -390,6 +392,12 @@ class Runner {
     stage.add("flagged", static_cast<std::int64_t>(v.preguides->size() - reached));
     stage.add("mean_newton_steps", v.preguides->size() ? solves / v.preguides->size() : 0.0);
     stage.add("shared_newton_steps", static_cast<std::int64_t>(v.preguides->shared_solves));
+    // Nodes after the root in the acceptable region (the root is a point of the scalp).
+    const Boundary b = boundary();
+    long long inside = 0, nodes = 0;
+    for (const PreGuide& g : v.preguides->items)
+      for (std::size_t k = 1; k < g.shape.nodes.size(); ++k, ++nodes) inside += b.acceptable(g.shape.nodes[k]);
+    stage.add("inside_fraction", nodes ? static_cast<double>(inside) / nodes : 0.0);
   }
 
   void write_preguides() {
@@ -447,6 +455,11 @@ class Runner {
     stage.add("unresolved_weight", static_cast<std::int64_t>(f.unresolved_weight));
     stage.add("shorter_than_voxel", static_cast<std::int64_t>(f.shorter_than_voxel));
     stage.add("start", scene_.guides.start);
+    FlowCrossingOptions flow;
+    flow.threads = options_.threads;
+    const FlowCrossing crossing = flow_crossing(v.guides->curves(), flow);
+    stage.add("flow_crossing", crossing.crossing_share);
+    stage.add("flow_median_degrees", crossing.median_degrees);
   }
 
   void write_guides() {
@@ -500,6 +513,12 @@ class Runner {
     stage.add("inside_fraction", inside / points);
     stage.add("inside_head_fraction", in_head / points);  // the two ways of not being inside
     stage.add("outside_volume_fraction", out_volume / points);
+    if (scene_.effects.cutting) stage.add("cut_share", static_cast<double>(v.strands->cut_count) / std::max<std::size_t>(1, fibres.count()));
+    CoverageOptions cover;
+    cover.threads = options_.threads;
+    const Coverage coverage = strand_coverage(
+        inputs_.volume.mesh, fibres.points, [&b](const Vec3& p) { return b.beyond_scalp(p) <= 0.0; }, cover);
+    stage.add("coverage", coverage.share);
   }
 
   void write_strands() {
