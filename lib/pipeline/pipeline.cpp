@@ -398,6 +398,11 @@ class Runner {
     for (const PreGuide& g : v.preguides->items)
       for (std::size_t k = 1; k < g.shape.nodes.size(); ++k, ++nodes) inside += b.acceptable(g.shape.nodes[k]);
     stage.add("inside_fraction", nodes ? static_cast<double>(inside) / nodes : 0.0);
+    Curves curves;
+    for (const PreGuide& g : v.preguides->items) curves.add(g.shape.nodes);
+    FlowCrossingOptions flow;
+    flow.threads = options_.threads;
+    stage.add("flow_crossing", flow_crossing(curves, flow).crossing_share);
   }
 
   void write_preguides() {

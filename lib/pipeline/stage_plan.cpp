@@ -68,6 +68,8 @@ std::vector<StageDeclaration> stage_declarations(const Scene& scene) {
     roots.reads.push_back("hair.length_range");
   }
   append(roots.consumes, {"chart"});
+  roots.reads.push_back("hair.flow");
+  if (scene.hair.flow == "field") roots.reads.push_back("hair.flow_smoothing");
   // Tilting toward the thicker layer reads the volume's distance field at each root.
   if (scene.hair.tilt_toward == "thicker") {
     roots.reads.push_back("hair.tilt_toward");

@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
 #include "core/huge_pages.h"
 #include "core/parallel.h"
 #include "core/random.h"
+#include "scalp/growth_field.h"
 #include "scalp/sample_elimination.h"
 
 namespace hairfit {
@@ -135,7 +137,8 @@ std::vector<TriangleDensity> density_of_triangles(const ScalpChart& ch, const Gr
   return density;
 }
 
-RootSet make_root_set(const ScalpChart& ch, const ScalpMaps& maps, const RootOptions& o,
+// `flow`: the growth field (FlowModel::field), or null for each root's own direction.
+RootSet make_root_set(const ScalpChart& ch, const ScalpMaps& maps, const RootOptions& o, const DirectionField* flow,
                       std::vector<SurfacePoint> where, int threads) {
   RootSet s;
   const int n = static_cast<int>(where.size());
@@ -152,10 +155,15 @@ RootSet make_root_set(const ScalpChart& ch, const ScalpMaps& maps, const RootOpt
     s.normals[i] = surface_normal(ch, sp);
     s.chart[i] = chart_position(ch, sp);
     const double tilt = maps.tilt ? lerp(o.tilt_range, map_value(maps.tilt, s.chart[i])) : o.tilt;
-    s.directions[i] = o.tilt_toward == TiltToward::thicker
-                          ? growth_direction_toward_thicker(s.normals[i], o.thickness(s.positions[i]).gradient, ch.down,
-                                                            ch.front, tilt)
-                          : growth_direction(s.normals[i], ch.down, ch.front, tilt);
+    if (flow) {
+      const Vec3 fallback = tangent_toward_down(s.normals[i], ch.down, ch.front);
+      s.directions[i] = tilted(s.normals[i], field_direction(ch.mesh, *flow, sp.triangle, sp.barycentric, s.normals[i], fallback), tilt);
+    } else {
+      s.directions[i] = o.tilt_toward == TiltToward::thicker
+                            ? growth_direction_toward_thicker(s.normals[i], o.thickness(s.positions[i]).gradient, ch.down,
+                                                              ch.front, tilt)
+                            : growth_direction(s.normals[i], ch.down, ch.front, tilt);
+    }
     s.lengths[i] = maps.length ? lerp(o.length_range, map_value(maps.length, s.chart[i])) : o.length;
     s.heights[i] = height_of(ch, s.positions[i]);
   });
@@ -175,19 +183,6 @@ std::vector<SurfacePoint> pick(const HugeVector<SurfacePoint>& all, const std::v
   out.reserve(kept.size());
   for (int i : kept) out.push_back(all[i]);
   return out;
-}
-
-// The unit tangent toward down (or −front, or any) of growth_direction.
-Vec3 tangent_toward_down(const Vec3& normal, const Vec3& down, const Vec3& front) {
-  Vec3 tangent = down - down.dot(normal) * normal;
-  if (tangent.norm() < 1e-9) tangent = -front + front.dot(normal) * normal;
-  if (tangent.norm() < 1e-9) tangent = normal.unitOrthogonal();
-  return tangent.normalized();
-}
-
-Vec3 tilted(const Vec3& normal, const Vec3& unit_tangent, double tilt_degrees) {
-  const double angle = tilt_degrees * M_PI / 180.0;
-  return (std::cos(angle) * normal + std::sin(angle) * unit_tangent).normalized();
 }
 
 }  // namespace
@@ -212,7 +207,7 @@ Vec3 growth_direction_toward_thicker(const Vec3& normal, const Vec3& thickness_g
 namespace {
 
 Roots make_roots(const ScalpChart& ch, const ScalpMaps& maps, const RootOptions& o,
-                 const std::vector<TriangleDensity>& density) {
+                 const std::vector<TriangleDensity>& density, const DirectionField* flow) {
   Roots roots;
   double top = 0.0;
   for (int t = 0; t < static_cast<int>(density.size()); ++t) {
@@ -237,12 +232,12 @@ Roots make_roots(const ScalpChart& ch, const ScalpMaps& maps, const RootOptions&
     r = 1.0 / std::sqrt(2.0 * std::sqrt(3.0) * rho);
   }
   const std::vector<int> kept = eliminate_samples(c.positions.data(), radius.data(), count, static_cast<int>(target), o.threads);
-  roots.pores = make_root_set(ch, maps, o, pick(c.where, kept), o.threads);
+  roots.pores = make_root_set(ch, maps, o, flow, pick(c.where, kept), o.threads);
   return roots;
 }
 
 PreguideRoots make_preguide_roots(const ScalpChart& ch, const ScalpMaps& maps, const RootOptions& o,
-                                  const std::vector<TriangleDensity>& density) {
+                                  const std::vector<TriangleDensity>& density, const DirectionField* flow) {
   PreguideRoots pre;
   pre.spacing = o.preguide_spacing;
   double hair_area = 0.0;
@@ -256,7 +251,7 @@ PreguideRoots make_preguide_roots(const ScalpChart& ch, const ScalpMaps& maps, c
   const std::vector<double> radius(c.positions.size(), 1.0 / std::sqrt(2.0 * std::sqrt(3.0) * rho));
   const std::vector<int> kept =
       eliminate_samples(c.positions.data(), radius.data(), static_cast<int>(radius.size()), static_cast<int>(target), o.threads);
-  pre.roots = make_root_set(ch, maps, o, pick(c.where, kept), o.threads);
+  pre.roots = make_root_set(ch, maps, o, flow, pick(c.where, kept), o.threads);
   return pre;
 }
 
@@ -265,25 +260,33 @@ void check_preguide_options(const RootOptions& o) {
   if (!(o.preguide_spacing > 0)) throw std::invalid_argument("roots: preguide_spacing must be > 0");
 }
 
+std::optional<DirectionField> growth_field_for(const ScalpChart& ch, const RootOptions& o) {
+  if (o.flow != FlowModel::field) return std::nullopt;
+  return make_growth_field(ch, o);
+}
+
+const DirectionField* pointer(const std::optional<DirectionField>& f) { return f ? &*f : nullptr; }
+
 }  // namespace
 
 Roots make_roots(const ScalpChart& ch, const ScalpMaps& maps, const RootOptions& o) {
   check_options(o);
-  return make_roots(ch, maps, o, density_of_triangles(ch, maps.density, o.threads));
+  return make_roots(ch, maps, o, density_of_triangles(ch, maps.density, o.threads), pointer(growth_field_for(ch, o)));
 }
 
 PreguideRoots make_preguide_roots(const ScalpChart& ch, const ScalpMaps& maps, const RootOptions& o) {
   check_preguide_options(o);
-  return make_preguide_roots(ch, maps, o, density_of_triangles(ch, maps.density, o.threads));
+  return make_preguide_roots(ch, maps, o, density_of_triangles(ch, maps.density, o.threads), pointer(growth_field_for(ch, o)));
 }
 
 ScalpRoots make_scalp_roots(const ScalpChart& ch, const ScalpMaps& maps, const RootOptions& o) {
   check_preguide_options(o);
   const std::vector<TriangleDensity> density = density_of_triangles(ch, maps.density, o.threads);
+  const std::optional<DirectionField> flow = growth_field_for(ch, o);
   ScalpRoots r;
-  r.roots = make_roots(ch, maps, o, density);
+  r.roots = make_roots(ch, maps, o, density, pointer(flow));
   r.clusters = make_clusters(ch, r.roots, o);
-  r.preguides = make_preguide_roots(ch, maps, o, density);
+  r.preguides = make_preguide_roots(ch, maps, o, density, pointer(flow));
   return r;
 }
 

@@ -22,6 +22,11 @@ struct ScalpMaps {
 // gradient of the hair layer's thickness, so hair at a thin hairline grows into the hair mass.
 enum class TiltToward { down, thicker };
 
+// Where the tangent a root tilts toward comes from: one smooth growth field over the scalp
+// (scalp/growth_field.h), or each root's own down or thickness gradient (the paper's rule, root
+// by root).
+enum class FlowModel { field, local };
+
 // The hair layer's thickness at a point (cm) and its gradient (world axes), for TiltToward::thicker:
 // the pipeline passes −Φ_volume, the depth below the hair-volume boundary.
 struct LayerThickness {
@@ -35,6 +40,8 @@ struct RootOptions {
   double tilt = 0.0;                          // degrees from the normal (toward tilt_toward), without tilt map
   TiltToward tilt_toward = TiltToward::down;
   ThicknessField thickness;                   // required with TiltToward::thicker
+  FlowModel flow = FlowModel::local;
+  double flow_smoothing = 2.0;                // cm: the growth field averages its guidance over this
   std::array<double, 2> tilt_range{0.0, 90.0};  // degrees, tilt map black → white
   double length = 25.0;                       // cm, without length map
   std::array<double, 2> length_range{15.0, 35.0};  // cm, length map black → white

@@ -1,0 +1,35 @@
+// The roots' growth field (issue 23): one smooth tangent field over the whole scalp, aligned with
+// the tangent toward down (hair.tilt_toward = "down") or with the blend of the surface gradient of
+// the hair layer's thickness and down ("thicker", the blend of growth_direction_toward_thicker),
+// smoothed by scalp/direction_field.h over hair.flow_smoothing. Each root's growth direction is
+// its normal tilted toward this field, so neighbouring roots grow alike and the guidance's noise
+// (a thickness gradient differenced from a voxel field) is averaged away instead of becoming flow.
+#pragma once
+#include <vector>
+
+#include "scalp/chart.h"
+#include "scalp/direction_field.h"
+#include "scalp/roots.h"
+
+namespace hairfit {
+
+// The unit tangent toward down at a point with this normal: down projected onto the tangent
+// plane; where down is (nearly) parallel to the normal, −front projected; else any tangent.
+Vec3 tangent_toward_down(const Vec3& normal, const Vec3& down, const Vec3& front);
+
+// The normal rotated by `tilt_degrees` toward a unit tangent.
+Vec3 tilted(const Vec3& normal, const Vec3& unit_tangent, double tilt_degrees);
+
+// The tangent a root aims at, before smoothing, for TiltToward::thicker: w·ĝ + (1 − w)·t_down with
+// g the tangential part of the thickness gradient and w = min(1, |g| / kFlatLayerGradient); its
+// length (≤ 1) is how sure it is. For TiltToward::down: t_down scaled by |down × normal| (sure
+// on the sides of the head, unsure at the crown, where down says nothing).
+Vec3 growth_guidance(const Vec3& normal, const Vec3& thickness_gradient, const RootOptions& options,
+                     const Vec3& down, const Vec3& front);
+
+// Per scalp vertex: growth_guidance with the thickness gradient of the piecewise-linear thickness
+// the field gives at the vertices (per triangle, area-weighted at each vertex), then the smoothest
+// field aligned with it.
+DirectionField make_growth_field(const ScalpChart& chart, const RootOptions& options);
+
+}  // namespace hairfit
