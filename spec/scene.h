@@ -84,6 +84,7 @@ struct SceneRod {
 struct ScenePreguides {
   std::array<double, 2> depth_range{0.15, 0.6};  // immersion depth / local thickness, top → bottom
   double max_load = 40.0;                         // dimensionless terminal-force cap (F L² / EI)
+  std::string immersion = "tip";                  // tip (the paper) | layer (the whole rod in the layer)
 };
 
 struct SceneWeights {
@@ -128,6 +129,7 @@ struct SceneOutput {
   std::vector<std::string> strands{"hair", "obj"};     // hair | obj | usda | ply
   std::vector<std::string> renders{"front", "side"};   // views rendered after a full run
   std::array<double, 2> render_size{800, 800};         // pixels
+  std::optional<std::filesystem::path> occluder;       // OBJ drawn opaque in 3D pictures (the scan, the head)
 };
 
 struct Scene {

@@ -258,6 +258,10 @@ std::vector<SceneKey> build_keys() {
   keys.push_back(number("preguides.max_load", REF(preguides.max_load), "", above(0, 1e6), "preguides",
                         "Largest dimensionless terminal force F·L²/EI the continuation tries. Beyond ≈40 the tip is already within a few degrees of the pull and more load only tightens the bend at the root, while the guides that start from these loads become exponentially sensitive (like exp(√load)) and cost several times more to optimise."));
 
+  keys.push_back(text("preguides.immersion", REF(preguides.immersion), {"tip", "layer"}, "preguides",
+                      "How a pre-guide is bent into the hair: tip, a terminal force normal to its initial axis grown until "
+                      "the tip reaches its depth (the paper); layer, a terminal force and a root couple in that plane "
+                      "fitted so that the whole rod runs at its depth in the layer (thin shells; weightless rods)."));
   keys.push_back(text("guides.start", REF(guides.start), {"warm", "straight"}, "guides",
                       "Start each optimisation from the neighbouring pre-guides' loads (warm) or from a straight rod (straight, the paper)."));
   keys.push_back(integer("guides.samples", REF(guides.samples), "", closed(2, 1024), "guides",
@@ -323,6 +327,9 @@ std::vector<SceneKey> build_keys() {
                            "render", "Views of the final strands rendered to PNG after a full run."));
   keys.push_back(pair("output.render_size", REF(output.render_size), "pixels", closed(16, 8192), "render",
                       "Width and height of rendered pictures."));
+  keys.push_back(optional_path("output.occluder", OPT_REF(output.occluder), "render",
+                               "OBJ mesh in units.length (the scan, or the head) drawn opaque in every 3D picture, so hair "
+                               "behind it is hidden; without it, the scalp closed by a floor across its hairline."));
   return keys;
 }
 

@@ -7,6 +7,7 @@
 #include "core/parallel.h"
 #include <Eigen/LU>
 
+#include "guides/layer_preguide.h"
 #include "rod/rod_jet.h"
 #include "rod/rod_shooting.h"
 
@@ -434,6 +435,14 @@ PreGuide solve_preguide(const RootSet& roots, int i, const Boundary& boundary, c
 PreGuides make_preguides(const RootSet& roots, const Boundary& boundary, const PreguideOptions& options) {
   PreGuides result;
   result.items.resize(roots.size());
+  if (options.immersion == PreguideImmersion::layer && options.material.gravity.isZero(0.0)) {
+    ProgressCounter progress(options.progress);
+    parallel_for(roots.size(), options.threads, [&](int i) {
+      result.items[i] = solve_layer_preguide(roots, i, boundary, options);
+      progress.item_done();
+    });
+    return result;
+  }
   // One shared march per distinct compliance among the pre-guides that can replay one.
   std::vector<PreguideMarch> shared;
   for (int i = 0; i < roots.size(); ++i) {

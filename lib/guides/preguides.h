@@ -16,11 +16,18 @@
 
 namespace hairfit {
 
+// How a pre-guide is bent into the hair: the paper's terminal force normal to the initial axis,
+// grown until the tip is immersed (tip), or a terminal force and a root couple in that plane that
+// keep the whole rod nearest its immersion depth in the layer (layer, guides/layer_preguide.h;
+// weightless rods: under gravity the tip construction is used).
+enum class PreguideImmersion { tip, layer };
+
 struct PreguideOptions {
   HairMaterial material;
   RodDiscretisation rod;
   std::array<double, 2> depth_range{0.15, 0.6};  // share of the local thickness: top of head → lowest roots
   double max_load = 40.0;                         // largest dimensionless terminal force F·L²/EI tried
+  PreguideImmersion immersion = PreguideImmersion::tip;
   Vec3 down{0, -1, 0};
   Vec3 front{0, 0, 1};
   int threads = 1;
@@ -50,7 +57,8 @@ struct PreGuide {
   double thickness = 0.0;     // cm from the root to the volume boundary
   double target_depth = 0.0;  // cm below the volume boundary the tip should reach
   double depth = 0.0;         // cm below the volume boundary the tip reached (−Φ_volume(tip))
-  bool reached = false;       // the tip met its target depth (within 1e-3 of the thickness)
+  bool reached = false;       // the tip met its target depth (tip: within 1e-3 of the thickness;
+                              // layer: its layer coordinate within 0.1 of the target)
   int solves = 0;             // forward integrations with jets (Newton steps) spent
 };
 

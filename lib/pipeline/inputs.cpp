@@ -150,6 +150,10 @@ Inputs load_inputs(const Scene& scene, int threads) {
   if (scene.effects.uses_map("density")) in.density_map = load_grey_map(*scene.maps.density);
   if (scene.effects.uses_map("tilt")) in.tilt_map = load_grey_map(*scene.maps.tilt);
   if (scene.effects.uses_map("length")) in.length_map = load_grey_map(*scene.maps.length);
+  if (scene.output.occluder) {
+    in.occluder = load_obj_mesh(*scene.output.occluder, to_cm).mesh;
+    require_plausible_coordinates(*in.occluder, scene.output.occluder->string(), scene.units.length);
+  }
 
   in.scalp_inside_share = enclose_scalp(scene, in);
   // What later stages would refuse for its size, refused now, before anything is written.

@@ -18,6 +18,7 @@ struct Inputs {
   bool volume_reversed = false;  // the volume faced inward: its triangles were reversed
   double scalp_inside_share = 0.0;  // share of the scalp (one probe per triangle) inside the hull (HairRegion)
   std::optional<GreyMap> density_map, tilt_map, length_map;  // only the maps effects.maps uses
+  std::optional<Mesh> occluder;  // output.occluder in cm, for the pictures only
 };
 
 struct InputsSummary {

@@ -62,6 +62,7 @@ PreguideOptions preguide_options(const Scene& scene, int threads) {
   o.rod = rod_discretisation(scene);
   o.depth_range = scene.preguides.depth_range;
   o.max_load = scene.preguides.max_load;
+  o.immersion = scene.preguides.immersion == "layer" ? PreguideImmersion::layer : PreguideImmersion::tip;
   o.down = scene.units.down;
   o.front = scene.units.front;
   o.threads = threads;

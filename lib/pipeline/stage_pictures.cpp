@@ -4,6 +4,7 @@
 #include <functional>
 
 #include "density/statistics.h"
+#include "field/hair_region.h"
 #include "render/chart_plot.h"
 #include "render/contact_sheet.h"
 #include "render/plot.h"
@@ -184,7 +185,10 @@ Image render_stage(const std::string& stage, const Scene& scene, const Inputs& i
   }
   if (stage == "chart") return chart_picture(values, false, width, height);
   Drawing3D drawing;
-  MeshLayer scalp{&inputs.scalp.mesh};
+  // The head hides the hair behind it: the declared occluder (the scan), else the scalp closed
+  // by a floor across its hairline, the head the fields count.
+  const Mesh head = inputs.occluder ? Mesh{} : closed_head(inputs.scalp.mesh);
+  MeshLayer scalp{inputs.occluder ? &*inputs.occluder : &head};
   MeshLayer volume{&inputs.volume.mesh, MeshStyle::silhouette};
   drawing.meshes = {scalp, volume};
   Polylines lines;
@@ -200,6 +204,18 @@ Image render_stage(const std::string& stage, const Scene& scene, const Inputs& i
     dots.radius = 2.5;
     for (int c = 0; c < values.clusters->size(); ++c) dots.color_ids.push_back(c);
     drawing.points.push_back(dots);
+    // The growth field: at every pre-guide root a 1 cm tick along its growth direction's tangent.
+    const RootSet& ticks = values.preguide_roots->roots;
+    for (int i = 0; i < ticks.size(); ++i) {
+      const Vec3 t = ticks.directions[i] - ticks.directions[i].dot(ticks.normals[i]) * ticks.normals[i];
+      if (t.norm() < 1e-9) continue;
+      const Vec3 base = ticks.positions[i] + 0.05 * ticks.normals[i];
+      lines.push_back({base, base + 1.0 * t.normalized()});
+    }
+    curves.hair_shading = false;
+    curves.color = Color{0.95f, 0.95f, 0.95f};
+    curves.width = 1.5;
+    drawing.curves.push_back(curves);
     drawing.title = "roots: " + std::to_string(values.roots->pores.size()) + " pores, " +
                     std::to_string(values.clusters->size()) + " guides";
   } else if (stage == "preguides") {

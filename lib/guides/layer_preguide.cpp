@@ -1,0 +1,131 @@
+#include "guides/layer_preguide.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include <Eigen/Dense>
+
+namespace hairfit {
+
+namespace {
+
+constexpr double kOutsidePenalty = 4.0;  // weight of an excursion below kMargin or above 1 − kMargin in λ
+constexpr double kMargin = 0.15;         // the share of the layer kept clear at either side
+constexpr double kLoadRegularisation = 1e-3;  // prefers the smaller load where the layer leaves a choice
+constexpr int kIterations = 40;
+
+double smoothstep(double x) {
+  x = std::clamp(x, 0.0, 1.0);
+  return x * x * (3.0 - 2.0 * x);
+}
+
+struct LayerFit {
+  const RodModel* model;
+  const PreguideOptions* options;
+  const Boundary* boundary;
+  Vec3 root, bend, binormal;
+  double length;
+  double target;  // λ*
+  double floor;   // cm
+
+  FibreShape shape(const Eigen::Vector2d& x) const {
+    return fibre_shape(*model, root, length, options->rod, x[0] * bend, x[1] * binormal);
+  }
+
+  // Residuals: per node after the root, the weighted miss of λ and the two excursion penalties,
+  // then the regularisation of the load.
+  Eigen::VectorXd residuals(const FibreShape& s, const Eigen::Vector2d& x) const {
+    const int n = static_cast<int>(s.nodes.size());
+    Eigen::VectorXd r(3 * (n - 1) + 2);
+    for (int k = 1; k < n; ++k) {
+      const double along = static_cast<double>(k) / (n - 1);
+      const double lambda = layer_coordinate(*boundary, s.nodes[k], floor);
+      const double w = smoothstep(along / 0.25) / std::sqrt(static_cast<double>(n - 1));
+      r[3 * (k - 1)] = w * (lambda - target);
+      r[3 * (k - 1) + 1] = kOutsidePenalty * std::max(0.0, lambda - (1.0 - kMargin));
+      r[3 * (k - 1) + 2] = kOutsidePenalty * std::max(0.0, kMargin - lambda) * smoothstep(along / 0.25);
+    }
+    r[3 * (n - 1)] = kLoadRegularisation * x[0];
+    r[3 * (n - 1) + 1] = kLoadRegularisation * x[1];
+    return r;
+  }
+};
+
+}  // namespace
+
+double layer_coordinate(const Boundary& b, const Vec3& p, double scale) {
+  const double scalp = b.scalp->value(p), volume = b.volume->value(p);
+  if (volume > 0.0) return 1.0 + volume / scale;  // beyond the hull
+  if (scalp < 0.0) return scalp / scale;          // in the head
+  return scalp / std::max(scalp - volume, 1e-12);
+}
+
+PreGuide solve_layer_preguide(const RootSet& roots, int i, const Boundary& boundary, const PreguideOptions& o) {
+  PreGuide g;
+  g.root = roots.positions[i];
+  g.normal = roots.normals[i];
+  g.direction = roots.directions[i];
+  g.length = roots.lengths[i];
+  g.height = roots.heights[i];
+  const Vec3 bend = bending_direction(g.normal, g.direction, o.down, o.front);
+  const Mat3 frame = root_frame(g.direction, bend);
+  const RodModel model = make_rod_model(hair_rod(g.length, o.material), RodRoot{g.root, frame});
+
+  g.thickness = std::max(0.0, -boundary.volume->value(g.root));
+  const double share = o.depth_range[1] + (o.depth_range[0] - o.depth_range[1]) * std::clamp(g.height, 0.0, 1.0);
+  g.target_depth = share * g.thickness;
+  const double floor = std::max(g.thickness, 0.5 * boundary.volume->voxel());
+  const LayerFit fit{&model, &o, &boundary, g.root, bend, frame.col(1), g.length, 1.0 - share, floor};
+
+  // Levenberg–Marquardt on (P, μ) with forward-difference Jacobians, from the straight rod.
+  Eigen::Vector2d x = Eigen::Vector2d::Zero();
+  FibreShape shape = fit.shape(x);
+  Eigen::VectorXd r = fit.residuals(shape, x);
+  double cost = r.squaredNorm(), damping = 1e-3;
+  int solves = 1;
+  for (int it = 0; it < kIterations; ++it) {
+    Eigen::MatrixXd jacobian(r.size(), 2);
+    for (int a = 0; a < 2; ++a) {
+      Eigen::Vector2d step = x;
+      const double h = 1e-5 * (1.0 + std::fabs(x[a]));
+      step[a] += h;
+      jacobian.col(a) = (fit.residuals(fit.shape(step), step) - r) / h;
+      ++solves;
+    }
+    const Eigen::Matrix2d normal = jacobian.transpose() * jacobian;
+    const Eigen::Vector2d gradient = jacobian.transpose() * r;
+    if (gradient.norm() <= 1e-10 * (1.0 + cost)) break;
+    bool improved = false;
+    while (damping < 1e8) {
+      Eigen::Matrix2d damped = normal;
+      damped.diagonal() += damping * normal.diagonal().cwiseMax(1e-12);
+      const Eigen::Vector2d delta = damped.ldlt().solve(-gradient);
+      if (!delta.allFinite()) break;
+      const Eigen::Vector2d trial = x + delta;
+      const FibreShape trial_shape = fit.shape(trial);
+      ++solves;
+      const Eigen::VectorXd trial_r = fit.residuals(trial_shape, trial);
+      const double trial_cost = trial_r.squaredNorm();
+      if (std::isfinite(trial_cost) && trial_cost < cost) {
+        const double decrease = cost - trial_cost;
+        x = trial, shape = trial_shape, r = trial_r, cost = trial_cost;
+        damping = std::max(damping / 3.0, 1e-9);
+        improved = true;
+        if (decrease <= 1e-9 * cost) it = kIterations;  // converged
+        break;
+      }
+      damping *= 4.0;
+    }
+    if (!improved) break;
+  }
+  g.force = x[0] * bend;
+  g.root_moment = x[1] * frame.col(1);
+  g.shape = std::move(shape);
+  g.depth = -boundary.volume->value(g.shape.nodes.back());
+  g.reached = std::fabs(layer_coordinate(boundary, g.shape.nodes.back(), floor) - fit.target) <= 0.1;
+  g.solves = solves;
+  return g;
+}
+
+}  // namespace hairfit
