@@ -27,7 +27,7 @@ struct LayerFit {
   Vec3 root, bend, binormal;
   double length;
   double target;  // λ*
-  double floor;   // cm
+  double scale;  // cm: the layer coordinate's unit outside the layer (layer_coordinate)
 
   FibreShape shape(const Eigen::Vector2d& x) const {
     return fibre_shape(*model, root, length, options->rod, x[0] * bend, x[1] * binormal);
@@ -40,7 +40,7 @@ struct LayerFit {
     Eigen::VectorXd r(3 * (n - 1) + 2);
     for (int k = 1; k < n; ++k) {
       const double along = static_cast<double>(k) / (n - 1);
-      const double lambda = layer_coordinate(*boundary, s.nodes[k], floor);
+      const double lambda = layer_coordinate(*boundary, s.nodes[k], scale);
       const double w = smoothstep(along / 0.25) / std::sqrt(static_cast<double>(n - 1));
       r[3 * (k - 1)] = w * (lambda - target);
       r[3 * (k - 1) + 1] = kOutsidePenalty * std::max(0.0, lambda - (1.0 - kMargin));
@@ -61,8 +61,18 @@ double layer_coordinate(const Boundary& b, const Vec3& p, double scale) {
   return scalp / std::max(scalp - volume, 1e-12);
 }
 
-PreGuide solve_layer_preguide(const RootSet& roots, int i, const Boundary& boundary, const PreguideOptions& o) {
+namespace {
+
+// The pre-guide's root, its rod and the fit of its load.
+struct LayerProblem {
   PreGuide g;
+  RodModel model;
+  LayerFit fit;
+};
+
+LayerProblem layer_problem(const RootSet& roots, int i, const Boundary& boundary, const PreguideOptions& o) {
+  LayerProblem p;
+  PreGuide& g = p.g;
   g.root = roots.positions[i];
   g.normal = roots.normals[i];
   g.direction = roots.directions[i];
@@ -70,13 +80,33 @@ PreGuide solve_layer_preguide(const RootSet& roots, int i, const Boundary& bound
   g.height = roots.heights[i];
   const Vec3 bend = bending_direction(g.normal, g.direction, o.down, o.front);
   const Mat3 frame = root_frame(g.direction, bend);
-  const RodModel model = make_rod_model(hair_rod(g.length, o.material), RodRoot{g.root, frame});
-
+  p.model = make_rod_model(hair_rod(g.length, o.material), RodRoot{g.root, frame});
   g.thickness = std::max(0.0, -boundary.volume->value(g.root));
   const double share = o.depth_range[1] + (o.depth_range[0] - o.depth_range[1]) * std::clamp(g.height, 0.0, 1.0);
   g.target_depth = share * g.thickness;
-  const double floor = std::max(g.thickness, 0.5 * boundary.volume->voxel());
-  const LayerFit fit{&model, &o, &boundary, g.root, bend, frame.col(1), g.length, 1.0 - share, floor};
+  const double scale = std::max(g.thickness, 0.5 * boundary.volume->voxel());
+  p.fit = LayerFit{nullptr, &o, &boundary, g.root, bend, frame.col(1), g.length, 1.0 - share, scale};
+  return p;
+}
+
+}  // namespace
+
+double layer_preguide_cost(const RootSet& roots, int i, const Boundary& boundary, const PreguideOptions& o, double force,
+                           double couple) {
+  LayerProblem p = layer_problem(roots, i, boundary, o);
+  p.fit.model = &p.model;
+  const Eigen::Vector2d x(force, couple);
+  return p.fit.residuals(p.fit.shape(x), x).squaredNorm();
+}
+
+PreGuide solve_layer_preguide(const RootSet& roots, int i, const Boundary& boundary, const PreguideOptions& o) {
+  LayerProblem problem = layer_problem(roots, i, boundary, o);
+  problem.fit.model = &problem.model;
+  PreGuide& g = problem.g;
+  const LayerFit& fit = problem.fit;
+  const Vec3& bend = fit.bend;
+  const Vec3& binormal = fit.binormal;
+  const double scale = fit.scale;
 
   // Levenberg–Marquardt on (P, μ) with forward-difference Jacobians, from the straight rod.
   Eigen::Vector2d x = Eigen::Vector2d::Zero();
@@ -120,12 +150,12 @@ PreGuide solve_layer_preguide(const RootSet& roots, int i, const Boundary& bound
     if (!improved) break;
   }
   g.force = x[0] * bend;
-  g.root_moment = x[1] * frame.col(1);
+  g.root_moment = x[1] * binormal;
   g.shape = std::move(shape);
   g.depth = -boundary.volume->value(g.shape.nodes.back());
-  g.reached = std::fabs(layer_coordinate(boundary, g.shape.nodes.back(), floor) - fit.target) <= 0.1;
+  g.reached = std::fabs(layer_coordinate(boundary, g.shape.nodes.back(), scale) - fit.target) <= 0.1;
   g.solves = solves;
-  return g;
+  return std::move(problem.g);
 }
 
 }  // namespace hairfit

@@ -27,4 +27,9 @@ double layer_coordinate(const Boundary& boundary, const Vec3& p, double scale);
 // pipeline uses the paper's construction.
 PreGuide solve_layer_preguide(const RootSet& roots, int i, const Boundary& boundary, const PreguideOptions& options);
 
+// The cost the fit minimises for root i at terminal force P = `force` along d1 and root couple
+// μ = `couple` along d2 (dimensionless), for checking the solution.
+double layer_preguide_cost(const RootSet& roots, int i, const Boundary& boundary, const PreguideOptions& options,
+                           double force, double couple);
+
 }  // namespace hairfit
