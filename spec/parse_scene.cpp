@@ -106,6 +106,7 @@ class SceneParser {
         error({0, 0}, "required key " + k.name + " is missing" +
                           (k.name == "format" ? " (add format = \"" + std::string(kSceneFormat) + "\" at the top)" : ""));
     if (diagnostics_.empty()) apply_preset();
+    if (diagnostics_.empty()) apply_shell_defaults();
     if (diagnostics_.empty()) check_consistency();
     if (!diagnostics_.empty()) throw InputError(diagnostics_);
     if (scene_.output.dir.empty()) scene_.output.dir = file_.parent_path() / "out";
@@ -176,6 +177,22 @@ class SceneParser {
       if (p.name == scene_.preset)
         for (const auto& [key, value] : p.values)
           if (!scene_.locations.count(key)) find_key(key)->store(scene_, {value}, {});
+  }
+
+  // Hair that suits its shell: with neither hair.length nor hair.tilt given (nor their maps), the
+  // run derives them from the shell, and what the file leaves unset of the thin-shell machinery
+  // takes the values made for it: growth toward the thicker layer along one smooth field,
+  // pre-guides and guides kept in the layer.
+  void apply_shell_defaults() {
+    const bool given = scene_.locations.count("hair.length") || scene_.locations.count("hair.tilt") ||
+                       scene_.effects.uses_map("length") || scene_.effects.uses_map("tilt");
+    if (given) return;
+    scene_.hair.from_shell = true;
+    for (const auto& [key, value] : {std::pair<const char*, const char*>{"hair.tilt_toward", "thicker"},
+                                     {"hair.flow", "field"},
+                                     {"preguides.immersion", "layer"},
+                                     {"guides.boundary", "layer"}})
+      if (!scene_.locations.count(key)) find_key(key)->store(scene_, {}, {value});
   }
 
   const SceneKey* find_key(const std::string& name) const {

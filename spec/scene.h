@@ -54,8 +54,12 @@ struct SceneHair {
   double tilt = 0.0;                        // degrees from the normal toward tilt_toward, without tilt map
   std::array<double, 2> tilt_range{0.0, 90.0};     // degrees, tilt map black → white
   std::string tilt_toward = "down";         // down | thicker (up the hair layer's thickness gradient)
+  // Set by the parser when the file leaves hair.length and hair.tilt unset (and no length or tilt
+  // map is used): the run derives both from the shell (scalp/shell_hair.h), and the keys of the
+  // thin-shell machinery the file does not set take their shell defaults (apply_shell_defaults).
+  bool from_shell = false;
   std::string flow = "local";               // field (one smooth growth field) | local (each root's own)
-  double flow_smoothing = 2.0;              // cm: the growth field averages its guidance over this
+  double flow_smoothing = 6.0;              // cm: the growth field averages its guidance over this
   double youngs_modulus = 3.89e10;          // E, dyn/cm² (paper §3.1)
   double shear_modulus = 0.89e10;           // G, dyn/cm²
   double cross_section = 1.5e-5;            // A, cm² (circular: I = A²/4π, J = 2I)

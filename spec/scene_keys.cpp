@@ -272,8 +272,9 @@ std::vector<SceneKey> build_keys() {
                          "Levenberg–Marquardt iteration cap per guide; a guide stopped by it is flagged."));
   keys.push_back(number("guides.tolerance", REF(guides.tolerance), "", above(0, 1), "guides",
                         "Relative decrease of the cost below which a guide counts as converged."));
-  keys.push_back(text("guides.boundary", REF(guides.boundary), {"smooth", "paper"}, "guides",
-                      "Boundary penalty F3: the C¹ form (smooth) or the paper's eq. 9 exactly (paper)."));
+  keys.push_back(text("guides.boundary", REF(guides.boundary), {"smooth", "paper", "layer"}, "guides",
+                      "Boundary penalty F3: the C¹ form (smooth), the paper's eq. 9 exactly (paper), or the C¹ form "
+                      "with its ramp narrowed to a quarter of the local layer thickness (layer: thin shells)."));
   keys.push_back(number("guides.outside_penalty", REF(guides.outside_penalty), "cm", closed(0, 1e6), "guides",
                         "c_d of eq. 9: extra cost of a sample outside the acceptable region."));
   keys.push_back(number("guides.boundary_width", REF(guides.boundary_width), "cm", above(0, 100), "guides",

@@ -18,6 +18,9 @@ enum class BoundaryForm {
   smooth,  // flat deep inside, the step of c_d smoothed over the last boundary_width inside the
            // surface, a Huber ramp outside: C¹, what the optimiser should see
   paper,   // eq. 9 exactly: |d| inside, c_d + |d| outside (for comparison)
+  layer,   // the ramp narrowed to a quarter of the local layer thickness Φ_S − Φ_V where that is
+           // thinner than 4·boundary_width, rising as x² and on beyond the surface with the slope
+           // it reaches: a thin shell keeps a penalty-free middle and no flat step at its surfaces
 };
 
 struct GuideWeights {

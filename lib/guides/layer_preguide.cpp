@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <vector>
 #include <cmath>
 
 #include <Eigen/Dense>
@@ -20,6 +21,8 @@ double smoothstep(double x) {
   return x * x * (3.0 - 2.0 * x);
 }
 
+using Load = Eigen::Matrix<double, 6, 1>;
+
 struct LayerFit {
   const RodModel* model;
   const PreguideOptions* options;
@@ -29,15 +32,17 @@ struct LayerFit {
   double target;  // λ*
   double scale;  // cm: the layer coordinate's unit outside the layer (layer_coordinate)
 
-  FibreShape shape(const Eigen::Vector2d& x) const {
-    return fibre_shape(*model, root, length, options->rod, x[0] * bend, x[1] * binormal);
+  // x: the load in the root frame (d1, d2, d3): terminal force x[0..2], root couple x[3..5].
+  FibreShape shape(const Load& x) const {
+    const Mat3& frame = model->root_frame;
+    return fibre_shape(*model, root, length, options->rod, frame * x.head<3>(), frame * x.tail<3>());
   }
 
   // Residuals: per node after the root, the weighted miss of λ and the two excursion penalties,
   // then the regularisation of the load.
-  Eigen::VectorXd residuals(const FibreShape& s, const Eigen::Vector2d& x) const {
+  Eigen::VectorXd residuals(const FibreShape& s, const Load& x) const {
     const int n = static_cast<int>(s.nodes.size());
-    Eigen::VectorXd r(3 * (n - 1) + 2);
+    Eigen::VectorXd r(3 * (n - 1) + 6);
     for (int k = 1; k < n; ++k) {
       const double along = static_cast<double>(k) / (n - 1);
       const double lambda = layer_coordinate(*boundary, s.nodes[k], scale);
@@ -46,8 +51,7 @@ struct LayerFit {
       r[3 * (k - 1) + 1] = kOutsidePenalty * std::max(0.0, lambda - (1.0 - kMargin));
       r[3 * (k - 1) + 2] = kOutsidePenalty * std::max(0.0, kMargin - lambda) * smoothstep(along / 0.25);
     }
-    r[3 * (n - 1)] = kLoadRegularisation * x[0];
-    r[3 * (n - 1) + 1] = kLoadRegularisation * x[1];
+    r.tail<6>() = kLoadRegularisation * x;
     return r;
   }
 };
@@ -95,7 +99,8 @@ double layer_preguide_cost(const RootSet& roots, int i, const Boundary& boundary
                            double couple) {
   LayerProblem p = layer_problem(roots, i, boundary, o);
   p.fit.model = &p.model;
-  const Eigen::Vector2d x(force, couple);
+  Load x = Load::Zero();
+  x[0] = force, x[4] = couple;
   return p.fit.residuals(p.fit.shape(x), x).squaredNorm();
 }
 
@@ -104,53 +109,58 @@ PreGuide solve_layer_preguide(const RootSet& roots, int i, const Boundary& bound
   problem.fit.model = &problem.model;
   PreGuide& g = problem.g;
   const LayerFit& fit = problem.fit;
-  const Vec3& bend = fit.bend;
-  const Vec3& binormal = fit.binormal;
   const double scale = fit.scale;
 
-  // Levenberg–Marquardt on (P, μ) with forward-difference Jacobians, from the straight rod.
-  Eigen::Vector2d x = Eigen::Vector2d::Zero();
+  // Levenberg–Marquardt with forward-difference Jacobians: first on (P, μ) from the straight rod,
+  // then on all six load components from there, which lets the rod follow a layer that also
+  // curves sideways.
+  Load x = Load::Zero();
   FibreShape shape = fit.shape(x);
   Eigen::VectorXd r = fit.residuals(shape, x);
-  double cost = r.squaredNorm(), damping = 1e-3;
+  double cost = r.squaredNorm();
   int solves = 1;
-  for (int it = 0; it < kIterations; ++it) {
-    Eigen::MatrixXd jacobian(r.size(), 2);
-    for (int a = 0; a < 2; ++a) {
-      Eigen::Vector2d step = x;
-      const double h = 1e-5 * (1.0 + std::fabs(x[a]));
-      step[a] += h;
-      jacobian.col(a) = (fit.residuals(fit.shape(step), step) - r) / h;
-      ++solves;
-    }
-    const Eigen::Matrix2d normal = jacobian.transpose() * jacobian;
-    const Eigen::Vector2d gradient = jacobian.transpose() * r;
-    if (gradient.norm() <= 1e-10 * (1.0 + cost)) break;
-    bool improved = false;
-    while (damping < 1e8) {
-      Eigen::Matrix2d damped = normal;
-      damped.diagonal() += damping * normal.diagonal().cwiseMax(1e-12);
-      const Eigen::Vector2d delta = damped.ldlt().solve(-gradient);
-      if (!delta.allFinite()) break;
-      const Eigen::Vector2d trial = x + delta;
-      const FibreShape trial_shape = fit.shape(trial);
-      ++solves;
-      const Eigen::VectorXd trial_r = fit.residuals(trial_shape, trial);
-      const double trial_cost = trial_r.squaredNorm();
-      if (std::isfinite(trial_cost) && trial_cost < cost) {
-        const double decrease = cost - trial_cost;
-        x = trial, shape = trial_shape, r = trial_r, cost = trial_cost;
-        damping = std::max(damping / 3.0, 1e-9);
-        improved = true;
-        if (decrease <= 1e-9 * cost) it = kIterations;  // converged
-        break;
+  for (const std::vector<int>& free : {std::vector<int>{0, 4}}) {
+    const int m = static_cast<int>(free.size());
+    double damping = 1e-3;
+    for (int it = 0; it < kIterations; ++it) {
+      Eigen::MatrixXd jacobian(r.size(), m);
+      for (int a = 0; a < m; ++a) {
+        Load step = x;
+        const double h = 1e-5 * (1.0 + std::fabs(x[free[a]]));
+        step[free[a]] += h;
+        jacobian.col(a) = (fit.residuals(fit.shape(step), step) - r) / h;
+        ++solves;
       }
-      damping *= 4.0;
+      const Eigen::MatrixXd normal = jacobian.transpose() * jacobian;
+      const Eigen::VectorXd gradient = jacobian.transpose() * r;
+      if (gradient.norm() <= 1e-10 * (1.0 + cost)) break;
+      bool improved = false;
+      while (damping < 1e8) {
+        Eigen::MatrixXd damped = normal;
+        damped.diagonal() += damping * normal.diagonal().cwiseMax(1e-12);
+        const Eigen::VectorXd delta = damped.ldlt().solve(-gradient);
+        if (!delta.allFinite()) break;
+        Load trial = x;
+        for (int a = 0; a < m; ++a) trial[free[a]] += delta[a];
+        const FibreShape trial_shape = fit.shape(trial);
+        ++solves;
+        const Eigen::VectorXd trial_r = fit.residuals(trial_shape, trial);
+        const double trial_cost = trial_r.squaredNorm();
+        if (std::isfinite(trial_cost) && trial_cost < cost) {
+          const double decrease = cost - trial_cost;
+          x = trial, shape = trial_shape, r = trial_r, cost = trial_cost;
+          damping = std::max(damping / 3.0, 1e-9);
+          improved = true;
+          if (decrease <= 1e-9 * cost) it = kIterations;  // converged
+          break;
+        }
+        damping *= 4.0;
+      }
+      if (!improved) break;
     }
-    if (!improved) break;
   }
-  g.force = x[0] * bend;
-  g.root_moment = x[1] * binormal;
+  g.force = problem.model.root_frame * x.head<3>();
+  g.root_moment = problem.model.root_frame * x.tail<3>();
   g.shape = std::move(shape);
   g.depth = -boundary.volume->value(g.shape.nodes.back());
   g.reached = std::fabs(layer_coordinate(boundary, g.shape.nodes.back(), scale) - fit.target) <= 0.1;

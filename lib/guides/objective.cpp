@@ -73,17 +73,32 @@ T outside_step(const T& u, double h) {
 // w cm inside the surface (S the C¹ smoothstep), so the full c_d applies at the surface itself and
 // the optimiser feels it coming; beyond the surface the C¹ Huber ramp H grows like u.
 // Paper form: √(|u| + c_d·[u > 0]), eq. 9 exactly (not differentiable at u = 0).
+// Layer form: w replaced by min(w, ¼·thickness), thickness = Φ_S − Φ_V at the sample (−(u_S + u_V),
+// the sum of both surfaces' u negated), floored at a hundredth of w; √c_d·x² over the ramp and the
+// line of the same slope beyond (C¹, strictly increasing from the ramp on: the smooth form's
+// steps are flat at the surface, where a thin shell's samples sit).
 template <typename T>
-T boundary_residual(const T& u, BoundaryForm form, double c_d, double w) {
+T boundary_residual(const T& u, BoundaryForm form, double c_d, double w_cm, const T& both) {
   using std::sqrt;
   if (form == BoundaryForm::paper) {
     const T cost = (u > T(0) ? u + T(c_d) : -u) + T(1e-12);
     return sqrt(cost);
   }
-  if (!(u > T(-w))) return T(0);
-  const T ramp = u <= T(0) ? T(0) : (u >= T(w) ? u - T(0.5 * w) : u * u / T(2 * w));
+  T w = T(w_cm);
+  if (form == BoundaryForm::layer) {
+    const T quarter = T(-0.25) * both;
+    if (quarter < w) w = quarter > T(0.01 * w_cm) ? quarter : T(0.01 * w_cm);
+    // √c_d·x² over the ramp, then on with the slope it reaches: strictly increasing through the
+    // surface, so a sample just inside or just beyond it is still pushed back.
+    if (!(u > -w)) return T(0);
+    const T x = (u + w) / w;
+    if (u <= T(0)) return T(std::sqrt(c_d)) * x * x;
+    return T(std::sqrt(c_d)) * (T(1) + T(2) * u / w);
+  }
+  if (!(u > -w)) return T(0);
+  const T ramp = u <= T(0) ? T(0) : (u >= w ? u - T(0.5) * w : u * u / (T(2) * w));
   if (u >= T(0)) return T(std::sqrt(c_d)) + ramp;
-  const T x = (u + T(w)) / T(w);
+  const T x = (u + w) / w;
   return T(std::sqrt(c_d)) * x * x * (T(3) - T(2) * x);
 }
 
@@ -247,8 +262,8 @@ class GuideCost {
       const T beyond_scalp = -field_at(*t_.boundary->scalp, p);
       const T beyond_volume = field_at(*t_.boundary->volume, p);
       const T scale = T(std::sqrt(w.boundary * t_.sample_weights[k]));
-      r[2 * k] = scale * boundary_residual(beyond_scalp, t_.form, t_.outside_penalty, t_.boundary_width);
-      r[2 * k + 1] = scale * boundary_residual(beyond_volume, t_.form, t_.outside_penalty, t_.boundary_width);
+      r[2 * k] = scale * boundary_residual(beyond_scalp, t_.form, t_.outside_penalty, t_.boundary_width, beyond_scalp + beyond_volume);
+      r[2 * k + 1] = scale * boundary_residual(beyond_volume, t_.form, t_.outside_penalty, t_.boundary_width, beyond_scalp + beyond_volume);
       if (!t_.density) continue;
       T* out = density_r + per_sample * k;
       if (d.model == GuideDensityModel::continuous) {

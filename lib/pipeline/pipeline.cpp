@@ -22,6 +22,7 @@
 #include "pipeline/stage_options.h"
 #include "pipeline/stage_plan.h"
 #include "scalp/scalp_outputs.h"
+#include "scalp/shell_hair.h"
 #include "strands/coverage.h"
 
 namespace hairfit {
@@ -66,7 +67,7 @@ HeadExit scalp_exit(const DistanceField& scalp) {
       value_at_p = std::numeric_limits<double>::infinity();
       return p;
     }
-    constexpr double kClearance = 0.05;  // cm
+    constexpr double kClearance = kHeadExitClearance;
     value_at_p = scalp.value(p);  // = value_and_gradient(p).value; the gradient only when it is near
     if (!(value_at_p < kClearance)) return p;
     Vec3 q = p;
@@ -353,6 +354,18 @@ class Runner {
     StageValues& v = result_.values;
     RootOptions o = root_options(scene_, options_.threads);
     if (o.tilt_toward == TiltToward::thicker) o.thickness = layer_thickness(*v.volume_field);
+    if (scene_.hair.from_shell) {  // hair that suits its shell: length and tilt from the layer
+      const ShellHair shell = shell_hair(*v.chart, layer_thickness(*v.volume_field), options_.threads);
+      if (shell.layer_ends) {
+        o.length = shell.length;
+        o.tilt = shell.tilt;
+      }
+      stage.add("hair_from_shell", shell.layer_ends);
+      stage.add("shell_thickness_cm", shell.thickness);
+      stage.add("shell_reach_cm", shell.reach);
+      stage.add("hair_length_cm", o.length);
+      stage.add("hair_tilt_degrees", o.tilt);
+    }
     ScalpRoots made = make_scalp_roots(*v.chart, maps(), o);
     v.roots = std::make_shared<const Roots>(std::move(made.roots));
     v.clusters = std::make_shared<const Clusters>(std::move(made.clusters));

@@ -77,7 +77,9 @@ GuideOptions guide_options(const Scene& scene, int threads) {
   o.neighbours = scene.guides.neighbours;
   o.max_iterations = scene.guides.max_iterations;
   o.tolerance = scene.guides.tolerance;
-  o.boundary = scene.guides.boundary == "paper" ? BoundaryForm::paper : BoundaryForm::smooth;
+  o.boundary = scene.guides.boundary == "paper"   ? BoundaryForm::paper
+               : scene.guides.boundary == "layer" ? BoundaryForm::layer
+                                                  : BoundaryForm::smooth;
   o.outside_penalty = scene.guides.outside_penalty;
   o.boundary_width = scene.guides.boundary_width;
   o.weights = GuideWeights{scene.guides.weights.direction, scene.guides.weights.similarity,

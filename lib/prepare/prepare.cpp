@@ -9,6 +9,7 @@
 #include "io/atomic_file.h"
 #include "io/obj_mesh.h"
 #include "prepare/surface_checks.h"
+#include "scalp/shell_hair.h"
 #include "prepare/weld.h"
 #include "spec/scene.h"
 
@@ -197,10 +198,10 @@ Prepared prepare_scan(const Mesh& raw_scan, const std::vector<Vec3>& colors, con
 }
 
 PreparedHair prepared_hair(const Prepared& p, const PrepareOptions& o) {
+  const ShellHair shell = hair_for_shell(o.scalp.crown_thickness, p.scalp.hairline_reach);
   PreparedHair hair;
-  const double reach = std::max(p.scalp.hairline_reach, 1e-3);
-  hair.tilt = std::round(90.0 - std::atan(o.scalp.crown_thickness / reach) * 180.0 / M_PI);
-  hair.length = std::max(0.5, std::round(2.0 * (2.0 / 3.0) * reach) / 2.0);
+  hair.tilt = shell.tilt;
+  hair.length = shell.length;
   return hair;
 }
 
@@ -230,7 +231,7 @@ std::string prepared_scene_text(const Prepared& p, const std::string& scan_name,
       "# under bumps), and no point of it farther than %.3g cm from the hairline.\n"
       "[hair]\n"
       "tilt_toward = \"thicker\"      # at the hairline the normal leaves the hull: grow into the hair mass\n"
-      "tilt = %.0f                    # 90° − atan(%.3g cm / %.3g cm): rising no faster than the layer can hold\n"
+      "tilt = %.0f                    # 90° − atan(%.3g cm / %.3g cm), at most 80°: rising no faster than the layer can hold\n"
       "length = %.1f                # cm, ⅔ of that reach: how far a root lies on average from the innermost point\n",
       scan_name.c_str(), o.selection.describe().c_str(), o.scalp.crown_thickness, p.scalp.ramp_length, kSceneFormat,
       p.scale_to_cm, toml_vector(-p.up).c_str(), p.up_how.c_str(), toml_vector(p.front).c_str(), p.front_how.c_str(),

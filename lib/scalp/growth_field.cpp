@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <queue>
 
 #include "core/parallel.h"
 
@@ -31,36 +33,99 @@ Vec3 growth_guidance(const Vec3& normal, const Vec3& thickness_gradient, const R
   return w * (g / slope) + (1.0 - w) * sure_of_down * toward_down;
 }
 
+namespace {
+
+// The surface gradient of a piecewise-linear function with values f at the vertices,
+// ∇f = Σ_k f_k (N × e_k) / |N|² per triangle (N = (p1 − p0) × (p2 − p0), e_k the edge opposite
+// corner k; either winding gives the same), averaged at each vertex by area.
+std::vector<Vec3> vertex_gradients(const Mesh& mesh, const std::vector<double>& f) {
+  const int n = static_cast<int>(mesh.positions.size());
+  std::vector<Vec3> gradient(n, Vec3::Zero());
+  std::vector<double> weight(n, 0.0);
+  for (const Vec3i& t : mesh.triangles) {
+    const Vec3 p[3] = {mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]};
+    const Vec3 normal = (p[1] - p[0]).cross(p[2] - p[0]);
+    const double n2 = normal.squaredNorm();
+    if (!(n2 > 0.0)) continue;
+    Vec3 g = Vec3::Zero();
+    for (int k = 0; k < 3; ++k) g += f[t[k]] * normal.cross(p[(k + 2) % 3] - p[(k + 1) % 3]);
+    g /= n2;
+    const double area = 0.5 * std::sqrt(n2);
+    for (int k = 0; k < 3; ++k) {
+      gradient[t[k]] += area * g;
+      weight[t[k]] += area;
+    }
+  }
+  for (int i = 0; i < n; ++i)
+    if (weight[i] > 0.0) gradient[i] /= weight[i];
+  return gradient;
+}
+
+}  // namespace
+
+std::vector<double> layer_end_distance(const ScalpChart& ch, const std::vector<double>& thickness,
+                                       const ThicknessField& field, double probe) {
+  const Mesh& mesh = ch.mesh;
+  const int n = static_cast<int>(mesh.positions.size());
+  std::vector<char> end(n, 0);
+  for (int i = 0; i < n; ++i) end[i] = !(thickness[i] > 0.0);
+  const std::vector<std::vector<int>> neighbours = vertex_neighbours(mesh);
+  const int loop = static_cast<int>(ch.boundary.size());
+  for (int k = 0; k < loop; ++k) {
+    const int v = ch.boundary[k];
+    const Vec3& p = mesh.positions[v];
+    const Vec3& normal = ch.vertex_normals[v];
+    const Vec3 along = mesh.positions[ch.boundary[(k + 1) % loop]] - mesh.positions[ch.boundary[(k + loop - 1) % loop]];
+    Vec3 inward = Vec3::Zero();
+    for (int j : neighbours[v]) inward += mesh.positions[j];
+    inward = inward / std::max<std::size_t>(1, neighbours[v].size()) - p;
+    Vec3 out = -(inward - inward.dot(normal) * normal);
+    if (along.norm() > 0.0) out -= out.dot(along.normalized()) * along.normalized();
+    if (!(out.norm() > 1e-12)) continue;
+    out.normalize();
+    // Just beyond the hairline, a little off the skin: outside the hull, the layer ends here.
+    if (!(field(p + probe * out + 0.25 * probe * normal).value > 0.0)) end[v] = 1;
+  }
+  // Multi-source Dijkstra along the edges (lengths in cm), deterministic: ties by vertex index.
+  std::vector<double> distance(n, std::numeric_limits<double>::infinity());
+  using Item = std::pair<double, int>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+  for (int i = 0; i < n; ++i)
+    if (end[i]) queue.push({distance[i] = 0.0, i});
+  while (!queue.empty()) {
+    const auto [d, i] = queue.top();
+    queue.pop();
+    if (d > distance[i]) continue;
+    for (int j : neighbours[i]) {
+      const double via = d + (mesh.positions[j] - mesh.positions[i]).norm();
+      if (via < distance[j]) queue.push({distance[j] = via, j});
+    }
+  }
+  return distance;
+}
+
 DirectionField make_growth_field(const ScalpChart& ch, const RootOptions& o) {
   const Mesh& mesh = ch.mesh;
   const int n = static_cast<int>(mesh.positions.size());
   std::vector<double> thickness(n, 0.0);
   if (o.tilt_toward == TiltToward::thicker)
     parallel_for(n, o.threads, [&](int i) { thickness[i] = o.thickness(mesh.positions[i]).value; });
-  // The surface gradient of the piecewise-linear thickness, ∇T = Σ_k T_k (N × e_k) / |N|² with
-  // N = (p1 − p0) × (p2 − p0) and e_k the edge opposite corner k (either winding gives the same),
-  // averaged at the vertices by area.
-  std::vector<Vec3> gradient(n, Vec3::Zero());
-  std::vector<double> weight(n, 0.0);
-  if (o.tilt_toward == TiltToward::thicker)
-    for (const Vec3i& t : mesh.triangles) {
-      const Vec3 p[3] = {mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]};
-      const Vec3 normal = (p[1] - p[0]).cross(p[2] - p[0]);
-      const double n2 = normal.squaredNorm();
-      if (!(n2 > 0.0)) continue;
-      Vec3 g = Vec3::Zero();
-      for (int k = 0; k < 3; ++k) g += thickness[t[k]] * normal.cross(p[(k + 2) % 3] - p[(k + 1) % 3]);
-      g /= n2;
-      const double area = 0.5 * std::sqrt(n2);
-      for (int k = 0; k < 3; ++k) {
-        gradient[t[k]] += area * g;
-        weight[t[k]] += area;
-      }
-    }
   std::vector<Vec3> guidance(n);
-  for (int i = 0; i < n; ++i) {
-    const Vec3 g = weight[i] > 0.0 ? Vec3(gradient[i] / weight[i]) : Vec3::Zero();
-    guidance[i] = growth_guidance(ch.vertex_normals[i], g, o, ch.down, ch.front);
+  if (o.tilt_toward != TiltToward::thicker) {
+    for (int i = 0; i < n; ++i) guidance[i] = growth_guidance(ch.vertex_normals[i], Vec3::Zero(), o, ch.down, ch.front);
+  } else {
+    const std::vector<Vec3> gradient = vertex_gradients(mesh, thickness);
+    // Where the layer ends within a hair's length, the hair has to grow away from that end: the
+    // gradient of the distance to it takes over, fully at the end, not at all a length away.
+    const std::vector<double> reach = layer_end_distance(ch, thickness, o.thickness, kLayerEndProbe);
+    const std::vector<Vec3> away = vertex_gradients(mesh, reach);
+    for (int i = 0; i < n; ++i) {
+      const Vec3 local = growth_guidance(ch.vertex_normals[i], gradient[i], o, ch.down, ch.front);
+      const Vec3 a = away[i] - away[i].dot(ch.vertex_normals[i]) * ch.vertex_normals[i];
+      const double x = std::isfinite(reach[i]) ? std::clamp(1.0 - reach[i] / o.length, 0.0, 1.0) : 0.0;
+      const double urgency = x * x * (3.0 - 2.0 * x);
+      guidance[i] = a.norm() > 1e-12 ? Vec3(urgency * a.normalized() + (1.0 - urgency) * local) : local;
+    }
   }
   DirectionFieldOptions field;
   field.smoothing = o.flow_smoothing;

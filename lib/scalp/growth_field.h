@@ -27,9 +27,21 @@ Vec3 tilted(const Vec3& normal, const Vec3& unit_tangent, double tilt_degrees);
 Vec3 growth_guidance(const Vec3& normal, const Vec3& thickness_gradient, const RootOptions& options,
                      const Vec3& down, const Vec3& front);
 
+// How far off the skin and beyond the hairline the hull is probed for whether the layer goes on (cm).
+constexpr double kLayerEndProbe = 0.5;
+
+// Per scalp vertex, the distance along the scalp's edges (cm) to where the hair layer ends: a
+// vertex the hull does not cover (thickness ≤ 0), or a hairline vertex beyond which the hull does
+// not go on (the field reads outside the hull `probe` beyond it, a quarter of that off the skin).
+// Infinite where no end is reachable. `thickness` holds the field's value at each vertex.
+std::vector<double> layer_end_distance(const ScalpChart& chart, const std::vector<double>& thickness,
+                                       const ThicknessField& field, double probe);
+
 // Per scalp vertex: growth_guidance with the thickness gradient of the piecewise-linear thickness
-// the field gives at the vertices (per triangle, area-weighted at each vertex), then the smoothest
-// field aligned with it.
+// the field gives at the vertices (per triangle, area-weighted at each vertex); with "thicker",
+// blended toward the direction away from the layer's end (the gradient of layer_end_distance) by
+// the smoothstep of 1 − distance / hair length, since a hair needs its length of layer ahead of
+// it; then the smoothest field aligned with it.
 DirectionField make_growth_field(const ScalpChart& chart, const RootOptions& options);
 
 }  // namespace hairfit

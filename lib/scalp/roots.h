@@ -41,7 +41,7 @@ struct RootOptions {
   TiltToward tilt_toward = TiltToward::down;
   ThicknessField thickness;                   // required with TiltToward::thicker
   FlowModel flow = FlowModel::local;
-  double flow_smoothing = 2.0;                // cm: the growth field averages its guidance over this
+  double flow_smoothing = 6.0;                // cm: the growth field averages its guidance over this
   std::array<double, 2> tilt_range{0.0, 90.0};  // degrees, tilt map black → white
   double length = 25.0;                       // cm, without length map
   std::array<double, 2> length_range{15.0, 35.0};  // cm, length map black → white

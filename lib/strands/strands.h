@@ -43,6 +43,9 @@ struct Strands {
 // sign matters; scalp_exit in lib/pipeline builds it from the scalp's distance field).
 using HeadExit = std::function<Vec3(const Vec3& p, double& scalp)>;
 
+// The clearance (cm) a head exit keeps the points it moves at, in front of the scalp.
+constexpr double kHeadExitClearance = 0.05;
+
 // What make_strands learns about every point of the fibres on the way (fibres.points order), so
 // that callers need not ask the fields again: one byte a point.
 struct FibrePointSides {

@@ -8,6 +8,7 @@
 #include <set>
 #include <nlohmann/json.hpp>
 
+#include "scalp/shell_hair.h"
 #include "../support/run_hairfit.h"
 #include "io/obj_mesh.h"
 #include "prepare/bust.h"
@@ -75,14 +76,16 @@ TEST_CASE("a scan in millimetres with a painted mask becomes a scene that valida
   CHECK(scene.find("length = \"cm\"") != std::string::npos);
   CHECK(scene.find("down = [0, -1, 0]") != std::string::npos);   // up +y detected (cap leans back 25°)
   CHECK(scene.find("front = [0, 0, 1]") != std::string::npos);   // the face is where the hair is not
-  // Hair that suits the shell (prepared_hair): tilted toward the thicker layer by
-  // 90° − atan(T / reach), ⅔ of the reach long, with the reach recorded in prepare.json.
+  // Hair that suits the shell (prepared_hair, scalp/shell_hair.h): tilted toward the thicker layer
+  // by 90° − atan(T / reach) up to kMaxShellTilt, ⅔ of the reach long, with the reach recorded in
+  // prepare.json.
   const auto record = nlohmann::json::parse(read_all((out / "prepare.json").string()));
   const double reach = record["scalp"]["hairline_reach_cm"].get<double>();
   const double thickness = record["scalp"]["crown_thickness_cm"].get<double>();
   CHECK(scene.find("tilt_toward = \"thicker\"") != std::string::npos);
   char expected[128];
-  std::snprintf(expected, sizeof expected, "\ntilt = %.0f ", 90.0 - std::atan(thickness / reach) * 180.0 / M_PI);
+  std::snprintf(expected, sizeof expected, "\ntilt = %.0f ",
+                std::min(kMaxShellTilt, std::round(90.0 - std::atan(thickness / reach) * 180.0 / M_PI)));
   CHECK(scene.find(expected) != std::string::npos);
   std::snprintf(expected, sizeof expected, "\nlength = %.1f ", std::round(4.0 * reach / 3.0) / 2.0);
   CHECK(scene.find(expected) != std::string::npos);

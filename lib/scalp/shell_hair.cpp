@@ -1,0 +1,36 @@
+#include "scalp/shell_hair.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/parallel.h"
+#include "scalp/growth_field.h"
+
+namespace hairfit {
+
+ShellHair hair_for_shell(double thickness, double reach) {
+  ShellHair h;
+  h.layer_ends = true;
+  h.thickness = thickness;
+  h.reach = std::max(reach, 1e-3);
+  h.tilt = std::min(kMaxShellTilt, std::round(90.0 - std::atan(std::max(thickness, 0.0) / h.reach) * 180.0 / M_PI));
+  h.length = std::max(0.5, std::round(2.0 * (2.0 / 3.0) * h.reach) / 2.0);
+  return h;
+}
+
+ShellHair shell_hair(const ScalpChart& ch, const ThicknessField& field, int threads) {
+  const int n = static_cast<int>(ch.mesh.positions.size());
+  std::vector<double> thickness(n, 0.0);
+  parallel_for(n, threads, [&](int i) { thickness[i] = field(ch.mesh.positions[i]).value; });
+  const std::vector<double> distance = layer_end_distance(ch, thickness, field, kLayerEndProbe);
+  double reach = 0.0;
+  for (double d : distance)
+    if (std::isfinite(d)) reach = std::max(reach, d);
+  if (!(reach > 0.0)) return ShellHair{};
+  std::vector<double> sorted = thickness;
+  std::sort(sorted.begin(), sorted.end());
+  const double t90 = sorted[static_cast<std::size_t>(0.9 * (n - 1))];
+  return hair_for_shell(t90, reach);
+}
+
+}  // namespace hairfit

@@ -1,0 +1,98 @@
+// Hair derived from its shell, the distance to where the layer ends, and the growth field away
+// from that end, against the exact answers of a spherical cap under a concentric shell.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "scalp/growth_field.h"
+#include "scalp/shell_hair.h"
+#include "tests/scalp/scalp_meshes.h"
+
+using namespace hairfit;
+
+namespace {
+
+constexpr double R = 8.0, kThickness = 0.8, kCap = 1.2;  // scalp cap θ ≤ 1.2 rad of the sphere of radius R
+
+Mesh cap_mesh() {
+  return test::ring_disk(
+      32,
+      [](double r, double phi) {
+        const double theta = r * kCap;
+        return Vec3(R * std::sin(theta) * std::cos(phi), R * std::cos(theta), R * std::sin(theta) * std::sin(phi));
+      },
+      [](const Vec3& p) { return p; });
+}
+
+// The layer between the scalp sphere and the hull sphere R + 0.8 over θ ≤ θ_end: depth below the
+// hull, and outside it (negative) beyond θ_end, where the hull stops.
+ThicknessField shell(double theta_end) {
+  return [theta_end](const Vec3& p) {
+    const double theta = std::acos(std::clamp(p.y() / p.norm(), -1.0, 1.0));
+    LayerThickness t;
+    t.value = theta <= theta_end ? R + kThickness - p.norm() : -1.0;
+    return t;
+  };
+}
+
+}  // namespace
+
+TEST_CASE("layer end distance: zero along a hairline the hull stops at, the geodesic distance from it inside") {
+  const ScalpChart chart = make_scalp_chart(cap_mesh(), Vec3(0, 0, 1), Vec3(0, -1, 0), "cap.obj");
+  const ThicknessField field = shell(kCap);  // the hull stops exactly at the hairline
+  std::vector<double> thickness;
+  for (const Vec3& p : chart.mesh.positions) thickness.push_back(field(p).value);
+  const std::vector<double> d = layer_end_distance(chart, thickness, field, kLayerEndProbe);
+  for (int v : chart.boundary) CHECK(d[v] == 0.0);
+  for (std::size_t i = 0; i < d.size(); ++i) {
+    const Vec3& p = chart.mesh.positions[i];
+    const double geodesic = R * (kCap - std::acos(std::clamp(p.y() / R, -1.0, 1.0)));
+    // Edge paths are never shorter than the geodesic (of the polyhedron: its edges are chords, by
+    // at most 1 − (Δθ)²/24 = 6e-5 shorter than their arcs), and on this mesh at most 8 % longer.
+    CHECK(d[i] >= (1.0 - 1e-4) * geodesic - 1e-9);
+    CHECK(d[i] <= 1.08 * geodesic + 1e-9);
+  }
+  // A hull that goes on beyond the hairline: the layer never ends.
+  const ThicknessField beyond = shell(kCap + 0.3);
+  thickness.clear();
+  for (const Vec3& p : chart.mesh.positions) thickness.push_back(beyond(p).value);
+  for (double x : layer_end_distance(chart, thickness, beyond, kLayerEndProbe)) CHECK(std::isinf(x));
+}
+
+TEST_CASE("shell hair: tilt and length from the layer's thickness and reach, capped at 80°; nothing where it never ends") {
+  const ShellHair rule = hair_for_shell(3.0, 15.5);
+  CHECK(rule.tilt == std::round(90.0 - std::atan(3.0 / 15.5) * 180.0 / M_PI));  // 79°: below the cap
+  CHECK(rule.length == 10.5);  // ⅔ of 15.5, to 0.5 cm (prepare's test bust)
+  CHECK(hair_for_shell(0.1, 20.0).tilt == kMaxShellTilt);
+  const ScalpChart chart = make_scalp_chart(cap_mesh(), Vec3(0, 0, 1), Vec3(0, -1, 0), "cap.obj");
+  const ShellHair h = shell_hair(chart, shell(kCap), 2);
+  REQUIRE(h.layer_ends);
+  CHECK(h.thickness == doctest::Approx(kThickness).epsilon(1e-9));
+  const double reach = R * kCap;  // from the hairline to the pole
+  CHECK(h.reach >= (1.0 - 1e-4) * reach);
+  CHECK(h.reach <= 1.08 * reach);
+  CHECK(h.length == std::round(2.0 * (2.0 / 3.0) * h.reach) / 2.0);
+  CHECK(h.tilt == kMaxShellTilt);  // 90° − atan(0.8 / 9.6) = 85° is capped
+  CHECK_FALSE(shell_hair(chart, shell(kCap + 0.3), 2).layer_ends);
+}
+
+TEST_CASE("growth field: near a hairline where the layer ends, hair grows away from it, toward the pole") {
+  const ScalpChart chart = make_scalp_chart(cap_mesh(), Vec3(0, 0, 1), Vec3(0, -1, 0), "cap.obj");
+  RootOptions o;
+  o.tilt_toward = TiltToward::thicker;
+  o.thickness = shell(kCap);
+  o.length = 10.0;
+  o.flow_smoothing = 1.0;
+  const DirectionField f = make_growth_field(chart, o);
+  int checked = 0;
+  for (std::size_t i = 0; i < chart.mesh.positions.size(); ++i) {
+    const Vec3& p = chart.mesh.positions[i];
+    const double theta = std::acos(std::clamp(p.y() / R, -1.0, 1.0));
+    if (theta < 0.8 || theta > kCap - 0.05) continue;  // the band within 3 cm of the hairline
+    const Vec3 toward_pole = (Vec3(0, 1, 0) - p.normalized() * p.normalized().y()).normalized();
+    CHECK(f.directions[i].dot(toward_pole) > std::cos(20.0 * M_PI / 180.0));
+    ++checked;
+  }
+  CHECK(checked > 100);
+}
