@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <limits>
 #include <map>
 #include <numeric>
+#include <queue>
 
 namespace hairfit {
 
@@ -82,6 +85,24 @@ MeshTopology analyse_topology(const Mesh& mesh) {
     topo.boundary_loops.push_back(std::move(loop));
   }
   return topo;
+}
+
+std::vector<double> edge_distances(const Mesh& mesh, const std::vector<std::vector<int>>& neighbours,
+                                   const std::vector<int>& sources) {
+  std::vector<double> d(mesh.positions.size(), std::numeric_limits<double>::infinity());
+  using Item = std::pair<double, int>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+  for (int s : sources) d[s] = 0.0, queue.emplace(0.0, s);
+  while (!queue.empty()) {
+    const auto [dist, v] = queue.top();
+    queue.pop();
+    if (dist > d[v]) continue;
+    for (int u : neighbours[v]) {
+      const double through = dist + (mesh.positions[u] - mesh.positions[v]).norm();
+      if (through < d[u]) d[u] = through, queue.emplace(through, u);
+    }
+  }
+  return d;
 }
 
 std::vector<std::vector<int>> vertex_neighbours(const Mesh& mesh) {

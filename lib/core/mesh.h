@@ -37,6 +37,11 @@ MeshTopology analyse_topology(const Mesh& mesh);
 
 // Each vertex's neighbours along triangle edges, ascending, without repeats.
 std::vector<std::vector<int>> vertex_neighbours(const Mesh& mesh);
+// Shortest distance along the mesh's edges (Euclidean edge lengths) from the nearest source
+// vertex (multi-source Dijkstra), infinite where no source is reachable; `neighbours` as
+// vertex_neighbours gives them.
+std::vector<double> edge_distances(const Mesh& mesh, const std::vector<std::vector<int>>& neighbours,
+                                   const std::vector<int>& sources);
 // One key per undirected edge a–b (vertex indices ≥ 0), for hashing edges.
 inline long long edge_key(int a, int b) {
   return (static_cast<long long>(a < b ? a : b) << 32) | static_cast<long long>(a < b ? b : a);

@@ -7,6 +7,8 @@
 
 #include <Eigen/Dense>
 
+#include "core/smoothstep.h"
+
 namespace hairfit {
 
 namespace {
@@ -15,11 +17,6 @@ constexpr double kOutsidePenalty = 4.0;  // weight of an excursion below kMargin
 constexpr double kMargin = 0.15;         // the share of the layer kept clear at either side
 constexpr double kLoadRegularisation = 1e-3;  // prefers the smaller load where the layer leaves a choice
 constexpr int kIterations = 40;
-
-double smoothstep(double x) {
-  x = std::clamp(x, 0.0, 1.0);
-  return x * x * (3.0 - 2.0 * x);
-}
 
 using Load = Eigen::Matrix<double, 6, 1>;
 
@@ -76,12 +73,8 @@ struct LayerProblem {
 
 LayerProblem layer_problem(const RootSet& roots, int i, const Boundary& boundary, const PreguideOptions& o) {
   LayerProblem p;
+  p.g = preguide_root(roots, i);
   PreGuide& g = p.g;
-  g.root = roots.positions[i];
-  g.normal = roots.normals[i];
-  g.direction = roots.directions[i];
-  g.length = roots.lengths[i];
-  g.height = roots.heights[i];
   const Vec3 bend = bending_direction(g.normal, g.direction, o.down, o.front);
   const Mat3 frame = root_frame(g.direction, bend);
   p.model = make_rod_model(hair_rod(g.length, o.material), RodRoot{g.root, frame});

@@ -288,12 +288,7 @@ PreguideMarch shared_march(const Vec3& compliance, const PreguideOptions& o) {
 
 PreGuide solve_preguide(const RootSet& roots, int i, const Boundary& boundary, const PreguideOptions& o,
                         const std::vector<PreguideMarch>& shared) {
-  PreGuide g;
-  g.root = roots.positions[i];
-  g.normal = roots.normals[i];
-  g.direction = roots.directions[i];
-  g.length = roots.lengths[i];
-  g.height = roots.heights[i];
+  PreGuide g = preguide_root(roots, i);
   const Vec3 bend = bending_direction(g.normal, g.direction, o.down, o.front);
   const RodModel model = make_rod_model(hair_rod(g.length, o.material), RodRoot{g.root, root_frame(g.direction, bend)});
   const Cantilever cantilever(bend, o.rod);
@@ -431,6 +426,16 @@ PreGuide solve_preguide(const RootSet& roots, int i, const Boundary& boundary, c
 }
 
 }  // namespace
+
+PreGuide preguide_root(const RootSet& roots, int i) {
+  PreGuide g;
+  g.root = roots.positions[i];
+  g.normal = roots.normals[i];
+  g.direction = roots.directions[i];
+  g.length = roots.lengths[i];
+  g.height = roots.heights[i];
+  return g;
+}
 
 PreGuides make_preguides(const RootSet& roots, const Boundary& boundary, const PreguideOptions& options) {
   PreGuides result;

@@ -71,6 +71,9 @@ struct PreGuides {
   int size() const { return static_cast<int>(items.size()); }
 };
 
+// A pre-guide's root as it starts, from root i of the set: root, normal, direction, length, height.
+PreGuide preguide_root(const RootSet& roots, int i);
+
 // One pre-guide per root, in root order; the same for any thread count. Rods loaded only at the
 // tip with a straight natural shape (no weight, no curl) solve one dimensionless problem in their
 // root frame, so the load march is followed once per compliance and replayed, rotated, by each.

@@ -4,17 +4,13 @@
 #include <cmath>
 
 #include "core/shapes.h"
+#include "core/smoothstep.h"
 
 namespace hairfit {
 
 namespace {
 
 constexpr double kDegree = M_PI / 180.0;
-
-double smoothstep(double x) {
-  const double t = std::clamp(x, 0.0, 1.0);
-  return t * t * (3.0 - 2.0 * t);
-}
 
 double angle_between(const Vec3& a, const Vec3& b) { return std::atan2(a.cross(b).norm(), a.dot(b)); }
 

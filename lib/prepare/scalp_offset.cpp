@@ -8,35 +8,12 @@
 #include <queue>
 
 #include "core/error.h"
+#include "core/smoothstep.h"
 #include "prepare/surface_checks.h"
 
 namespace hairfit {
 
 namespace {
-
-double smoothstep(double x) {
-  const double t = std::clamp(x, 0.0, 1.0);
-  return t * t * (3.0 - 2.0 * t);
-}
-
-// Shortest distance along the mesh's edges from the sources (Dijkstra), cm.
-std::vector<double> edge_distance(const Mesh& mesh, const std::vector<std::vector<int>>& next,
-                                  const std::vector<int>& sources) {
-  std::vector<double> d(mesh.positions.size(), INFINITY);
-  using Item = std::pair<double, int>;
-  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
-  for (int s : sources) d[s] = 0.0, queue.emplace(0.0, s);
-  while (!queue.empty()) {
-    const auto [dist, v] = queue.top();
-    queue.pop();
-    if (dist > d[v]) continue;
-    for (int u : next[v]) {
-      const double through = dist + (mesh.positions[u] - mesh.positions[v]).norm();
-      if (through < d[u]) d[u] = through, queue.emplace(through, u);
-    }
-  }
-  return d;
-}
 
 // Monomials x^a y^b z^c of a unit vector with a + b + c ≤ 2 and c ≤ 1 (z² = 1 − x² − y² adds
 // nothing on the sphere): a basis of the spherical harmonics up to degree 2.
@@ -86,7 +63,7 @@ ScalpResult make_scalp(const Hull& hull, const ScalpOptions& o, const std::strin
   ScalpResult r;
   // The ramp: smoothstep of the distance from the hairline, then a few Jacobi passes so the
   // polygonal isolines of edge distances do not show.
-  const std::vector<double> g = edge_distance(mesh, next, hull.hairline);
+  const std::vector<double> g = edge_distances(mesh, next, hull.hairline);
   const double g_max = *std::max_element(g.begin(), g.end());
   r.hairline_reach = g_max;
   r.ramp_length = std::min(o.ramp, 0.8 * g_max);

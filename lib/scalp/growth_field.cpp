@@ -6,6 +6,7 @@
 #include <queue>
 
 #include "core/parallel.h"
+#include "core/smoothstep.h"
 
 namespace hairfit {
 
@@ -86,22 +87,10 @@ std::vector<double> layer_end_distance(const ScalpChart& ch, const std::vector<d
     // Just beyond the hairline, a little off the skin: outside the hull, the layer ends here.
     if (!(field(p + probe * out + 0.25 * probe * normal).value > 0.0)) end[v] = 1;
   }
-  // Multi-source Dijkstra along the edges (lengths in cm), deterministic: ties by vertex index.
-  std::vector<double> distance(n, std::numeric_limits<double>::infinity());
-  using Item = std::pair<double, int>;
-  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+  std::vector<int> sources;
   for (int i = 0; i < n; ++i)
-    if (end[i]) queue.push({distance[i] = 0.0, i});
-  while (!queue.empty()) {
-    const auto [d, i] = queue.top();
-    queue.pop();
-    if (d > distance[i]) continue;
-    for (int j : neighbours[i]) {
-      const double via = d + (mesh.positions[j] - mesh.positions[i]).norm();
-      if (via < distance[j]) queue.push({distance[j] = via, j});
-    }
-  }
-  return distance;
+    if (end[i]) sources.push_back(i);
+  return edge_distances(mesh, neighbours, sources);
 }
 
 DirectionField make_growth_field(const ScalpChart& ch, const RootOptions& o) {
@@ -122,8 +111,7 @@ DirectionField make_growth_field(const ScalpChart& ch, const RootOptions& o) {
     for (int i = 0; i < n; ++i) {
       const Vec3 local = growth_guidance(ch.vertex_normals[i], gradient[i], o, ch.down, ch.front);
       const Vec3 a = away[i] - away[i].dot(ch.vertex_normals[i]) * ch.vertex_normals[i];
-      const double x = std::isfinite(reach[i]) ? std::clamp(1.0 - reach[i] / o.length, 0.0, 1.0) : 0.0;
-      const double urgency = x * x * (3.0 - 2.0 * x);
+      const double urgency = std::isfinite(reach[i]) ? smoothstep(1.0 - reach[i] / o.length) : 0.0;
       guidance[i] = a.norm() > 1e-12 ? Vec3(urgency * a.normalized() + (1.0 - urgency) * local) : local;
     }
   }

@@ -8,16 +8,12 @@
 #include <string>
 
 #include "core/parallel.h"
+#include "core/smoothstep.h"
 #include "strands/guide_track.h"
 
 namespace hairfit {
 
 namespace {
-
-double smoothstep(double e0, double e1, double x) {
-  const double t = std::clamp((x - e0) / (e1 - e0), 0.0, 1.0);
-  return t * t * (3.0 - 2.0 * t);
-}
 
 // Share of the fibre over which it moves from its pore's own offset to its place in the wisp.
 constexpr double kSettle = 0.2;
@@ -35,7 +31,7 @@ std::vector<Station> make_stations(const StrandOptions& o, int n) {
     const double t = static_cast<double>(i) / (n - 1);
     const double angle = 2.0 * M_PI * o.turns * t;
     const double ca = std::cos(angle), sa = std::sin(angle);
-    out[i] = {t, smoothstep(0.0, kSettle, t), o.root_radius + (o.tip_radius - o.root_radius) * t, ca, sa};
+    out[i] = {t, smoothstep(t / kSettle), o.root_radius + (o.tip_radius - o.root_radius) * t, ca, sa};
   }
   return out;
 }
