@@ -189,7 +189,7 @@ class SceneParser {
     if (given) return;
     scene_.hair.from_shell = true;
     for (const auto& [key, value] : {std::pair<const char*, const char*>{"hair.tilt_toward", "thicker"},
-                                     {"hair.flow", "field"},
+                                     {"hair.flow", "relief"},
                                      {"preguides.immersion", "layer"},
                                      {"guides.boundary", "layer"}})
       if (!scene_.locations.count(key)) find_key(key)->store(scene_, {}, {value});

@@ -216,11 +216,14 @@ std::vector<SceneKey> build_keys() {
   keys.push_back(text("hair.tilt_toward", REF(hair.tilt_toward), {"down", "thicker"}, "roots",
                       "Where the normal tilts: toward down, or up the surface gradient of the hair layer's thickness "
                       "(depth below the volume boundary), blended with down where the layer is flat."));
-  keys.push_back(text("hair.flow", REF(hair.flow), {"local", "field"}, "roots",
+  keys.push_back(text("hair.flow", REF(hair.flow), {"local", "field", "relief"}, "roots",
                       "Where each root's tilt points: local, its own tilt_toward direction (the paper); field, one smooth "
-                      "growth field over the scalp aligned with it (Knöppel et al. 2013), so neighbouring roots grow alike."));
+                      "growth field over the scalp aligned with it (Knöppel et al. 2013), so neighbouring roots grow alike; "
+                      "relief, that field steered by the hull's carved grooves and ridges (its grain, hair.relief_radius)."));
   keys.push_back(number("hair.flow_smoothing", REF(hair.flow_smoothing), "cm", above(0, 100), "roots",
-                        "With hair.flow = \"field\": the distance over which the growth field averages its guidance."));
+                        "With hair.flow = \"field\" or \"relief\": the distance over which the growth field averages its guidance."));
+  keys.push_back(number("hair.relief_radius", REF(hair.relief_radius), "cm", above(0, 100), "roots",
+                        "With hair.flow = \"relief\": how far around a scalp point the hull's ridges and grooves are read."));
   keys.push_back(number("hair.youngs_modulus", REF(hair.youngs_modulus), "dyn/cm²", above(0, 1e15), "rod",
                         "Young's modulus E of a fibre (paper: 3.89e10)."));
   keys.push_back(number("hair.shear_modulus", REF(hair.shear_modulus), "dyn/cm²", above(0, 1e15), "rod",

@@ -17,6 +17,7 @@ constexpr double kOutsidePenalty = 4.0;  // weight of an excursion below kMargin
 constexpr double kMargin = 0.15;         // the share of the layer kept clear at either side
 constexpr double kLoadRegularisation = 1e-3;  // prefers the smaller load where the layer leaves a choice
 constexpr int kIterations = 40;
+constexpr double kFollowWeight = 0.5;  // the growth field's pull against the immersion depth's
 
 using Load = Eigen::Matrix<double, 6, 1>;
 
@@ -39,7 +40,8 @@ struct LayerFit {
   // then the regularisation of the load.
   Eigen::VectorXd residuals(const FibreShape& s, const Load& x) const {
     const int n = static_cast<int>(s.nodes.size());
-    Eigen::VectorXd r(3 * (n - 1) + 6);
+    const FlowLookup* flow = options->flow.get();
+    Eigen::VectorXd r((flow ? 6 : 3) * (n - 1) + 6);
     for (int k = 1; k < n; ++k) {
       const double along = static_cast<double>(k) / (n - 1);
       const double lambda = layer_coordinate(*boundary, s.nodes[k], scale);
@@ -48,6 +50,16 @@ struct LayerFit {
       r[3 * (k - 1) + 1] = kOutsidePenalty * std::max(0.0, lambda - (1.0 - kMargin));
       r[3 * (k - 1) + 2] = kOutsidePenalty * std::max(0.0, kMargin - lambda) * smoothstep(along / 0.25);
     }
+    if (flow)  // the tangent's part along the scalp against the growth field there
+      for (int k = 1; k < n; ++k) {
+        const double along = static_cast<double>(k) / (n - 1);
+        Vec3 normal;
+        const Vec3 field = flow->at(s.nodes[k], &normal);
+        Vec3 t = s.tangents[k] - s.tangents[k].dot(normal) * normal;
+        const double m = t.norm();
+        const Vec3 miss = field.isZero(0.0) || !(m > 1e-12) ? Vec3::Zero() : Vec3(t / m - field);
+        r.segment<3>(3 * (n - 1) + 3 * (k - 1)) = kFollowWeight * smoothstep(along / 0.25) / std::sqrt(static_cast<double>(n - 1)) * miss;
+      }
     r.tail<6>() = kLoadRegularisation * x;
     return r;
   }
@@ -104,15 +116,16 @@ PreGuide solve_layer_preguide(const RootSet& roots, int i, const Boundary& bound
   const LayerFit& fit = problem.fit;
   const double scale = fit.scale;
 
-  // Levenberg–Marquardt with forward-difference Jacobians: first on (P, μ) from the straight rod,
-  // then on all six load components from there, which lets the rod follow a layer that also
-  // curves sideways.
+  // Levenberg–Marquardt with forward-difference Jacobians on (P, μ) from the straight rod; with
+  // the growth field to follow, then on all six load components from there.
   Load x = Load::Zero();
   FibreShape shape = fit.shape(x);
   Eigen::VectorXd r = fit.residuals(shape, x);
   double cost = r.squaredNorm();
   int solves = 1;
-  for (const std::vector<int>& free : {std::vector<int>{0, 4}}) {
+  std::vector<std::vector<int>> stages{{0, 4}};
+  if (o.flow) stages.push_back({0, 1, 2, 3, 4, 5});  // to follow the field it may bend sideways too
+  for (const std::vector<int>& free : stages) {
     const int m = static_cast<int>(free.size());
     double damping = 1e-3;
     for (int it = 0; it < kIterations; ++it) {

@@ -5,6 +5,7 @@
 // roots, as a share of the local thickness of the hair layer.
 #pragma once
 #include <array>
+#include <memory>
 #include <vector>
 
 #include "core/digest.h"
@@ -12,6 +13,7 @@
 #include "guides/boundary.h"
 #include "guides/hair_rod.h"
 #include "rod/rod_shooting.h"
+#include "scalp/flow_lookup.h"
 #include "scalp/roots.h"
 
 namespace hairfit {
@@ -28,6 +30,9 @@ struct PreguideOptions {
   std::array<double, 2> depth_range{0.15, 0.6};  // share of the local thickness: top of head → lowest roots
   double max_load = 40.0;                         // largest dimensionless terminal force F·L²/EI tried
   PreguideImmersion immersion = PreguideImmersion::tip;
+  // With immersion = layer: the growth field, which each pre-guide then follows along its length
+  // as well (a streamline in the layer); null: only its root direction comes from it.
+  std::shared_ptr<const FlowLookup> flow;
   Vec3 down{0, -1, 0};
   Vec3 front{0, 0, 1};
   int threads = 1;

@@ -21,6 +21,8 @@
 #include "pipeline/stage_codec.h"
 #include "pipeline/stage_options.h"
 #include "pipeline/stage_plan.h"
+#include "scalp/growth_field.h"
+#include "scalp/relief.h"
 #include "scalp/scalp_outputs.h"
 #include "scalp/shell_hair.h"
 #include "strands/coverage.h"
@@ -352,14 +354,9 @@ class Runner {
 
   void roots(StageReport& stage) {
     StageValues& v = result_.values;
-    RootOptions o = root_options(scene_, options_.threads);
-    if (o.tilt_toward == TiltToward::thicker) o.thickness = layer_thickness(*v.volume_field);
-    if (scene_.hair.from_shell) {  // hair that suits its shell: length and tilt from the layer
-      const ShellHair shell = shell_hair(*v.chart, layer_thickness(*v.volume_field), options_.threads);
-      if (shell.layer_ends) {
-        o.length = shell.length;
-        o.tilt = shell.tilt;
-      }
+    ShellHair shell;
+    const RootOptions o = resolved_root_options(&shell);
+    if (scene_.hair.from_shell) {
       stage.add("hair_from_shell", shell.layer_ends);
       stage.add("shell_thickness_cm", shell.thickness);
       stage.add("shell_reach_cm", shell.reach);
@@ -381,6 +378,24 @@ class Runner {
     stage.add("mean_spacing_cm", f.mean_spacing);
   }
 
+  // The roots' options with what they read from the fields and the hull: the layer's thickness,
+  // the hull's grain, and the length and tilt of hair that suits its shell (`shell`, if given).
+  RootOptions resolved_root_options(ShellHair* shell = nullptr) const {
+    const StageValues& v = result_.values;
+    RootOptions o = root_options(scene_, options_.threads);
+    if (o.tilt_toward == TiltToward::thicker) o.thickness = layer_thickness(*v.volume_field);
+    if (o.flow == FlowModel::relief) o.grain = relief_grain(*v.chart, inputs_.volume.mesh, scene_.hair.relief_radius, options_.threads);
+    if (scene_.hair.from_shell) {  // hair that suits its shell: length and tilt from the layer
+      const ShellHair derived = shell_hair(*v.chart, layer_thickness(*v.volume_field), options_.threads);
+      if (derived.layer_ends) {
+        o.length = derived.length;
+        o.tilt = derived.tilt;
+      }
+      if (shell) *shell = derived;
+    }
+    return o;
+  }
+
   void write_roots() {
     const StageValues& v = result_.values;
     output("roots.ply", [&](const fs::path& p) { write_roots_ply(p, *v.roots, *v.clusters); });
@@ -392,6 +407,12 @@ class Runner {
     StageValues& v = result_.values;
     PreguideOptions o = preguide_options(scene_, options_.threads);
     o.progress = loop_progress();
+    if (o.immersion == PreguideImmersion::layer && scene_.hair.flow != "local") {
+      // The growth field the roots grew along (one solve on the scalp), for the pre-guides to follow.
+      const ScalpChart& chart = *v.chart;
+      o.flow = std::make_shared<const FlowLookup>(chart.mesh, chart.vertex_normals,
+                                                  make_growth_field(chart, resolved_root_options()), kFlowLookupRadius);
+    }
     v.preguides = std::make_shared<const PreGuides>(make_preguides(v.preguide_roots->roots, boundary(), o));
     stage.digest = digest(*v.preguides).hex();
     int reached = 0;

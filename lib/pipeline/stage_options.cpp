@@ -18,7 +18,7 @@ RootOptions root_options(const Scene& scene, int threads) {
   o.tilt = scene.hair.tilt;
   o.tilt_range = scene.hair.tilt_range;
   o.tilt_toward = scene.hair.tilt_toward == "thicker" ? TiltToward::thicker : TiltToward::down;
-  o.flow = scene.hair.flow == "field" ? FlowModel::field : FlowModel::local;
+  o.flow = scene.hair.flow == "field" ? FlowModel::field : scene.hair.flow == "relief" ? FlowModel::relief : FlowModel::local;
   o.flow_smoothing = scene.hair.flow_smoothing;
   o.length = scene.hair.length;
   o.length_range = scene.hair.length_range;

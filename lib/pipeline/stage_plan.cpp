@@ -69,7 +69,11 @@ std::vector<StageDeclaration> stage_declarations(const Scene& scene) {
   }
   append(roots.consumes, {"chart"});
   roots.reads.push_back("hair.flow");
-  if (scene.hair.flow == "field") roots.reads.push_back("hair.flow_smoothing");
+  if (scene.hair.flow != "local") roots.reads.push_back("hair.flow_smoothing");
+  if (scene.hair.flow == "relief") {  // the hull's grain
+    roots.reads.push_back("hair.relief_radius");
+    roots.files.push_back("volume");
+  }
   // Tilting toward the thicker layer reads the volume's distance field at each root.
   if (scene.hair.tilt_toward == "thicker") {
     roots.reads.push_back("hair.tilt_toward");
@@ -81,6 +85,11 @@ std::vector<StageDeclaration> stage_declarations(const Scene& scene) {
   read_rod(scene, preguides);
   append(preguides.reads, {"preguides"});
   append(preguides.consumes, {"fields", "roots"});
+  if (scene.preguides.immersion == "layer" && scene.hair.flow != "local") {  // they follow the growth field
+    append(preguides.reads, {"hair", "roots"});
+    preguides.consumes.push_back("chart");
+    if (scene.hair.flow == "relief") preguides.files.push_back("volume");
+  }
   stages.push_back(preguides);
 
   StageDeclaration guides = named("guides");

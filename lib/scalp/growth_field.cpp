@@ -115,6 +115,15 @@ DirectionField make_growth_field(const ScalpChart& ch, const RootOptions& o) {
       guidance[i] = a.norm() > 1e-12 ? Vec3(urgency * a.normalized() + (1.0 - urgency) * local) : local;
     }
   }
+  // The hull's grain steers it where it is sure: a line, turned to agree with the guidance so far.
+  if (o.flow == FlowModel::relief && o.grain.size() == guidance.size())
+    for (int i = 0; i < n; ++i) {
+      const Vec3& g = o.grain[i];
+      const double sure = std::min(1.0, g.norm());
+      if (!(sure > 0.0)) continue;
+      const Vec3 along = g.dot(guidance[i]) < 0.0 ? Vec3(-g / g.norm()) : Vec3(g / g.norm());
+      guidance[i] = sure * along + (1.0 - sure) * guidance[i];
+    }
   DirectionFieldOptions field;
   field.smoothing = o.flow_smoothing;
   return smoothest_aligned_field(mesh, ch.vertex_normals, guidance, field);

@@ -37,6 +37,8 @@ constexpr double kLayerEndProbe = 0.5;
 std::vector<double> layer_end_distance(const ScalpChart& chart, const std::vector<double>& thickness,
                                        const ThicknessField& field, double probe);
 
+// With FlowModel::relief, options.grain (one line per vertex, scalp/relief.h) then takes over by
+// its anisotropy, turned to agree with the guidance below.
 // Per scalp vertex: growth_guidance with the thickness gradient of the piecewise-linear thickness
 // the field gives at the vertices (per triangle, area-weighted at each vertex); with "thicker",
 // blended toward the direction away from the layer's end (the gradient of layer_end_distance) by

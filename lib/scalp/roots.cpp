@@ -261,7 +261,7 @@ void check_preguide_options(const RootOptions& o) {
 }
 
 std::optional<DirectionField> growth_field_for(const ScalpChart& ch, const RootOptions& o) {
-  if (o.flow != FlowModel::field) return std::nullopt;
+  if (o.flow == FlowModel::local) return std::nullopt;
   return make_growth_field(ch, o);
 }
 

@@ -23,9 +23,9 @@ struct ScalpMaps {
 enum class TiltToward { down, thicker };
 
 // Where the tangent a root tilts toward comes from: one smooth growth field over the scalp
-// (scalp/growth_field.h), or each root's own down or thickness gradient (the paper's rule, root
-// by root).
-enum class FlowModel { field, local };
+// (scalp/growth_field.h), the same field steered by the hull's grain (relief, scalp/relief.h), or
+// each root's own down or thickness gradient (local, the paper's rule, root by root).
+enum class FlowModel { field, local, relief };
 
 // The hair layer's thickness at a point (cm) and its gradient (world axes), for TiltToward::thicker:
 // the pipeline passes −Φ_volume, the depth below the hair-volume boundary.
@@ -42,6 +42,7 @@ struct RootOptions {
   ThicknessField thickness;                   // required with TiltToward::thicker
   FlowModel flow = FlowModel::local;
   double flow_smoothing = 6.0;                // cm: the growth field averages its guidance over this
+  std::vector<Vec3> grain;                    // FlowModel::relief: per scalp vertex (relief_grain)
   std::array<double, 2> tilt_range{0.0, 90.0};  // degrees, tilt map black → white
   double length = 25.0;                       // cm, without length map
   std::array<double, 2> length_range{15.0, 35.0};  // cm, length map black → white

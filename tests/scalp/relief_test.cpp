@@ -1,0 +1,73 @@
+// The hull's grain against the direction of grooves carved along known curves.
+#include <doctest/doctest.h>
+
+#include <cmath>
+
+#include "core/shapes.h"
+#include "scalp/relief.h"
+#include "tests/scalp/scalp_meshes.h"
+
+using namespace hairfit;
+
+namespace {
+
+constexpr double R = 8.0, kCap = 1.0, kTwist = 1.0;
+constexpr int kGrooves = 24;
+
+// θ from the pole +y, φ about it.
+double polar(const Vec3& u) { return std::acos(std::clamp(u.y() / u.norm(), -1.0, 1.0)); }
+double azimuth(const Vec3& u) { return std::atan2(u.z(), u.x()); }
+
+// The unit tangent of the groove through the direction u: along the level set of s = φ + kθ,
+// i.e. perpendicular to ∇s = e_φ / sin θ + k e_θ / R (up to the common 1/R).
+Vec3 groove_direction(const Vec3& u) {
+  const double theta = polar(u), phi = azimuth(u);
+  const Vec3 e_theta(std::cos(theta) * std::cos(phi), -std::sin(theta), std::cos(theta) * std::sin(phi));
+  const Vec3 e_phi(-std::sin(phi), 0.0, std::cos(phi));
+  const Vec3 gradient = e_phi / std::sin(theta) + kTwist * e_theta;
+  return u.normalized().cross(gradient).normalized();
+}
+
+}  // namespace
+
+TEST_CASE("relief grain: along grooves that swirl from the crown (mean error under 10°, none over 30°); none over a smooth hull") {
+  const Mesh cap = test::ring_disk(
+      24,
+      [](double r, double phi) {
+        const double theta = r * kCap;
+        return Vec3(R * std::sin(theta) * std::cos(phi), R * std::cos(theta), R * std::sin(theta) * std::sin(phi));
+      },
+      [](const Vec3& p) { return p; });
+  const ScalpChart chart = make_scalp_chart(cap, Vec3(0, 0, 1), Vec3(0, -1, 0), "cap.obj");
+  Mesh hull = icosphere(6, 1.0);
+  Mesh smooth = hull;
+  for (Vec3& p : hull.positions) {
+    const double s = kGrooves * (azimuth(p) + kTwist * polar(p)) / (2.0 * M_PI);
+    p *= R + 1.0 - 0.3 * (0.5 + 0.5 * std::cos(2.0 * M_PI * s));
+  }
+  for (Vec3& p : smooth.positions) p *= R + 1.0;
+  const std::vector<Vec3> grain = relief_grain(chart, hull, 1.5, 2);
+  int checked = 0;
+  double worst = 0.0, mean = 0.0, lowest = 1.0;
+  for (std::size_t v = 0; v < grain.size(); ++v) {
+    const double theta = polar(chart.mesh.positions[v]);
+    if (theta < 0.4) continue;  // near the pole the grooves crowd below the mesh's resolution
+    const Vec3 expected = groove_direction(chart.mesh.positions[v]);
+    CAPTURE(theta);
+    lowest = std::min(lowest, grain[v].norm());
+    const double degrees = std::acos(std::min(1.0, std::fabs(grain[v].normalized().dot(expected)))) * 180.0 / M_PI;
+    worst = std::max(worst, degrees);
+    mean += degrees;
+    CHECK(degrees < 30.0);
+    CHECK(grain[v].norm() > 0.5);
+    ++checked;
+  }
+  CHECK(checked > 200);
+  CHECK(mean / checked < 10.0);
+  MESSAGE("grain vs grooves: mean " << mean / checked << "°, worst " << worst << "°, weakest " << lowest);
+  // A smooth sphere: every edge bends alike, no direction stands out.
+  double smooth_most = 0.0;
+  for (const Vec3& g : relief_grain(chart, smooth, 1.5, 2)) smooth_most = std::max(smooth_most, g.norm());
+  MESSAGE("smooth sphere: strongest grain " << smooth_most);
+  CHECK(smooth_most < 0.01);
+}
