@@ -195,8 +195,9 @@ class SceneParser {
       if (!scene_.locations.count(key)) find_key(key)->store(scene_, {}, {value});
     // The guides start from pre-guides that already lie in the layer: a looser stop loses nothing
     // there (MakeHuman short04: 0.979 of the nodes inside at 1e-6 and 1e-5, 35.9 and 29.0
-    // evaluations a guide).
-    if (!scene_.locations.count("guides.tolerance")) find_key("guides.tolerance")->store(scene_, {1e-5}, {});
+    // evaluations a guide). An accuracy preset's own tolerance wins.
+    if (!scene_.locations.count("guides.tolerance") && scene_.preset == "default")
+      find_key("guides.tolerance")->store(scene_, {1e-5}, {});
   }
 
   const SceneKey* find_key(const std::string& name) const {
