@@ -61,6 +61,7 @@ struct SceneHair {
   std::string flow = "local";               // field (one smooth growth field) | relief (steered by the hull) | local
   double flow_smoothing = 6.0;              // cm: the growth field averages its guidance over this
   double relief_radius = 1.5;               // cm: with flow = relief, the reach of the hull's grain
+  double swirl = 0.0;                       // degrees: growth away from the layer's end turns clockwise
   double youngs_modulus = 3.89e10;          // E, dyn/cm² (paper §3.1)
   double shear_modulus = 0.89e10;           // G, dyn/cm²
   double cross_section = 1.5e-5;            // A, cm² (circular: I = A²/4π, J = 2I)

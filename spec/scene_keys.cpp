@@ -222,6 +222,10 @@ std::vector<SceneKey> build_keys() {
                       "relief, that field steered by the hull's carved grooves and ridges (its grain, hair.relief_radius)."));
   keys.push_back(number("hair.flow_smoothing", REF(hair.flow_smoothing), "cm", above(0, 100), "roots",
                         "With hair.flow = \"field\" or \"relief\": the distance over which the growth field averages its guidance."));
+  keys.push_back(number("hair.swirl", REF(hair.swirl), "degrees", closed(-90, 90), "roots",
+                        "With a growth field and tilt_toward = \"thicker\": hair that grows away from where the layer "
+                        "ends turns clockwise (seen from outside) by this, so on a cap it spirals to the crown like a whorl "
+                        "instead of meeting there head on."));
   keys.push_back(number("hair.relief_radius", REF(hair.relief_radius), "cm", above(0, 100), "roots",
                         "With hair.flow = \"relief\": how far around a scalp point the hull's ridges and grooves are read."));
   keys.push_back(number("hair.youngs_modulus", REF(hair.youngs_modulus), "dyn/cm²", above(0, 1e15), "rod",

@@ -20,6 +20,7 @@ RootOptions root_options(const Scene& scene, int threads) {
   o.tilt_toward = scene.hair.tilt_toward == "thicker" ? TiltToward::thicker : TiltToward::down;
   o.flow = scene.hair.flow == "field" ? FlowModel::field : scene.hair.flow == "relief" ? FlowModel::relief : FlowModel::local;
   o.flow_smoothing = scene.hair.flow_smoothing;
+  o.swirl = scene.hair.swirl;
   o.length = scene.hair.length;
   o.length_range = scene.hair.length_range;
   o.guides = scene.roots.guides;

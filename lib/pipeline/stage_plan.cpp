@@ -69,7 +69,7 @@ std::vector<StageDeclaration> stage_declarations(const Scene& scene) {
   }
   append(roots.consumes, {"chart"});
   roots.reads.push_back("hair.flow");
-  if (scene.hair.flow != "local") roots.reads.push_back("hair.flow_smoothing");
+  if (scene.hair.flow != "local") append(roots.reads, {"hair.flow_smoothing", "hair.swirl"});
   if (scene.hair.flow == "relief") {  // the hull's grain
     roots.reads.push_back("hair.relief_radius");
     roots.files.push_back("volume");

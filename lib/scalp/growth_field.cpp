@@ -108,9 +108,12 @@ DirectionField make_growth_field(const ScalpChart& ch, const RootOptions& o) {
     // gradient of the distance to it takes over, fully at the end, not at all a length away.
     const std::vector<double> reach = layer_end_distance(ch, thickness, o.thickness, kLayerEndProbe);
     const std::vector<Vec3> away = vertex_gradients(mesh, reach);
+    const double cos_swirl = std::cos(o.swirl * M_PI / 180.0), sin_swirl = std::sin(o.swirl * M_PI / 180.0);
     for (int i = 0; i < n; ++i) {
       const Vec3 local = growth_guidance(ch.vertex_normals[i], gradient[i], o, ch.down, ch.front);
-      const Vec3 a = away[i] - away[i].dot(ch.vertex_normals[i]) * ch.vertex_normals[i];
+      const Vec3& normal = ch.vertex_normals[i];
+      Vec3 a = away[i] - away[i].dot(normal) * normal;
+      a = cos_swirl * a - sin_swirl * normal.cross(a);  // clockwise seen from outside
       const double urgency = std::isfinite(reach[i]) ? smoothstep(1.0 - reach[i] / o.length) : 0.0;
       guidance[i] = a.norm() > 1e-12 ? Vec3(urgency * a.normalized() + (1.0 - urgency) * local) : local;
     }

@@ -41,9 +41,10 @@ std::vector<double> layer_end_distance(const ScalpChart& chart, const std::vecto
 // its anisotropy, turned to agree with the guidance below.
 // Per scalp vertex: growth_guidance with the thickness gradient of the piecewise-linear thickness
 // the field gives at the vertices (per triangle, area-weighted at each vertex); with "thicker",
-// blended toward the direction away from the layer's end (the gradient of layer_end_distance) by
-// the smoothstep of 1 − distance / hair length, since a hair needs its length of layer ahead of
-// it; then the smoothest field aligned with it.
+// blended toward the direction away from the layer's end (the gradient of layer_end_distance),
+// turned clockwise (seen from outside) by options.swirl, by the smoothstep of 1 − distance / hair
+// length, since a hair needs its length of layer ahead of it; then the smoothest field aligned
+// with it.
 DirectionField make_growth_field(const ScalpChart& chart, const RootOptions& options);
 
 }  // namespace hairfit

@@ -43,6 +43,7 @@ struct RootOptions {
   FlowModel flow = FlowModel::local;
   double flow_smoothing = 6.0;                // cm: the growth field averages its guidance over this
   std::vector<Vec3> grain;                    // FlowModel::relief: per scalp vertex (relief_grain)
+  double swirl = 0.0;                         // degrees: growth away from the layer's end turns clockwise by this
   std::array<double, 2> tilt_range{0.0, 90.0};  // degrees, tilt map black → white
   double length = 25.0;                       // cm, without length map
   std::array<double, 2> length_range{15.0, 35.0};  // cm, length map black → white

@@ -96,3 +96,31 @@ TEST_CASE("growth field: near a hairline where the layer ends, hair grows away f
   }
   CHECK(checked > 100);
 }
+
+TEST_CASE("growth field with swirl: near the hairline it turns clockwise from the pole by the swirl") {
+  const ScalpChart chart = make_scalp_chart(cap_mesh(), Vec3(0, 0, 1), Vec3(0, -1, 0), "cap.obj");
+  for (double swirl : {30.0, 60.0}) {
+    RootOptions o;
+    o.tilt_toward = TiltToward::thicker;
+    o.thickness = shell(kCap);
+    o.length = 10.0;
+    o.flow_smoothing = 1.0;
+    o.swirl = swirl;
+    const DirectionField f = make_growth_field(chart, o);
+    int checked = 0;
+    for (std::size_t i = 0; i < chart.mesh.positions.size(); ++i) {
+      const Vec3& p = chart.mesh.positions[i];
+      const double theta = std::acos(std::clamp(p.y() / R, -1.0, 1.0));
+      if (theta < 0.8 || theta > kCap - 0.05) continue;
+      const Vec3 n = p.normalized();
+      const Vec3 toward_pole = (Vec3(0, 1, 0) - n * n.y()).normalized();
+      // Clockwise seen from outside: from toward_pole by −swirl about the outward normal.
+      const double a = -swirl * M_PI / 180.0;
+      const Vec3 expected = std::cos(a) * toward_pole + std::sin(a) * n.cross(toward_pole);
+      CAPTURE(swirl);
+      CHECK(f.directions[i].dot(expected) > std::cos(15.0 * M_PI / 180.0));
+      ++checked;
+    }
+    CHECK(checked > 100);
+  }
+}
