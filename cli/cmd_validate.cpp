@@ -54,6 +54,10 @@ int command_validate(const Arguments& argv) {
   std::string effects;
   for (const std::string& e : scene.effects.names()) effects += (effects.empty() ? "" : ", ") + e;
   std::printf("  effects  %s\n", effects.empty() ? "none declared" : effects.c_str());
+  if (scene.hair.from_shell)
+    std::printf("  hair     neither hair.length nor hair.tilt given: both are derived from the shell when the scene\n"
+                "           runs (report.json roots.hair_length_cm, hair_tilt_degrees), with the thin-shell defaults\n"
+                "           for the keys not given (spec/reference.md, \"Hair that suits its shell\")\n");
   return 0;
 }
 

@@ -104,6 +104,8 @@ TEST_CASE("real data: validate says what it found in a raw card-hair hull") {
   CHECK(r.out.find("2 flipped patches (302 triangles)") != std::string::npos);
   CHECK(r.out.find("293 duplicate") != std::string::npos);
   CHECK(r.out.find("of the scalp lies inside it") != std::string::npos);
+  // The scene gives no hair length or tilt: validate says they come from the shell.
+  CHECK(r.out.find("derived from the shell") != std::string::npos);
 }
 
 TEST_CASE("real data: open multi-part hulls that dip under the skin run end to end, inside and off the scalp") {
