@@ -62,6 +62,10 @@ struct SceneHair {
   double flow_smoothing = 6.0;              // cm: the growth field averages its guidance over this
   double relief_radius = 1.5;               // cm: with flow = relief, the reach of the hull's grain
   double swirl = 0.0;                       // degrees: growth away from the layer's end turns clockwise
+  std::array<double, 2> whorl{0.0, 0.0};    // chart point of a crown whorl
+  double whorl_radius = 0.0;                // cm (0: none)
+  std::array<double, 2> parting{0.0, 1.0};  // chart point where a parting starts; it runs to the whorl
+  double parting_radius = 0.0;              // cm (0: none)
   double youngs_modulus = 3.89e10;          // E, dyn/cm² (paper §3.1)
   double shear_modulus = 0.89e10;           // G, dyn/cm²
   double cross_section = 1.5e-5;            // A, cm² (circular: I = A²/4π, J = 2I)

@@ -226,6 +226,16 @@ std::vector<SceneKey> build_keys() {
                         "With a growth field and tilt_toward = \"thicker\": hair that grows away from where the layer "
                         "ends turns clockwise (seen from outside) by this, so on a cap it spirals to the crown like a whorl "
                         "instead of meeting there head on."));
+  keys.push_back(pair("hair.whorl", REF(hair.whorl), "", closed(-1, 1), "roots",
+                      "With a growth field: the chart point (x to the person's right, y to the front) of a crown whorl, "
+                      "from which hair grows, turned clockwise by hair.swirl."));
+  keys.push_back(number("hair.whorl_radius", REF(hair.whorl_radius), "cm", closed(0, 100), "roots",
+                        "How far the whorl steers the growth field (its weight falls as exp(−d²/r²)); 0 declares no whorl."));
+  keys.push_back(pair("hair.parting", REF(hair.parting), "", closed(-1, 1), "roots",
+                      "With a growth field: the chart point where a parting starts; it runs straight (in the chart) to hair.whorl, "
+                      "and hair grows away from it on either side."));
+  keys.push_back(number("hair.parting_radius", REF(hair.parting_radius), "cm", closed(0, 100), "roots",
+                        "How far the parting steers the growth field; 0 declares no parting."));
   keys.push_back(number("hair.relief_radius", REF(hair.relief_radius), "cm", above(0, 100), "roots",
                         "With hair.flow = \"relief\": how far around a scalp point the hull's ridges and grooves are read."));
   keys.push_back(number("hair.youngs_modulus", REF(hair.youngs_modulus), "dyn/cm²", above(0, 1e15), "rod",

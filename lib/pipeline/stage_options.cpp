@@ -21,6 +21,10 @@ RootOptions root_options(const Scene& scene, int threads) {
   o.flow = scene.hair.flow == "field" ? FlowModel::field : scene.hair.flow == "relief" ? FlowModel::relief : FlowModel::local;
   o.flow_smoothing = scene.hair.flow_smoothing;
   o.swirl = scene.hair.swirl;
+  o.whorl = Vec2(scene.hair.whorl[0], scene.hair.whorl[1]);
+  o.whorl_radius = scene.hair.whorl_radius;
+  o.parting = Vec2(scene.hair.parting[0], scene.hair.parting[1]);
+  o.parting_radius = scene.hair.parting_radius;
   o.length = scene.hair.length;
   o.length_range = scene.hair.length_range;
   o.guides = scene.roots.guides;

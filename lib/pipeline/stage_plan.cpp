@@ -69,7 +69,9 @@ std::vector<StageDeclaration> stage_declarations(const Scene& scene) {
   }
   append(roots.consumes, {"chart"});
   roots.reads.push_back("hair.flow");
-  if (scene.hair.flow != "local") append(roots.reads, {"hair.flow_smoothing", "hair.swirl"});
+  if (scene.hair.flow != "local")
+    append(roots.reads, {"hair.flow_smoothing", "hair.swirl", "hair.whorl", "hair.whorl_radius", "hair.parting",
+                         "hair.parting_radius"});
   if (scene.hair.flow == "relief") {  // the hull's grain
     roots.reads.push_back("hair.relief_radius");
     roots.files.push_back("volume");

@@ -93,6 +93,50 @@ std::vector<double> layer_end_distance(const ScalpChart& ch, const std::vector<d
   return edge_distances(mesh, neighbours, sources);
 }
 
+namespace {
+
+// The direction away from the nearest point of a polyline (one point: away from it), in the
+// tangent plane at p with this normal, and that point's distance; zero direction on the line.
+Vec3 away_from(const std::vector<Vec3>& line, const Vec3& p, const Vec3& normal, double& distance) {
+  Vec3 nearest = line.front();
+  for (std::size_t k = 0; k + 1 < line.size(); ++k) {
+    const Vec3 e = line[k + 1] - line[k];
+    const double t = e.squaredNorm() > 0.0 ? std::clamp((p - line[k]).dot(e) / e.squaredNorm(), 0.0, 1.0) : 0.0;
+    const Vec3 q = line[k] + t * e;
+    if ((p - q).squaredNorm() < (p - nearest).squaredNorm()) nearest = q;
+  }
+  distance = (p - nearest).norm();
+  Vec3 a = p - nearest;
+  a -= a.dot(normal) * normal;
+  return a.norm() > 1e-12 ? Vec3(a.normalized()) : Vec3::Zero();
+}
+
+}  // namespace
+
+void add_declared_style(const ScalpChart& ch, const RootOptions& o, std::vector<Vec3>& guidance) {
+  const Mesh& mesh = ch.mesh;
+  auto on_scalp = [&](const Vec2& chart_point) { return surface_position(ch, locate_in_chart(ch, chart_point)); };
+  std::vector<std::pair<std::vector<Vec3>, double>> features;  // polyline, radius (cm)
+  if (o.whorl_radius > 0.0) features.push_back({{on_scalp(o.whorl)}, o.whorl_radius});
+  if (o.parting_radius > 0.0) {
+    std::vector<Vec3> line;
+    constexpr int kSteps = 32;
+    for (int k = 0; k <= kSteps; ++k) line.push_back(on_scalp(o.parting + (o.whorl - o.parting) * (double(k) / kSteps)));
+    features.push_back({line, o.parting_radius});
+  }
+  const double c = std::cos(o.swirl * M_PI / 180.0), s = std::sin(o.swirl * M_PI / 180.0);
+  for (std::size_t f = 0; f < features.size(); ++f)
+    for (int i = 0; i < static_cast<int>(mesh.positions.size()); ++i) {
+      const Vec3& normal = ch.vertex_normals[i];
+      double d = 0.0;
+      Vec3 a = away_from(features[f].first, mesh.positions[i], normal, d);
+      if (a.isZero(0.0)) continue;
+      if (f == 0 && o.whorl_radius > 0.0) a = c * a - s * normal.cross(a);  // the whorl spirals clockwise
+      const double sure = std::exp(-(d * d) / (features[f].second * features[f].second));
+      guidance[i] = sure * a + (1.0 - sure) * guidance[i];
+    }
+}
+
 DirectionField make_growth_field(const ScalpChart& ch, const RootOptions& o) {
   const Mesh& mesh = ch.mesh;
   const int n = static_cast<int>(mesh.positions.size());
@@ -127,6 +171,7 @@ DirectionField make_growth_field(const ScalpChart& ch, const RootOptions& o) {
       const Vec3 along = g.dot(guidance[i]) < 0.0 ? Vec3(-g / g.norm()) : Vec3(g / g.norm());
       guidance[i] = sure * along + (1.0 - sure) * guidance[i];
     }
+  add_declared_style(ch, o, guidance);
   DirectionFieldOptions field;
   field.smoothing = o.flow_smoothing;
   return smoothest_aligned_field(mesh, ch.vertex_normals, guidance, field);

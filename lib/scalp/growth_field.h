@@ -47,4 +47,10 @@ std::vector<double> layer_end_distance(const ScalpChart& chart, const std::vecto
 // with it.
 DirectionField make_growth_field(const ScalpChart& chart, const RootOptions& options);
 
+// The declared style, blended into per-vertex guidance last: a crown whorl at the chart point
+// options.whorl (hair grows away from it, turned clockwise by options.swirl) and a parting along
+// the chart segment from options.parting to the whorl (hair grows away from it on either side),
+// each sure by exp(−d²/r²) at distance d (cm) over its radius; a radius of 0 declares none.
+void add_declared_style(const ScalpChart& chart, const RootOptions& options, std::vector<Vec3>& guidance);
+
 }  // namespace hairfit

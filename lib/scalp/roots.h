@@ -44,6 +44,10 @@ struct RootOptions {
   double flow_smoothing = 6.0;                // cm: the growth field averages its guidance over this
   std::vector<Vec3> grain;                    // FlowModel::relief: per scalp vertex (relief_grain)
   double swirl = 0.0;                         // degrees: growth away from the layer's end turns clockwise by this
+  Vec2 whorl = Vec2::Zero();                  // chart point of a declared crown whorl
+  double whorl_radius = 0.0;                  // cm it reaches (0: no whorl)
+  Vec2 parting = Vec2(0.0, 1.0);              // chart point where a declared parting starts (it runs to the whorl)
+  double parting_radius = 0.0;                // cm it reaches (0: no parting)
   std::array<double, 2> tilt_range{0.0, 90.0};  // degrees, tilt map black → white
   double length = 25.0;                       // cm, without length map
   std::array<double, 2> length_range{15.0, 35.0};  // cm, length map black → white

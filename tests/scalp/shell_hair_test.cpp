@@ -124,3 +124,46 @@ TEST_CASE("growth field with swirl: near the hairline it turns clockwise from th
     CHECK(checked > 100);
   }
 }
+
+TEST_CASE("declared style: near a whorl hair grows away from it, beside a parting away from the line") {
+  const ScalpChart chart = make_scalp_chart(cap_mesh(), Vec3(0, 0, 1), Vec3(0, -1, 0), "cap.obj");
+  RootOptions o;  // toward down: on its own radial from the pole, so the style must turn it
+  o.flow = FlowModel::field;
+  o.flow_smoothing = 0.5;
+  o.whorl = Vec2(0.4, -0.3);
+  o.whorl_radius = 2.0;
+  const Vec3 w = surface_position(chart, locate_in_chart(chart, o.whorl));
+  const DirectionField f = make_growth_field(chart, o);
+  int checked = 0;
+  for (std::size_t i = 0; i < chart.mesh.positions.size(); ++i) {
+    const Vec3& p = chart.mesh.positions[i];
+    const double d = (p - w).norm();
+    if (d < 0.5 || d > 1.2) continue;
+    const Vec3 n = chart.vertex_normals[i];
+    const Vec3 away = ((p - w) - (p - w).dot(n) * n).normalized();
+    CHECK(f.directions[i].dot(away) > std::cos(35.0 * M_PI / 180.0));  // the whorl weighs 0.70 at 1.2 cm
+    ++checked;
+  }
+  CHECK(checked > 5);
+  // A parting from the front (chart (0, 0.9)) to the pole: on either side hair grows away from it.
+  RootOptions q = o;
+  q.whorl = Vec2(0.0, 0.0);
+  q.whorl_radius = 0.0;
+  q.parting = Vec2(0.0, 0.9);
+  q.parting_radius = 1.5;
+  const DirectionField g = make_growth_field(chart, q);
+  const Vec3 a = surface_position(chart, locate_in_chart(chart, q.parting));
+  const Vec3 b = surface_position(chart, locate_in_chart(chart, q.whorl));
+  checked = 0;
+  for (std::size_t i = 0; i < chart.mesh.positions.size(); ++i) {
+    const Vec3& p = chart.mesh.positions[i];
+    // Beside the middle of the parting: its points lie in the plane x = 0 (front–back through the pole).
+    const Vec3 mid = 0.5 * (a + b);
+    if ((p - mid).norm() > 2.5 || std::fabs(p.x()) < 0.4 || std::fabs(p.x()) > 1.0) continue;
+    const Vec3 n = chart.vertex_normals[i];
+    const Vec3 side = (Vec3(p.x() > 0 ? 1.0 : -1.0, 0, 0) - n * n.x() * (p.x() > 0 ? 1.0 : -1.0)).normalized();
+    CHECK(g.directions[i].dot(side) > std::cos(35.0 * M_PI / 180.0));
+    ++checked;
+  }
+  CHECK(checked > 5);
+}
