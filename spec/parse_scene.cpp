@@ -294,6 +294,21 @@ class SceneParser {
         texts.push_back(p.string());
         break;
       }
+      case KeyKind::point2: {
+        const auto* a = node.as_array();
+        const std::string expected = "a chart point [x, y] of 2 numbers";
+        if (!a || a->size() != 2) return wrong_type(k, node, expected);
+        for (const toml::node& e : *a) {
+          double x;
+          if (!number_of(e, x)) return wrong_type(k, node, expected);
+          if (!std::isfinite(x)) return error(where(node.source()), k.name + " has a non-finite component");
+          numbers.push_back(x);
+        }
+        if (numbers[0] * numbers[0] + numbers[1] * numbers[1] > 1.0 + 1e-12)
+          return error(where(node.source()), k.name + " = " + value_text(node) +
+                                                 " lies outside the chart's unit disk; give a point with x² + y² ≤ 1");
+        break;
+      }
       case KeyKind::vector3:
       case KeyKind::pair: {
         const auto* a = node.as_array();

@@ -104,6 +104,18 @@ SceneKey pair(std::string name, Ref ref, std::string unit, Range range, std::str
   return k;
 }
 
+// A chart point [x, y] in the closed unit disk.
+template <class Ref>
+SceneKey point2(std::string name, Ref ref, std::string feeds, std::string doc) {
+  SceneKey k = make(std::move(name), KeyKind::point2, "", closed(-1, 1), std::move(feeds), std::move(doc));
+  k.store = [ref](Scene& s, const std::vector<double>& x, const std::vector<std::string>&) { ref(s) = {x[0], x[1]}; };
+  k.show = [ref](const Scene& s) {
+    Scene c = s;
+    return "[" + number_text(ref(c)[0]) + ", " + number_text(ref(c)[1]) + "]";
+  };
+  return k;
+}
+
 template <class Ref>
 SceneKey vector3(std::string name, Ref ref, std::string feeds, std::string doc) {
   SceneKey k = make(std::move(name), KeyKind::vector3, "", any(), std::move(feeds), std::move(doc));
@@ -226,12 +238,12 @@ std::vector<SceneKey> build_keys() {
                         "With a growth field and tilt_toward = \"thicker\": hair that grows away from where the layer "
                         "ends turns clockwise (seen from outside) by this, so on a cap it spirals to the crown like a whorl "
                         "instead of meeting there head on."));
-  keys.push_back(pair("hair.whorl", REF(hair.whorl), "", closed(-1, 1), "roots",
+  keys.push_back(point2("hair.whorl", REF(hair.whorl), "roots",
                       "With a growth field: the chart point (x to the person's right, y to the front) of a crown whorl, "
                       "from which hair grows, turned clockwise by hair.swirl."));
   keys.push_back(number("hair.whorl_radius", REF(hair.whorl_radius), "cm", closed(0, 100), "roots",
                         "How far the whorl steers the growth field (its weight falls as exp(−d²/r²)); 0 declares no whorl."));
-  keys.push_back(pair("hair.parting", REF(hair.parting), "", closed(-1, 1), "roots",
+  keys.push_back(point2("hair.parting", REF(hair.parting), "roots",
                       "With a growth field: the chart point where a parting starts; it runs straight (in the chart) to hair.whorl, "
                       "and hair grows away from it on either side."));
   keys.push_back(number("hair.parting_radius", REF(hair.parting_radius), "cm", closed(0, 100), "roots",
@@ -397,7 +409,7 @@ const std::vector<SceneKey>& scene_keys() {
 
 std::string scene_keys_markdown() {
   static const char* kind_names[] = {"integer", "number", "boolean", "string", "path", "folder",
-                                     "[x, y, z]", "[lo, hi]", "list of strings"};
+                                     "[x, y, z]", "[lo, hi]", "list of strings", "[x, y]"};
   std::ostringstream out;
   out << "| key | type | unit | default | allowed | feeds | meaning |\n";
   out << "| --- | --- | --- | --- | --- | --- | --- |\n";
@@ -409,6 +421,7 @@ std::string scene_keys_markdown() {
       for (const std::string& c : k.choices) allowed += (allowed.empty() ? "" : ", ") + ("`" + c + "`");
     }
     if (k.kind == KeyKind::vector3) allowed = "non-zero";
+    if (k.kind == KeyKind::point2) allowed = "in the unit disk";
     out << "| `" << k.name << "` | " << kind_names[static_cast<int>(k.kind)] << " | " << k.unit << " | `"
         << k.show(defaults) << "` | " << allowed << " | " << k.feeds << " | " << k.doc << " |\n";
   }

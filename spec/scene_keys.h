@@ -20,6 +20,7 @@ enum class KeyKind {
   vector3,    // [x, y, z], non-zero (normalised)
   pair,       // [lo, hi] with lo ≤ hi, each within the key's range
   text_list,  // [string, ...], each one of `choices`, no repeats
+  point2,     // [x, y], a chart point: in the closed unit disk
 };
 
 struct SceneKey {
