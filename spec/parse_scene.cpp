@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -304,9 +305,12 @@ class SceneParser {
           if (!std::isfinite(x)) return error(where(node.source()), k.name + " has a non-finite component");
           numbers.push_back(x);
         }
-        if (numbers[0] * numbers[0] + numbers[1] * numbers[1] > 1.0 + 1e-12)
-          return error(where(node.source()), k.name + " = " + value_text(node) +
-                                                 " lies outside the chart's unit disk; give a point with x² + y² ≤ 1");
+        if (numbers[0] * numbers[0] + numbers[1] * numbers[1] > 1.0 + 1e-12) {
+          char point[64];
+          std::snprintf(point, sizeof point, "[%g, %g]", numbers[0], numbers[1]);
+          return error(where(node.source()),
+                       k.name + " = " + point + " lies outside the chart's unit disk; give a point with x² + y² ≤ 1");
+        }
         break;
       }
       case KeyKind::vector3:

@@ -46,6 +46,9 @@ TEST_CASE("every corpus scene: run exits 2, names the file, the item and the fix
       {"scalp_is_folder", "scenes/scalp_is_folder.toml", ":4:9: error: inputs.scalp: " + corpus("data") + " is a folder; name a file"},
       {"volume_missing", "scenes/volume_missing.toml", ":5:10: error: inputs.volume: no such file " + corpus("data/no_such_volume.obj")},
       {"map_missing", "scenes/map_missing.toml", ":11:8: error: maps.tilt: no such file " + corpus("scenes/no_such_tilt.png")},
+      {"chart_point_outside", "scenes/chart_point_outside.toml",
+       ":9:9: error: hair.whorl = [0.9, 0.9] lies outside the chart's unit disk; "
+       "give a point with x² + y² ≤ 1"},
       {"map_unknown_kind", "scenes/map_unknown_kind.toml",
        ":8:9: error: effects.maps = \"colour\" is not allowed; choose one of \"density\", \"tilt\", \"length\""},
       {"map_is_mesh", "data/cube.obj", ": error: is not a PNG file; maps must be grey-value PNG images (8 or 16 bit)"},
