@@ -295,29 +295,14 @@ class SceneParser {
         texts.push_back(p.string());
         break;
       }
+      case KeyKind::vector3:
+      case KeyKind::pair:
       case KeyKind::point2: {
         const auto* a = node.as_array();
-        const std::string expected = "a chart point [x, y] of 2 numbers";
-        if (!a || a->size() != 2) return wrong_type(k, node, expected);
-        for (const toml::node& e : *a) {
-          double x;
-          if (!number_of(e, x)) return wrong_type(k, node, expected);
-          if (!std::isfinite(x)) return error(where(node.source()), k.name + " has a non-finite component");
-          numbers.push_back(x);
-        }
-        if (numbers[0] * numbers[0] + numbers[1] * numbers[1] > 1.0 + 1e-12) {
-          char point[64];
-          std::snprintf(point, sizeof point, "[%g, %g]", numbers[0], numbers[1]);
-          return error(where(node.source()),
-                       k.name + " = " + point + " lies outside the chart's unit disk; give a point with x² + y² ≤ 1");
-        }
-        break;
-      }
-      case KeyKind::vector3:
-      case KeyKind::pair: {
-        const auto* a = node.as_array();
         const std::size_t n = k.kind == KeyKind::vector3 ? 3 : 2;
-        const std::string expected = k.kind == KeyKind::vector3 ? "an array of 3 numbers [x, y, z]" : "an array [lo, hi] of 2 numbers";
+        const std::string expected = k.kind == KeyKind::vector3 ? "an array of 3 numbers [x, y, z]"
+                                     : k.kind == KeyKind::pair  ? "an array [lo, hi] of 2 numbers"
+                                                                : "a chart point [x, y] of 2 numbers";
         if (!a || a->size() != n) return wrong_type(k, node, expected);
         for (const toml::node& e : *a) {
           double x;
@@ -330,6 +315,12 @@ class SceneParser {
           return error(where(node.source()), k.name + " = " + value_text(node) + " has lo > hi; write [lo, hi]");
         if (k.kind == KeyKind::vector3 && Vec3(numbers[0], numbers[1], numbers[2]).norm() == 0.0)
           return error(where(node.source()), k.name + " must be a non-zero direction");
+        if (k.kind == KeyKind::point2 && numbers[0] * numbers[0] + numbers[1] * numbers[1] > 1.0 + 1e-12) {
+          char point[64];
+          std::snprintf(point, sizeof point, "[%g, %g]", numbers[0], numbers[1]);
+          return error(where(node.source()),
+                       k.name + " = " + point + " lies outside the chart's unit disk; give a point with x² + y² ≤ 1");
+        }
         break;
       }
       case KeyKind::text_list: {

@@ -104,15 +104,11 @@ SceneKey pair(std::string name, Ref ref, std::string unit, Range range, std::str
   return k;
 }
 
-// A chart point [x, y] in the closed unit disk.
+// A chart point [x, y] in the closed unit disk: stored and shown as a pair.
 template <class Ref>
 SceneKey point2(std::string name, Ref ref, std::string feeds, std::string doc) {
-  SceneKey k = make(std::move(name), KeyKind::point2, "", closed(-1, 1), std::move(feeds), std::move(doc));
-  k.store = [ref](Scene& s, const std::vector<double>& x, const std::vector<std::string>&) { ref(s) = {x[0], x[1]}; };
-  k.show = [ref](const Scene& s) {
-    Scene c = s;
-    return "[" + number_text(ref(c)[0]) + ", " + number_text(ref(c)[1]) + "]";
-  };
+  SceneKey k = pair(std::move(name), ref, "", closed(-1, 1), std::move(feeds), std::move(doc));
+  k.kind = KeyKind::point2;
   return k;
 }
 

@@ -1,9 +1,8 @@
 #include "guides/layer_preguide.h"
 
 #include <algorithm>
-#include <array>
-#include <vector>
 #include <cmath>
+#include <vector>
 
 #include <Eigen/Dense>
 
@@ -21,45 +20,44 @@ constexpr double kFollowWeight = 0.5;  // the growth field's pull against the im
 
 using Load = Eigen::Matrix<double, 6, 1>;
 
+// The fit of one pre-guide's load: its rod, where it is to run, and the residuals of a shape.
 struct LayerFit {
-  const RodModel* model;
+  RodModel model;
   const PreguideOptions* options;
   const Boundary* boundary;
-  Vec3 root, bend, binormal;
+  Vec3 root;
   double length;
   double target;  // λ*
-  double scale;  // cm: the layer coordinate's unit outside the layer (layer_coordinate)
+  double scale;   // cm: the layer coordinate's unit outside the layer (layer_coordinate)
 
   // x: the load in the root frame (d1, d2, d3): terminal force x[0..2], root couple x[3..5].
   FibreShape shape(const Load& x) const {
-    const Mat3& frame = model->root_frame;
-    return fibre_shape(*model, root, length, options->rod, frame * x.head<3>(), frame * x.tail<3>());
+    const Mat3& frame = model.root_frame;
+    return fibre_shape(model, root, length, options->rod, frame * x.head<3>(), frame * x.tail<3>());
   }
 
-  // Residuals: per node after the root, the weighted miss of λ and the two excursion penalties,
-  // then the regularisation of the load.
+  // Residuals: per node after the root, the weighted miss of λ and the two excursion penalties;
+  // with the growth field, per node the tangent's part along the scalp against the field there;
+  // then the regularisation of the load. Past the root the first quarter ramps in (smoothstep).
   Eigen::VectorXd residuals(const FibreShape& s, const Load& x) const {
     const int n = static_cast<int>(s.nodes.size());
     const FlowLookup* flow = options->flow.get();
     Eigen::VectorXd r((flow ? 6 : 3) * (n - 1) + 6);
+    const double root_n = std::sqrt(static_cast<double>(n - 1));
     for (int k = 1; k < n; ++k) {
-      const double along = static_cast<double>(k) / (n - 1);
+      const double ramp = smoothstep((static_cast<double>(k) / (n - 1)) / 0.25);
       const double lambda = layer_coordinate(*boundary, s.nodes[k], scale);
-      const double w = smoothstep(along / 0.25) / std::sqrt(static_cast<double>(n - 1));
-      r[3 * (k - 1)] = w * (lambda - target);
+      r[3 * (k - 1)] = ramp / root_n * (lambda - target);
       r[3 * (k - 1) + 1] = kOutsidePenalty * std::max(0.0, lambda - (1.0 - kMargin));
-      r[3 * (k - 1) + 2] = kOutsidePenalty * std::max(0.0, kMargin - lambda) * smoothstep(along / 0.25);
+      r[3 * (k - 1) + 2] = kOutsidePenalty * std::max(0.0, kMargin - lambda) * ramp;
+      if (!flow) continue;
+      Vec3 normal;
+      const Vec3 field = flow->at(s.nodes[k], &normal);
+      const Vec3 t = s.tangents[k] - s.tangents[k].dot(normal) * normal;
+      const double m = t.norm();
+      const Vec3 miss = field.isZero(0.0) || !(m > 1e-12) ? Vec3::Zero() : Vec3(t / m - field);
+      r.segment<3>(3 * (n - 1) + 3 * (k - 1)) = kFollowWeight * ramp / root_n * miss;
     }
-    if (flow)  // the tangent's part along the scalp against the growth field there
-      for (int k = 1; k < n; ++k) {
-        const double along = static_cast<double>(k) / (n - 1);
-        Vec3 normal;
-        const Vec3 field = flow->at(s.nodes[k], &normal);
-        Vec3 t = s.tangents[k] - s.tangents[k].dot(normal) * normal;
-        const double m = t.norm();
-        const Vec3 miss = field.isZero(0.0) || !(m > 1e-12) ? Vec3::Zero() : Vec3(t / m - field);
-        r.segment<3>(3 * (n - 1) + 3 * (k - 1)) = kFollowWeight * smoothstep(along / 0.25) / std::sqrt(static_cast<double>(n - 1)) * miss;
-      }
     r.tail<6>() = kLoadRegularisation * x;
     return r;
   }
@@ -76,45 +74,30 @@ double layer_coordinate(const Boundary& b, const Vec3& p, double scale) {
 
 namespace {
 
-// The pre-guide's root, its rod and the fit of its load.
-struct LayerProblem {
-  PreGuide g;
-  RodModel model;
-  LayerFit fit;
-};
-
-LayerProblem layer_problem(const RootSet& roots, int i, const Boundary& boundary, const PreguideOptions& o) {
-  LayerProblem p;
-  p.g = preguide_root(roots, i);
-  PreGuide& g = p.g;
-  const Vec3 bend = bending_direction(g.normal, g.direction, o.down, o.front);
-  const Mat3 frame = root_frame(g.direction, bend);
-  p.model = make_rod_model(hair_rod(g.length, o.material), RodRoot{g.root, frame});
-  g.thickness = std::max(0.0, -boundary.volume->value(g.root));
-  const double share = o.depth_range[1] + (o.depth_range[0] - o.depth_range[1]) * std::clamp(g.height, 0.0, 1.0);
-  g.target_depth = share * g.thickness;
-  const double scale = std::max(g.thickness, 0.5 * boundary.volume->voxel());
-  p.fit = LayerFit{nullptr, &o, &boundary, g.root, bend, frame.col(1), g.length, 1.0 - share, scale};
-  return p;
+LayerFit layer_fit(const PreGuide& g, const Boundary& boundary, const PreguideOptions& o) {
+  const Mat3 frame = root_frame(g.direction, bending_direction(g.normal, g.direction, o.down, o.front));
+  return LayerFit{make_rod_model(hair_rod(g.length, o.material), RodRoot{g.root, frame}),
+                  &o,
+                  &boundary,
+                  g.root,
+                  g.length,
+                  1.0 - immersion_share(o, g.height),
+                  std::max(g.thickness, 0.5 * boundary.volume->voxel())};
 }
 
 }  // namespace
 
 double layer_preguide_cost(const RootSet& roots, int i, const Boundary& boundary, const PreguideOptions& o, double force,
                            double couple) {
-  LayerProblem p = layer_problem(roots, i, boundary, o);
-  p.fit.model = &p.model;
+  const LayerFit fit = layer_fit(preguide_start(roots, i, boundary, o), boundary, o);
   Load x = Load::Zero();
   x[0] = force, x[4] = couple;
-  return p.fit.residuals(p.fit.shape(x), x).squaredNorm();
+  return fit.residuals(fit.shape(x), x).squaredNorm();
 }
 
 PreGuide solve_layer_preguide(const RootSet& roots, int i, const Boundary& boundary, const PreguideOptions& o) {
-  LayerProblem problem = layer_problem(roots, i, boundary, o);
-  problem.fit.model = &problem.model;
-  PreGuide& g = problem.g;
-  const LayerFit& fit = problem.fit;
-  const double scale = fit.scale;
+  PreGuide g = preguide_start(roots, i, boundary, o);
+  const LayerFit fit = layer_fit(g, boundary, o);
 
   // Levenberg–Marquardt with forward-difference Jacobians on (P, μ) from the straight rod; with
   // the growth field to follow, then on all six load components from there.
@@ -165,13 +148,13 @@ PreGuide solve_layer_preguide(const RootSet& roots, int i, const Boundary& bound
       if (!improved) break;
     }
   }
-  g.force = problem.model.root_frame * x.head<3>();
-  g.root_moment = problem.model.root_frame * x.tail<3>();
+  g.force = fit.model.root_frame * x.head<3>();
+  g.root_moment = fit.model.root_frame * x.tail<3>();
   g.shape = std::move(shape);
   g.depth = -boundary.volume->value(g.shape.nodes.back());
-  g.reached = std::fabs(layer_coordinate(boundary, g.shape.nodes.back(), scale) - fit.target) <= 0.1;
+  g.reached = std::fabs(layer_coordinate(boundary, g.shape.nodes.back(), fit.scale) - fit.target) <= 0.1;
   g.solves = solves;
-  return std::move(problem.g);
+  return g;
 }
 
 }  // namespace hairfit

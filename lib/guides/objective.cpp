@@ -262,8 +262,9 @@ class GuideCost {
       const T beyond_scalp = -field_at(*t_.boundary->scalp, p);
       const T beyond_volume = field_at(*t_.boundary->volume, p);
       const T scale = T(std::sqrt(w.boundary * t_.sample_weights[k]));
-      r[2 * k] = scale * boundary_residual(beyond_scalp, t_.form, t_.outside_penalty, t_.boundary_width, beyond_scalp + beyond_volume);
-      r[2 * k + 1] = scale * boundary_residual(beyond_volume, t_.form, t_.outside_penalty, t_.boundary_width, beyond_scalp + beyond_volume);
+      const T both = beyond_scalp + beyond_volume;  // −(the layer's thickness here), for the layer form
+      r[2 * k] = scale * boundary_residual(beyond_scalp, t_.form, t_.outside_penalty, t_.boundary_width, both);
+      r[2 * k + 1] = scale * boundary_residual(beyond_volume, t_.form, t_.outside_penalty, t_.boundary_width, both);
       if (!t_.density) continue;
       T* out = density_r + per_sample * k;
       if (d.model == GuideDensityModel::continuous) {

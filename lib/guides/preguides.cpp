@@ -288,14 +288,10 @@ PreguideMarch shared_march(const Vec3& compliance, const PreguideOptions& o) {
 
 PreGuide solve_preguide(const RootSet& roots, int i, const Boundary& boundary, const PreguideOptions& o,
                         const std::vector<PreguideMarch>& shared) {
-  PreGuide g = preguide_root(roots, i);
+  PreGuide g = preguide_start(roots, i, boundary, o);
   const Vec3 bend = bending_direction(g.normal, g.direction, o.down, o.front);
   const RodModel model = make_rod_model(hair_rod(g.length, o.material), RodRoot{g.root, root_frame(g.direction, bend)});
   const Cantilever cantilever(bend, o.rod);
-
-  g.thickness = std::max(0.0, -boundary.volume->value(g.root));
-  const double share = o.depth_range[1] + (o.depth_range[0] - o.depth_range[1]) * std::clamp(g.height, 0.0, 1.0);
-  g.target_depth = share * g.thickness;
 
   // The states the march visits, with their misses (miss > 0: the tip is not yet deep enough):
   // the best tip so far, and the bracket [above, below] once the tip passes its depth.
@@ -427,13 +423,19 @@ PreGuide solve_preguide(const RootSet& roots, int i, const Boundary& boundary, c
 
 }  // namespace
 
-PreGuide preguide_root(const RootSet& roots, int i) {
+double immersion_share(const PreguideOptions& o, double height) {
+  return o.depth_range[1] + (o.depth_range[0] - o.depth_range[1]) * std::clamp(height, 0.0, 1.0);
+}
+
+PreGuide preguide_start(const RootSet& roots, int i, const Boundary& boundary, const PreguideOptions& o) {
   PreGuide g;
   g.root = roots.positions[i];
   g.normal = roots.normals[i];
   g.direction = roots.directions[i];
   g.length = roots.lengths[i];
   g.height = roots.heights[i];
+  g.thickness = std::max(0.0, -boundary.volume->value(g.root));
+  g.target_depth = immersion_share(o, g.height) * g.thickness;
   return g;
 }
 

@@ -76,8 +76,13 @@ struct PreGuides {
   int size() const { return static_cast<int>(items.size()); }
 };
 
-// A pre-guide's root as it starts, from root i of the set: root, normal, direction, length, height.
-PreGuide preguide_root(const RootSet& roots, int i);
+// The share of the local thickness a pre-guide rooted at this height (0 lowest, 1 top of the
+// head) is to be immersed to: depth_range from the top of the head to the lowest roots.
+double immersion_share(const PreguideOptions& options, double height);
+
+// A pre-guide as it starts, from root i of the set: root, normal, direction, length, height, the
+// layer's thickness at the root and the depth its tip is to reach (immersion_share of it).
+PreGuide preguide_start(const RootSet& roots, int i, const Boundary& boundary, const PreguideOptions& options);
 
 // One pre-guide per root, in root order; the same for any thread count. Rods loaded only at the
 // tip with a straight natural shape (no weight, no curl) solve one dimensionless problem in their

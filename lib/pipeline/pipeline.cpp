@@ -69,15 +69,14 @@ HeadExit scalp_exit(const DistanceField& scalp) {
       value_at_p = std::numeric_limits<double>::infinity();
       return p;
     }
-    constexpr double kClearance = kHeadExitClearance;
     value_at_p = scalp.value(p);  // = value_and_gradient(p).value; the gradient only when it is near
-    if (!(value_at_p < kClearance)) return p;
+    if (!(value_at_p < kHeadExitClearance)) return p;
     Vec3 q = p;
     for (int step = 0; step < 4; ++step) {
       const FieldValueGradient vg = scalp.value_and_gradient(q);
       const double g2 = vg.gradient.squaredNorm();
-      if (vg.value >= 0.9 * kClearance || !(g2 > 1e-12)) break;
-      q -= (vg.value - kClearance) / g2 * vg.gradient;
+      if (vg.value >= 0.9 * kHeadExitClearance || !(g2 > 1e-12)) break;
+      q -= (vg.value - kHeadExitClearance) / g2 * vg.gradient;
     }
     return q;
   };
@@ -354,9 +353,9 @@ class Runner {
 
   void roots(StageReport& stage) {
     StageValues& v = result_.values;
-    ShellHair shell;
-    const RootOptions o = resolved_root_options(&shell);
+    const RootOptions& o = resolved_root_options();
     if (scene_.hair.from_shell) {
+      const ShellHair& shell = resolved_roots_->shell;
       stage.add("hair_from_shell", shell.layer_ends);
       stage.add("shell_thickness_cm", shell.thickness);
       stage.add("shell_reach_cm", shell.reach);
@@ -379,21 +378,25 @@ class Runner {
   }
 
   // The roots' options with what they read from the fields and the hull: the layer's thickness,
-  // the hull's grain, and the length and tilt of hair that suits its shell (`shell`, if given).
-  RootOptions resolved_root_options(ShellHair* shell = nullptr) const {
+  // the hull's grain, and the length and tilt of hair that suits its shell. Worked out once a run,
+  // for the roots and for pre-guides that follow the growth field.
+  const RootOptions& resolved_root_options() {
+    if (resolved_roots_) return resolved_roots_->options;
     const StageValues& v = result_.values;
-    RootOptions o = root_options(scene_, options_.threads);
+    ResolvedRoots r;
+    RootOptions& o = r.options;
+    o = root_options(scene_, options_.threads);
     if (o.tilt_toward == TiltToward::thicker) o.thickness = layer_thickness(*v.volume_field);
     if (o.flow == FlowModel::relief) o.grain = relief_grain(*v.chart, inputs_.volume.mesh, scene_.hair.relief_radius, options_.threads);
     if (scene_.hair.from_shell) {  // hair that suits its shell: length and tilt from the layer
-      const ShellHair derived = shell_hair(*v.chart, layer_thickness(*v.volume_field), options_.threads);
-      if (derived.layer_ends) {
-        o.length = derived.length;
-        o.tilt = derived.tilt;
+      r.shell = shell_hair(*v.chart, layer_thickness(*v.volume_field), options_.threads);
+      if (r.shell.layer_ends) {
+        o.length = r.shell.length;
+        o.tilt = r.shell.tilt;
       }
-      if (shell) *shell = derived;
     }
-    return o;
+    resolved_roots_ = std::move(r);
+    return resolved_roots_->options;
   }
 
   void write_roots() {
@@ -657,6 +660,12 @@ class Runner {
   // exit and the cut (DensityGuides::fibres): handed on within one run only, so that the strands
   // stage need not grow them again. Never cached; the results do not depend on it.
   std::vector<Vec3> deposited_fibres_;
+  // The roots' options with what the fields and the hull say (resolved_root_options), once a run.
+  struct ResolvedRoots {
+    RootOptions options;
+    ShellHair shell;
+  };
+  std::optional<ResolvedRoots> resolved_roots_;
   PipelineResult result_;
 };
 

@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
-#include <queue>
 
 #include "core/parallel.h"
 #include "core/smoothstep.h"
@@ -35,6 +33,12 @@ Vec3 growth_guidance(const Vec3& normal, const Vec3& thickness_gradient, const R
 }
 
 namespace {
+
+// a in the tangent plane with this normal, turned clockwise (seen from outside) by `degrees`.
+Vec3 turned_clockwise(const Vec3& a, const Vec3& normal, double degrees) {
+  const double angle = degrees * M_PI / 180.0;
+  return std::cos(angle) * a - std::sin(angle) * normal.cross(a);
+}
 
 // The surface gradient of a piecewise-linear function with values f at the vertices,
 // ∇f = Σ_k f_k (N × e_k) / |N|² per triangle (N = (p1 − p0) × (p2 − p0), e_k the edge opposite
@@ -124,14 +128,13 @@ void add_declared_style(const ScalpChart& ch, const RootOptions& o, std::vector<
     for (int k = 0; k <= kSteps; ++k) line.push_back(on_scalp(o.parting + (o.whorl - o.parting) * (double(k) / kSteps)));
     features.push_back({line, o.parting_radius});
   }
-  const double c = std::cos(o.swirl * M_PI / 180.0), s = std::sin(o.swirl * M_PI / 180.0);
   for (std::size_t f = 0; f < features.size(); ++f)
     for (int i = 0; i < static_cast<int>(mesh.positions.size()); ++i) {
       const Vec3& normal = ch.vertex_normals[i];
       double d = 0.0;
       Vec3 a = away_from(features[f].first, mesh.positions[i], normal, d);
       if (a.isZero(0.0)) continue;
-      if (f == 0 && o.whorl_radius > 0.0) a = c * a - s * normal.cross(a);  // the whorl spirals clockwise
+      if (f == 0 && o.whorl_radius > 0.0) a = turned_clockwise(a, normal, o.swirl);  // the whorl spirals
       const double sure = std::exp(-(d * d) / (features[f].second * features[f].second));
       guidance[i] = sure * a + (1.0 - sure) * guidance[i];
     }
@@ -152,12 +155,10 @@ DirectionField make_growth_field(const ScalpChart& ch, const RootOptions& o) {
     // gradient of the distance to it takes over, fully at the end, not at all a length away.
     const std::vector<double> reach = layer_end_distance(ch, thickness, o.thickness, kLayerEndProbe);
     const std::vector<Vec3> away = vertex_gradients(mesh, reach);
-    const double cos_swirl = std::cos(o.swirl * M_PI / 180.0), sin_swirl = std::sin(o.swirl * M_PI / 180.0);
     for (int i = 0; i < n; ++i) {
       const Vec3 local = growth_guidance(ch.vertex_normals[i], gradient[i], o, ch.down, ch.front);
       const Vec3& normal = ch.vertex_normals[i];
-      Vec3 a = away[i] - away[i].dot(normal) * normal;
-      a = cos_swirl * a - sin_swirl * normal.cross(a);  // clockwise seen from outside
+      const Vec3 a = turned_clockwise(away[i] - away[i].dot(normal) * normal, normal, o.swirl);
       const double urgency = std::isfinite(reach[i]) ? smoothstep(1.0 - reach[i] / o.length) : 0.0;
       guidance[i] = a.norm() > 1e-12 ? Vec3(urgency * a.normalized() + (1.0 - urgency) * local) : local;
     }

@@ -111,6 +111,7 @@ struct Scratch {
 // first segment also near the root, where a chord that leaves the pore below its tangent plane
 // enters the head at once.
 constexpr double kFirstSegmentProbes[] = {0.25, 0.5};
+constexpr double kSegmentProbes[] = {0.5};
 // A probe closer to the scalp than this (cm) dips: less than the clearance the head exit keeps
 // points at (kHeadExitClearance), since near the root the chord of a fibre that leaves its pore
 // at a low angle runs that close by construction, and lifting its far end by the whole shortfall
@@ -118,7 +119,6 @@ constexpr double kFirstSegmentProbes[] = {0.25, 0.5};
 // 0.980 of the fibre points inside (short04 / bob01 / ponytail01, direct sums) with 39 / 84 / 23
 // of ~33 000 segments crossing the scalp; 0.05 cm 0.951 / 0.9984 / 0.973 with 16 / 33 / 10.
 constexpr double kProbeClearance = 0.03;
-constexpr double kSegmentProbes[] = {0.5};
 
 // Whether the segment a→b dips into the head at one of its probes: a probe within kProbeClearance
 // of the scalp or behind it.
