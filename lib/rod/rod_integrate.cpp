@@ -301,10 +301,117 @@ inline void write_node(const Constants& k, const RodTrace<T>& trace, int i, doub
   }
 }
 
+// A constant on the working scalar (no tangents).
+template <typename S>
+inline S constant(double x) {
+  S z{};
+  if constexpr (std::is_same_v<S, double>) z = x; else z.a = x;
+  return z;
+}
+
+// The support's force c(r) on the working scalar: for jets, its tangents follow from ∂c/∂r by the
+// chain rule, so the support itself sees doubles only.
+inline V<double> support_force(const RodModel& model, const V<double>& r) {
+  V<double> c;
+  model.support->force(r.data(), c.data(), nullptr);
+  return {model.support_scale * c[0], model.support_scale * c[1], model.support_scale * c[2]};
+}
+template <int N, typename P>
+inline V<Dual<N, P>> support_force(const RodModel& model, const V<Dual<N, P>>& r) {
+  const double at[3] = {r[0].a, r[1].a, r[2].a};
+  double c[3], jacobian[9];
+  model.support->force(at, c, jacobian);
+  V<Dual<N, P>> out;
+  for (int i = 0; i < 3; ++i) {
+    const double j0 = model.support_scale * jacobian[i], j1 = model.support_scale * jacobian[3 + i],
+                 j2 = model.support_scale * jacobian[6 + i];
+    out[i].a = model.support_scale * c[i];
+    for (int k = 0; k < Dual<N, P>::K; ++k) out[i].v[k] = (j0 * r[0].v[k] + j1 * r[1].v[k]) + j2 * r[2].v[k];
+  }
+  return out;
+}
+
+// The steps of a rod on a support: n joins the state, n' = −f − c(r), its stages in R_n's body
+// coordinates like μ's; the support is evaluated at each stage's position r_n + R_n·Δr, where Δr
+// is the stage's increment of r (the same tableau as every other component).
+template <typename T, typename P>
+inline void supported_steps(const RodModel& model, RodIntegrator integrator, int segments, int first, int last,
+                            RodState<T>& state, const RodTrace<T>& trace) {
+  using S = typename Work<T, P>::type;
+  const Constants k{model.kappa_hat, model.compliance, model.force_per_length, !model.force_per_length.isZero(0.0)};
+  V<S> r, m, n;
+  M<S> frame;
+  for (int a = 0; a < 3; ++a) {
+    to_work(state.position[a], r[a]);
+    to_work(state.moment[a], m[a]);
+    to_work(state.force[a], n[a]);
+  }
+  for (int a = 0; a < 9; ++a) to_work(state.frame[a], frame[a]);
+  const double h = 1.0 / segments, hh = 0.5 * h, w = h / 6.0;
+  Local<S> local;
+  local.phi = {};
+  local_loads(k, frame, m, n, local);
+  // R_nᵀ n' at the stage whose position is r_n + R_n·Δr (Δr in body coordinates).
+  auto force_rate = [&](const V<S>& dr) {
+    V<S> at = times(frame, dr);
+    for (int a = 0; a < 3; ++a) at[a] = r[a] + at[a];
+    const V<S> c = transpose_times(frame, support_force(model, at));
+    return V<S>{-(local.phi[0] + c[0]), -(local.phi[1] + c[1]), -(local.phi[2] + c[2])};
+  };
+  write_node(k, trace, first, first * h, r, frame, m, local);
+  for (int i = first; i < last; ++i) {
+    const double s = i * h;
+    V<S> theta, dr, dm, dn;
+    const Rate<S> k1 = first_rate(k, local.mu, local.nu, s);
+    const V<S> n1 = force_rate(V<S>{S{}, S{}, S{}});
+    const V<S> up_half{S{}, S{}, constant<S>(hh)};
+    if (integrator == RodIntegrator::rk2) {
+      const Rate<S> k2 = stage_rate(k, scaled(hh, k1.theta), advance(local.mu, hh, k1.mu), advance(local.nu, hh, n1), s + hh);
+      const V<S> n2 = force_rate(up_half);
+      theta = scaled(h, k2.theta);
+      dr = scaled(h, k2.t);
+      dm = scaled(h, k2.mu);
+      dn = scaled(h, n2);
+    } else {
+      const Rate<S> k2 = stage_rate(k, scaled(hh, k1.theta), advance(local.mu, hh, k1.mu), advance(local.nu, hh, n1), s + hh);
+      const V<S> n2 = force_rate(up_half);
+      const Rate<S> k3 = stage_rate(k, scaled(hh, k2.theta), advance(local.mu, hh, k2.mu), advance(local.nu, hh, n2), s + hh);
+      const V<S> n3 = force_rate(scaled(hh, k2.t));
+      const Rate<S> k4 = stage_rate(k, scaled(h, k3.theta), advance(local.mu, h, k3.mu), advance(local.nu, h, n3), s + h);
+      const V<S> n4 = force_rate(scaled(h, k3.t));
+      for (int a = 0; a < 3; ++a) {
+        theta[a] = w * ((k1.theta[a] + 2.0 * (k2.theta[a] + k3.theta[a])) + k4.theta[a]);
+        dm[a] = w * ((k1.mu[a] + 2.0 * (k2.mu[a] + k3.mu[a])) + k4.mu[a]);
+        dn[a] = w * ((n1[a] + 2.0 * (n2[a] + n3[a])) + n4[a]);
+      }
+      dr = {w * (2.0 * (k2.t[0] + k3.t[0]) + k4.t[0]), w * (2.0 * (k2.t[1] + k3.t[1]) + k4.t[1]),
+            w * ((1.0 + 2.0 * (k2.t[2] + k3.t[2])) + k4.t[2])};
+    }
+    const V<S> dr_world = times(frame, dr), dm_world = times(frame, dm), dn_world = times(frame, dn);
+    for (int a = 0; a < 3; ++a) {
+      r[a] = r[a] + dr_world[a];
+      m[a] = m[a] + dm_world[a];
+      n[a] = n[a] + dn_world[a];
+    }
+    M<S> q;
+    cayley::fill_matrix<S>(theta.data(), q.data());
+    frame = times(frame, q);
+    local_loads(k, frame, m, n, local);
+    write_node(k, trace, i + 1, (i + 1) * h, r, frame, m, local);
+  }
+  for (int a = 0; a < 3; ++a) {
+    to_public(r[a], state.position[a]);
+    to_public(m[a], state.moment[a]);
+    to_public(n[a], state.force[a]);
+  }
+  for (int a = 0; a < 9; ++a) to_public(frame[a], state.frame[a]);
+}
+
 // integrate_rod_steps on the working scalar with tangent packs P (compiled twice, see below).
 template <typename T, typename P>
 inline void steps(const RodModel& model, RodIntegrator integrator, int segments, int first, int last,
                   const T* terminal_force, RodState<T>& state, const RodTrace<T>& trace) {
+  if (model.support) return supported_steps<T, P>(model, integrator, segments, first, last, state, trace);
   using S = typename Work<T, P>::type;
   const Constants k{model.kappa_hat, model.compliance, model.force_per_length, !model.force_per_length.isZero(0.0)};
   V<S> r, m, force_at;

@@ -12,10 +12,12 @@
 // rod_integrate.cpp and instantiated there for double, Jet<double, 3> and Jet<double, 6>. This
 // header names no Ceres type; code that needs the jets includes rod/rod_jet.h.
 #pragma once
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "core/types.h"
+#include "rod/rod_support.h"
 
 namespace hairfit {
 
@@ -36,6 +38,11 @@ struct RodModel {
   std::vector<Vec3> kappa_hat;
   Vec3 force_per_length = Vec3::Zero();  // f·L³/EI_ref, world axes (gravity ρ·A·g)
   Mat3 root_frame = Mat3::Identity();    // R(0) = [d1 d2 d3], world axes
+  // A support force c(r) along the rod (contact), scaled by support_scale (load continuations
+  // scale it with the other loads). With a support, n(s) is a state integrated from n(0), and
+  // the initial-value form (integrate_rod) does not apply: solve by shooting (rod_shooting.h).
+  std::shared_ptr<const RodSupport> support;
+  double support_scale = 1.0;
 };
 
 // Where integrate_rod writes its per-node results (node i at s = i/N, N = segments). Every
@@ -58,17 +65,21 @@ template <typename T>
 void integrate_rod(const RodModel& model, RodIntegrator integrator, int segments, const T* terminal_force,
                    const T* root_moment, T* terminal_moment, const RodTrace<T>& trace);
 
-// The state carried from step to step (world axes, dimensionless): r, R (column-major), m.
+// The state carried from step to step (world axes, dimensionless): r, R (column-major), m, and
+// with a support n (without one, n(s) = f_L + f·(1 − s) in closed form and `force` is not used).
 template <typename T>
 struct RodState {
   T position[3];
   T frame[9];
   T moment[3];
+  T force[3];
 };
 
 // Steps first … last−1 of the same N-step grid (s_i = i/N), from `state` at s = first/N; leaves
 // the state at s = last/N and writes nodes first … last to `trace` (indexed on the whole grid).
-// integrate_rod is this over all steps from (0, R0, m(0)); multiple shooting uses pieces.
+// integrate_rod is this over all steps from (0, R0, m(0)); multiple shooting uses pieces. With a
+// support, the state's force n is integrated too (terminal_force is then not read) and its
+// position is where the support is evaluated.
 template <typename T>
 void integrate_rod_steps(const RodModel& model, RodIntegrator integrator, int segments, int first, int last,
                          const T* terminal_force, RodState<T>& state, const RodTrace<T>& trace);

@@ -16,15 +16,17 @@
 
 namespace hairfit {
 
-// Per piece k, the 6×6 derivative of its start state (δφ_k, δm_k) — δφ the Cayley coordinates of
-// the frame correction R_k·cay(δφ), zero for the clamped root piece — with respect to (f_L, t_L).
-// Empty when the shooting Jacobian is singular at the solution.
-std::vector<Eigen::Matrix<double, 6, 6>> shooting_sensitivity(const RodModel& model, const ShootingResult& solution,
+// Per piece k, the 12×6 derivative of its start state (δr_k, δφ_k, δn_k, δm_k) — δφ the Cayley
+// coordinates of the frame correction R_k·cay(δφ) — with respect to (f_L, t_L). The clamped root
+// has δr = δφ = 0; without a support δr and δn are zero too (n is a closed form of the loads and
+// the centreline runs on from piece to piece). Empty when the shooting Jacobian is singular.
+using PieceSensitivity = Eigen::Matrix<double, 12, 6>;
+std::vector<PieceSensitivity> shooting_sensitivity(const RodModel& model, const ShootingResult& solution,
                                                               const ShootingOptions& options);
 
 // Traces the solution piece by piece with jets over (f_L, t_L): nodes, frames and curvature as in
 // RodTrace, each carrying its derivative.
 void trace_pieces(const RodModel& model, RodIntegrator integrator, int segments, const ShootingResult& solution,
-                  const std::vector<Eigen::Matrix<double, 6, 6>>& sensitivity, const RodTrace<RodJet6>& trace);
+                  const std::vector<PieceSensitivity>& sensitivity, const RodTrace<RodJet6>& trace);
 
 }  // namespace hairfit

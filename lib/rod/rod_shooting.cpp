@@ -3,6 +3,7 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "rod/band_lu.h"
 #include "rod/cayley.h"
@@ -17,6 +18,7 @@ namespace {
 RodModel solved_model(const RodModel& model, const ShootingResult& solution) {
   RodModel loaded = model;
   loaded.force_per_length = solution.force_per_length;
+  loaded.support_scale = solution.support_scale;
   return loaded;
 }
 
@@ -29,6 +31,10 @@ Vec3 trace_pieces(const RodModel& model, RodIntegrator integrator, int segments,
   for (std::size_t k = 0; k + 1 < solution.breaks.size(); ++k) {
     Eigen::Map<Mat3>(state.frame) = solution.frames[k];
     Eigen::Map<Vec3>(state.moment) = solution.moments[k];
+    if (model.support) {
+      Eigen::Map<Vec3>(state.position) = solution.positions[k];
+      Eigen::Map<Vec3>(state.force) = solution.forces[k];
+    }
     integrate_rod_steps<double>(loaded, integrator, segments, solution.breaks[k], solution.breaks[k + 1],
                                 solution.terminal_force.data(), state, trace);
   }
@@ -37,20 +43,25 @@ Vec3 trace_pieces(const RodModel& model, RodIntegrator integrator, int segments,
 
 int shooting_pieces(const RodModel& model, const Vec3& terminal_force, int segments) {
   const double tension = terminal_force.norm() + model.force_per_length.norm();
-  const int pieces = static_cast<int>(std::ceil(std::sqrt(tension) / 3.0));
+  double rate = std::sqrt(tension);
+  if (model.support) rate = std::max(rate, std::sqrt(std::sqrt(model.support_scale * model.support->stiffness())));
+  const int pieces = static_cast<int>(std::ceil(rate / 3.0));
   return std::clamp(pieces, 1, std::min(segments, 48));
 }
 
 namespace {
 
 // The unknowns: the state at the start of every piece. frames[0] is the clamp and never moves;
-// the other frames are updated multiplicatively, R ← R·cay(δφ), so they stay rotations.
+// the other frames are updated multiplicatively, R ← R·cay(δφ), so they stay rotations. On a
+// support also the positions (positions[0] = 0, the root) and forces.
 struct Iterate {
   std::vector<Mat3> frames;
   std::vector<Vec3> moments;
+  std::vector<Vec3> positions;
+  std::vector<Vec3> forces;
 };
 
-// The problem at one continuation level λ: loads scaled by λ.
+// The problem at one continuation level λ: loads (and the support) scaled by λ.
 struct Level {
   RodModel model;
   Vec3 terminal_force;
@@ -60,50 +71,100 @@ struct Level {
 Level level_at(const RodModel& model, const Vec3& force, const Vec3& torque, double lambda) {
   Level level{model, lambda * force, lambda * torque};
   level.model.force_per_length = lambda * model.force_per_length;
+  level.model.support_scale = lambda * model.support_scale;
   return level;
 }
+
+// The start state of a piece as 12 components: r (0–2), the frame correction φ (3–5), n (6–8),
+// m (9–11). The unknowns of piece k ≥ 1 are all 12 on a support, else (φ, m); the root's are
+// (n, m) on a support, else m. The residuals of piece k's end are the mismatches with piece k+1's
+// start in the same order; the tip's are (n − f_L, m − t_L) on a support, else m − t_L.
+constexpr int kR = 0, kPhi = 3, kN = 6, kM = 9;
 
 struct Problem {
   const ShootingOptions& options;
   std::vector<int> breaks;  // K+1 step indices
+  bool supported = false;
   int pieces() const { return static_cast<int>(breaks.size()) - 1; }
-  int size() const { return 6 * pieces() - 3; }
-  // Row 6k + i (i < 6) of the Jacobian touches columns 6k − 3 … 6k + 8: piece k's start and the next.
-  static constexpr int kBand = 8;
+  int root_size() const { return supported ? 6 : 3; }
+  int break_size() const { return supported ? 12 : 6; }
+  int size() const { return root_size() + (pieces() - 1) * break_size(); }
+  // The Jacobian's band: piece k's residual rows touch its own start and piece k+1's.
+  int lower() const { return 2 * break_size() - root_size() - 1; }
+  int upper() const { return root_size() + break_size() - 1; }
+  int column(int k) const { return k == 0 ? 0 : root_size() + (k - 1) * break_size(); }
+  int row(int k) const { return k * break_size(); }
+  // The components piece k solves for, in column order.
+  std::vector<int> unknowns(int k) const {
+    if (k == 0) return supported ? std::vector<int>{kN, kN + 1, kN + 2, kM, kM + 1, kM + 2} : std::vector<int>{kM, kM + 1, kM + 2};
+    if (supported) return {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11};
+    return {kPhi, kPhi + 1, kPhi + 2, kM, kM + 1, kM + 2};
+  }
 };
 
-// Frame and moment at the end of piece k from the start state (double).
-void piece_end(const Problem& p, const Level& level, const Iterate& x, int k, Mat3& frame, Vec3& moment) {
-  RodState<double> state{};
-  Eigen::Map<Mat3>(state.frame) = x.frames[k];
-  Eigen::Map<Vec3>(state.moment) = x.moments[k];
-  integrate_rod_steps<double>(level.model, p.options.integrator, p.options.segments, p.breaks[k], p.breaks[k + 1],
-                              level.terminal_force.data(), state, RodTrace<double>{});
-  frame = Eigen::Map<const Mat3>(state.frame);
-  moment = Eigen::Map<const Vec3>(state.moment);
+// The start state of piece k (position zero without a support: the centreline is not a state).
+template <typename T>
+RodState<T> start_state(const Problem& p, const Iterate& x, int k) {
+  RodState<T> state{};
+  for (int a = 0; a < 9; ++a) state.frame[a] = T(x.frames[k].data()[a]);
+  for (int a = 0; a < 3; ++a) {
+    state.moment[a] = T(x.moments[k][a]);
+    state.position[a] = T(p.supported ? x.positions[k][a] : 0.0);
+    state.force[a] = T(p.supported ? x.forces[k][a] : 0.0);
+  }
+  return state;
 }
 
-// All mismatches: per interior break, the frame (Cayley coordinates of R_next⁻¹·R_end) and the
-// moment; then m(1) − t_L.
+// The state at the end of piece k from its start (double).
+RodState<double> piece_end(const Problem& p, const Level& level, const Iterate& x, int k) {
+  RodState<double> state = start_state<double>(p, x, k);
+  integrate_rod_steps<double>(level.model, p.options.integrator, p.options.segments, p.breaks[k], p.breaks[k + 1],
+                              level.terminal_force.data(), state, RodTrace<double>{});
+  return state;
+}
+
+Iterate with_end(Iterate x, int k, const RodState<double>& end) {  // piece k+1 starts where k ends
+  x.frames[k + 1] = Eigen::Map<const Mat3>(end.frame);
+  x.moments[k + 1] = Eigen::Map<const Vec3>(end.moment);
+  if (!x.positions.empty()) {
+    x.positions[k + 1] = Eigen::Map<const Vec3>(end.position);
+    x.forces[k + 1] = Eigen::Map<const Vec3>(end.force);
+  }
+  return x;
+}
+
+// All mismatches (see the layout above).
 Eigen::VectorXd residual(const Problem& p, const Level& level, const Iterate& x) {
   Eigen::VectorXd f(p.size());
   for (int k = 0; k < p.pieces(); ++k) {
-    Mat3 frame;
-    Vec3 moment;
-    piece_end(p, level, x, k, frame, moment);
+    const RodState<double> end = piece_end(p, level, x, k);
+    const Mat3 frame = Eigen::Map<const Mat3>(end.frame);
+    const Vec3 moment = Eigen::Map<const Vec3>(end.moment);
+    const int at = p.row(k);
     if (k + 1 < p.pieces()) {
-      f.segment<3>(6 * k) = cayley::log<double>(x.frames[k + 1].transpose() * frame);
-      f.segment<3>(6 * k + 3) = moment - x.moments[k + 1];
+      if (p.supported) {
+        f.segment<3>(at + kR) = Eigen::Map<const Vec3>(end.position) - x.positions[k + 1];
+        f.segment<3>(at + kPhi) = cayley::log<double>(x.frames[k + 1].transpose() * frame);
+        f.segment<3>(at + kN) = Eigen::Map<const Vec3>(end.force) - x.forces[k + 1];
+        f.segment<3>(at + kM) = moment - x.moments[k + 1];
+      } else {
+        f.segment<3>(at) = cayley::log<double>(x.frames[k + 1].transpose() * frame);
+        f.segment<3>(at + 3) = moment - x.moments[k + 1];
+      }
+    } else if (p.supported) {
+      f.segment<3>(at) = Eigen::Map<const Vec3>(end.force) - level.terminal_force;
+      f.segment<3>(at + 3) = moment - level.terminal_torque;
     } else {
-      f.segment<3>(6 * k) = moment - level.terminal_torque;
+      f.segment<3>(at) = moment - level.terminal_torque;
     }
   }
   return f;
 }
 
-// Residual and its Jacobian with respect to the corrections u = (δm0, δφ1, δm1, …): piece k's end
-// state by jets over its own 6 (3 for the root piece) start parameters; the dependence on the next
-// break's frame correction δφ by jets over 3, with the end state held fixed.
+// Residual and its Jacobian with respect to the corrections u = (root unknowns, piece 1's, …):
+// piece k's end state by jets over up to 6 of its own start components at a time; the dependence
+// on the next break's corrections directly (−I, and for the frame jets over its 3 coordinates
+// with the end state held fixed).
 void residual_and_jacobian(const Problem& p, const Level& level, const Iterate& x, Eigen::VectorXd& f,
                            Eigen::MatrixXd& jacobian) {
   using J6 = RodJet6;
@@ -113,68 +174,103 @@ void residual_and_jacobian(const Problem& p, const Level& level, const Iterate& 
   J6 force[3];
   for (int i = 0; i < 3; ++i) force[i] = J6(level.terminal_force[i]);
   for (int k = 0; k < p.pieces(); ++k) {
-    // Unknown columns of this piece: the root piece has δm0 at 0..2; piece k ≥ 1 has δφ_k at
-    // 6k−3 … 6k−1 and δm_k at 6k … 6k+2.
-    const int column = k == 0 ? 0 : 6 * k - 3;
-    Eigen::Matrix<J6, 3, 1> phi, dm;
-    for (int i = 0; i < 3; ++i) {
-      phi[i] = k == 0 ? J6(0.0) : J6(0.0, i);
-      dm[i] = k == 0 ? J6(0.0, i) : J6(0.0, 3 + i);
+    const std::vector<int> own = p.unknowns(k);
+    const int rows = k + 1 < p.pieces() ? p.break_size() : p.root_size();
+    Mat3 end_frame_value;
+    for (std::size_t pass = 0; pass < own.size(); pass += 6) {
+      const int seeded = static_cast<int>(std::min<std::size_t>(6, own.size() - pass));
+      J6 start[12];
+      for (int c = 0; c < 12; ++c) start[c] = J6(0.0);
+      for (int j = 0; j < seeded; ++j) start[own[pass + j]] = J6(0.0, j);
+      Eigen::Matrix<J6, 3, 1> phi(start[kPhi], start[kPhi + 1], start[kPhi + 2]);
+      RodState<J6> state;
+      for (int a = 0; a < 3; ++a) {
+        state.position[a] = start[kR + a] + J6(p.supported ? x.positions[k][a] : 0.0);
+        state.force[a] = start[kN + a] + J6(p.supported ? x.forces[k][a] : 0.0);
+        state.moment[a] = J6(x.moments[k][a]) + start[kM + a];
+      }
+      Eigen::Map<Eigen::Matrix<J6, 3, 3>>(state.frame) = x.frames[k].cast<J6>() * cayley::matrix<J6>(phi);
+      integrate_rod_steps<J6>(level.model, p.options.integrator, p.options.segments, p.breaks[k], p.breaks[k + 1],
+                              force, state, RodTrace<J6>{});
+      const Eigen::Map<const Eigen::Matrix<J6, 3, 3>> end_frame(state.frame);
+      if (pass == 0)
+        for (int r = 0; r < 3; ++r)
+          for (int c = 0; c < 3; ++c) end_frame_value(r, c) = end_frame(r, c).a;
+      J6 mismatch[12];
+      int count = 0;
+      if (k + 1 < p.pieces()) {
+        const Eigen::Matrix<J6, 3, 1> psi = cayley::log<J6>(x.frames[k + 1].transpose().cast<J6>() * end_frame);
+        if (p.supported)
+          for (int a = 0; a < 3; ++a) mismatch[count++] = state.position[a] - J6(x.positions[k + 1][a]);
+        for (int a = 0; a < 3; ++a) mismatch[count++] = psi[a];
+        if (p.supported)
+          for (int a = 0; a < 3; ++a) mismatch[count++] = state.force[a] - J6(x.forces[k + 1][a]);
+        for (int a = 0; a < 3; ++a) mismatch[count++] = state.moment[a] - J6(x.moments[k + 1][a]);
+      } else {
+        if (p.supported)
+          for (int a = 0; a < 3; ++a) mismatch[count++] = state.force[a] - J6(level.terminal_force[a]);
+        for (int a = 0; a < 3; ++a) mismatch[count++] = state.moment[a] - J6(level.terminal_torque[a]);
+      }
+      for (int i = 0; i < rows; ++i) {
+        if (pass == 0) f[p.row(k) + i] = mismatch[i].a;
+        for (int j = 0; j < seeded; ++j) jacobian(p.row(k) + i, p.column(k) + static_cast<int>(pass) + j) = mismatch[i].v[j];
+      }
     }
-    RodState<J6> state;
-    Eigen::Map<Eigen::Matrix<J6, 3, 1>>(state.position).setZero();
-    Eigen::Map<Eigen::Matrix<J6, 3, 3>>(state.frame) = x.frames[k].cast<J6>() * cayley::matrix<J6>(phi);
-    Eigen::Map<Eigen::Matrix<J6, 3, 1>>(state.moment) = x.moments[k].cast<J6>() + dm;
-    integrate_rod_steps<J6>(level.model, p.options.integrator, p.options.segments, p.breaks[k], p.breaks[k + 1],
-                            force, state, RodTrace<J6>{});
-    const Eigen::Map<const Eigen::Matrix<J6, 3, 3>> end_frame(state.frame);
-    const Eigen::Map<const Eigen::Matrix<J6, 3, 1>> end_moment(state.moment);
-    const int own = k == 0 ? 3 : 6;
-    auto put = [&](int row, const J6& value) {
-      f[row] = value.a;
-      for (int j = 0; j < own; ++j) jacobian(row, column + j) = value.v[j];
-    };
     if (k + 1 < p.pieces()) {
-      const Eigen::Matrix<J6, 3, 1> psi = cayley::log<J6>(x.frames[k + 1].transpose().cast<J6>() * end_frame);
-      for (int i = 0; i < 3; ++i) put(6 * k + i, psi[i]);
-      for (int i = 0; i < 3; ++i) put(6 * k + 3 + i, end_moment[i] - J6(x.moments[k + 1][i]));
-      // ∂/∂δφ_{k+1} of log(cay(δφ)ᵀ·R_next⁻¹·R_end) and ∂/∂δm_{k+1} of −m_next.
-      Mat3 a;
-      for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c) a(r, c) = end_frame(r, c).a;
-      a = x.frames[k + 1].transpose() * a;
+      // ∂/∂δφ_{k+1} of log(cay(δφ)ᵀ·R_next⁻¹·R_end), and −I for the next start's other components.
+      const Mat3 a = x.frames[k + 1].transpose() * end_frame_value;
       Eigen::Matrix<J3, 3, 1> next_phi;
       for (int i = 0; i < 3; ++i) next_phi[i] = J3(0.0, i);
       const Eigen::Matrix<J3, 3, 1> psi_next =
           cayley::log<J3>(cayley::matrix<J3>(next_phi).transpose() * a.cast<J3>());
-      const int next = 6 * (k + 1) - 3;
+      const int next = p.column(k + 1), at = p.row(k);
+      const int phi = p.supported ? kPhi : 0, moment = p.supported ? kM : 3;
       for (int i = 0; i < 3; ++i) {
-        for (int j = 0; j < 3; ++j) jacobian(6 * k + i, next + j) = psi_next[i].v[j];
-        jacobian(6 * k + 3 + i, next + 3 + i) = -1.0;
+        for (int j = 0; j < 3; ++j) jacobian(at + phi + i, next + phi + j) = psi_next[i].v[j];
+        jacobian(at + moment + i, next + moment + i) = -1.0;
+        if (p.supported) {
+          jacobian(at + kR + i, next + kR + i) = -1.0;
+          jacobian(at + kN + i, next + kN + i) = -1.0;
+        }
       }
-    } else {
-      for (int i = 0; i < 3; ++i) put(6 * k + i, end_moment[i] - J6(level.terminal_torque[i]));
     }
   }
 }
 
-Iterate moved(const Iterate& x, const Eigen::VectorXd& step) {
+Iterate moved(const Problem& p, const Iterate& x, const Eigen::VectorXd& step) {
   Iterate y = x;
-  y.moments[0] += step.head<3>();
-  for (std::size_t k = 1; k < x.frames.size(); ++k) {
-    const int at = 6 * static_cast<int>(k) - 3;
-    y.frames[k] = x.frames[k] * cayley::matrix<double>(step.segment<3>(at));
-    y.moments[k] += step.segment<3>(at + 3);
+  if (p.supported) {
+    y.forces[0] += step.head<3>();
+    y.moments[0] += step.segment<3>(3);
+  } else {
+    y.moments[0] += step.head<3>();
+  }
+  for (int k = 1; k < p.pieces(); ++k) {
+    const int at = p.column(k);
+    if (p.supported) {
+      y.positions[k] += step.segment<3>(at + kR);
+      y.frames[k] = x.frames[k] * cayley::matrix<double>(step.segment<3>(at + kPhi));
+      y.forces[k] += step.segment<3>(at + kN);
+      y.moments[k] += step.segment<3>(at + kM);
+    } else {
+      y.frames[k] = x.frames[k] * cayley::matrix<double>(step.segment<3>(at));
+      y.moments[k] += step.segment<3>(at + 3);
+    }
   }
   return y;
 }
 
-// A forward sweep from m(0) gives the other start states (exact when the load is zero).
-Iterate sweep(const Problem& p, const Level& level, const Vec3& root_moment) {
+// A forward sweep from the root's unknowns gives the other start states (exact when the load is
+// zero). `root` holds (n(0), m(0)) on a support, else m(0); a support's n(0) defaults to f_L + f.
+Iterate sweep(const Problem& p, const Level& level, const Vec3& root_moment, const Vec3* root_force = nullptr) {
   Iterate x;
   x.frames.assign(p.pieces(), level.model.root_frame);
   x.moments.assign(p.pieces(), root_moment);
-  for (int k = 0; k + 1 < p.pieces(); ++k) piece_end(p, level, x, k, x.frames[k + 1], x.moments[k + 1]);
+  if (p.supported) {
+    x.positions.assign(p.pieces(), Vec3::Zero());
+    x.forces.assign(p.pieces(), root_force ? *root_force : Vec3(level.terminal_force + level.model.force_per_length));
+  }
+  for (int k = 0; k + 1 < p.pieces(); ++k) x = with_end(x, k, piece_end(p, level, x, k));
   return x;
 }
 
@@ -191,14 +287,14 @@ bool newton(const Problem& p, const Level& level, double tol, int max_steps, Ite
     if (norm <= tol) return true;
     if (step == max_steps || iterations >= p.options.max_iterations) return false;
     ++iterations;
-    const BandLU lu(jacobian, Problem::kBand, Problem::kBand);
+    const BandLU lu(jacobian, p.lower(), p.upper());
     const Eigen::VectorXd delta = -lu.solve(f);
     if (!delta.allFinite()) return false;
     // Backtracking on the residual: full Newton steps near the root, shorter ones far from it.
     double alpha = 1.0;
     bool accepted = false;
     for (int trial = 0; trial < 20 && !accepted; ++trial, alpha *= 0.5) {
-      const Iterate candidate = moved(x, alpha * delta);
+      const Iterate candidate = moved(p, x, alpha * delta);
       const double n = residual(p, level, candidate).norm();
       if (std::isfinite(n) && n <= (1.0 - 1e-4 * alpha) * norm) {
         x = candidate;
@@ -219,27 +315,40 @@ bool newton(const Problem& p, const Level& level, double tol, int max_steps, Ite
 Iterate warm_start(const Problem& p, const Level& level, const ShootingResult& near) {
   const Vec3 m0 = near.root_moment.allFinite() ? near.root_moment : Vec3::Zero();
   const bool usable = near.breaks.size() >= 2 && near.frames.size() + 1 == near.breaks.size() &&
-                      near.moments.size() == near.frames.size() && near.breaks.back() == p.options.segments;
-  if (!usable) return sweep(p, level, m0);
+                      near.moments.size() == near.frames.size() && near.breaks.back() == p.options.segments &&
+                      (!p.supported || (near.positions.size() == near.frames.size() && near.forces.size() == near.frames.size()));
+  if (!usable) {
+    const Vec3 n0 = root_force(near);
+    return sweep(p, level, m0, p.supported && near.forces.size() == 1 && n0.allFinite() ? &n0 : nullptr);
+  }
   const RodModel earlier = solved_model(level.model, near);
+  Iterate near_x{near.frames, near.moments, near.positions, near.forces};
+  const Problem near_p{p.options, near.breaks, p.supported};
   Iterate x;
   for (int k = 0; k < p.pieces(); ++k) {
     const int at = p.breaks[k];
     std::size_t j = 0;
     while (j + 2 < near.breaks.size() && near.breaks[j + 1] <= at) ++j;
-    RodState<double> state{};
-    Eigen::Map<Mat3>(state.frame) = near.frames[j];
-    Eigen::Map<Vec3>(state.moment) = near.moments[j];
+    RodState<double> state = start_state<double>(near_p, near_x, static_cast<int>(j));
     integrate_rod_steps<double>(earlier, p.options.integrator, p.options.segments, near.breaks[j], at,
                                 near.terminal_force.data(), state, RodTrace<double>{});
     x.frames.push_back(k == 0 ? level.model.root_frame : Mat3(Eigen::Map<const Mat3>(state.frame)));
     x.moments.push_back(Eigen::Map<const Vec3>(state.moment));
+    if (p.supported) {
+      x.positions.push_back(k == 0 ? Vec3::Zero() : Vec3(Eigen::Map<const Vec3>(state.position)));
+      x.forces.push_back(Eigen::Map<const Vec3>(state.force));
+    }
   }
   if (!x.moments[0].allFinite()) return sweep(p, level, m0);
   return x;
 }
 
 }  // namespace
+
+Vec3 root_force(const ShootingResult& solution) {
+  if (!solution.forces.empty()) return solution.forces[0];
+  return solution.terminal_force + solution.force_per_length;
+}
 
 ShootingResult shoot_root_moment(const RodModel& model, const Vec3& terminal_force, const Vec3& terminal_torque,
                                  const Vec3& guess, const ShootingOptions& options) {
@@ -252,7 +361,8 @@ ShootingResult shoot_root_moment(const RodModel& model, const Vec3& terminal_for
                                  const ShootingResult& near, const ShootingOptions& options) {
   const Vec3 guess = near.root_moment.allFinite() ? near.root_moment : Vec3::Zero();
   const int pieces = shooting_pieces(model, terminal_force, options.segments);
-  Problem p{options, {}};
+  const bool supported = model.support != nullptr;
+  Problem p{options, {}, supported};
   for (int k = 0; k <= pieces; ++k)
     p.breaks.push_back(static_cast<int>((static_cast<long long>(k) * options.segments) / pieces));
   const double scale =
@@ -261,6 +371,12 @@ ShootingResult shoot_root_moment(const RodModel& model, const Vec3& terminal_for
   const Level full = level_at(model, terminal_force, terminal_torque, 1.0);
   ShootingResult result;
   double residual_norm = 0.0;
+  // A sweep from the root's unknowns (n(0), m(0)) on a support, m(0) otherwise.
+  auto sweep_from = [&](const Problem& q, const Level& level, const Eigen::VectorXd& root) {
+    if (!q.supported) return sweep(q, level, root.head<3>());
+    const Vec3 n0 = root.head<3>();
+    return sweep(q, level, root.tail<3>(), &n0);
+  };
 
   // First the warm start at the full load: callers that continue a load themselves end here.
   Iterate x = warm_start(p, full, near);
@@ -271,18 +387,18 @@ ShootingResult shoot_root_moment(const RodModel& model, const Vec3& terminal_for
                    (x.moments[0] - guess).norm() <= 0.1 + 0.25 * guess.norm();
 
   if (!converged && options.restart_from_rest) {
-    // Continuation λ: 0 → 1 from the unloaded rod, whose solution is exact (m ≡ 0). Predictor for
-    // m(0): the tangent of the solution path at λ = 0, −J0⁻¹·∂F/∂λ (J0 from one jet sweep, ∂F/∂λ
-    // by a one-sided difference: F is smooth in λ and vanishes at λ = 0), then secants. Branch
-    // guard: a level counts only if its m(0) lands within half the predicted increment of the
-    // predictor; under large loads many equilibria (curled, looped) lie close together and Newton
-    // would otherwise jump to one of them. The step doubles after an easy level, halves after a
-    // failed one.
-    Vec3 tangent = Vec3::Zero();
+    // Continuation λ: 0 → 1 from the unloaded rod, whose solution is exact (m ≡ 0, and n ≡ 0 on
+    // a support, which λ scales too). Predictor for the root's unknowns: the tangent of the
+    // solution path at λ = 0, −J0⁻¹·∂F/∂λ (J0 from one jet sweep, ∂F/∂λ by a one-sided
+    // difference: F is smooth in λ and vanishes at λ = 0), then secants. Branch guard: a level
+    // counts only if its m(0) lands within half the predicted increment of the predictor; under
+    // large loads many equilibria (curled, looped) lie close together and Newton would otherwise
+    // jump to one of them. The step doubles after an easy level, halves after a failed one.
+    Eigen::VectorXd tangent = Eigen::VectorXd::Zero(p.root_size());
     {
-      const Problem single{options, {0, options.segments}};
+      const Problem single{options, {0, options.segments}, supported};
       const Level rest = level_at(model, terminal_force, terminal_torque, 0.0);
-      Iterate zero = sweep(single, rest, Vec3::Zero());
+      Iterate zero = sweep_from(single, rest, tangent);
       Eigen::VectorXd f0;
       Eigen::MatrixXd j0;
       residual_and_jacobian(single, rest, zero, f0, j0);
@@ -291,20 +407,24 @@ ShootingResult shoot_root_moment(const RodModel& model, const Vec3& terminal_for
           residual(single, level_at(model, terminal_force, terminal_torque, epsilon), zero) / epsilon;
       const Eigen::FullPivLU<Eigen::MatrixXd> lu(j0);
       if (lu.isInvertible()) tangent = -lu.solve(rate);
-      if (!tangent.allFinite()) tangent = Vec3::Zero();
+      if (!tangent.allFinite()) tangent.setZero();
     }
     double lambda = 0.0, previous_lambda = -1.0, step = 1.0;
-    Iterate at = sweep(p, level_at(model, terminal_force, terminal_torque, 0.0), Vec3::Zero()), previous = at;
+    Iterate at = sweep_from(p, level_at(model, terminal_force, terminal_torque, 0.0), 0.0 * tangent), previous = at;
     while (lambda < 1.0 && step >= 1e-6 && result.iterations < options.max_iterations) {
       const double target = std::min(1.0, lambda + step);
       const Level level = level_at(model, terminal_force, terminal_torque, target);
       Iterate trial = at;
       if (previous_lambda < 0.0) {
-        trial = sweep(p, level, target * tangent);
+        trial = sweep_from(p, level, target * tangent);
       } else {
         const double ratio = (target - lambda) / (lambda - previous_lambda);
         for (std::size_t k = 0; k < trial.moments.size(); ++k)
           trial.moments[k] += ratio * (at.moments[k] - previous.moments[k]);
+        for (std::size_t k = 0; k < trial.forces.size(); ++k) {
+          trial.forces[k] += ratio * (at.forces[k] - previous.forces[k]);
+          trial.positions[k] += ratio * (at.positions[k] - previous.positions[k]);
+        }
       }
       const Vec3 predicted = trial.moments[0];
       const double radius = 0.5 * (predicted - at.moments[0]).norm() + 1e-6 * (1.0 + predicted.norm());
@@ -328,81 +448,118 @@ ShootingResult shoot_root_moment(const RodModel& model, const Vec3& terminal_for
   Eigen::VectorXd f = residual(p, full, x);
   result.converged = converged;
   if (!f.allFinite()) {  // never hand out NaN: fall back to the unloaded start
-    x = sweep(p, full, Vec3::Zero());
+    const Vec3 zero = Vec3::Zero();
+    x = sweep(p, full, zero, &zero);
     f = residual(p, full, x);
+    if (!f.allFinite()) {  // a support so stiff that even the straight rod's sweep overflows
+      x = Iterate{};
+      x.frames.assign(p.pieces(), model.root_frame);
+      x.moments.assign(p.pieces(), Vec3::Zero());
+      if (supported) {
+        x.forces.assign(p.pieces(), Vec3::Zero());
+        for (int k = 0; k < p.pieces(); ++k)
+          x.positions.push_back(model.root_frame.col(2) * (static_cast<double>(p.breaks[k]) / options.segments));
+      }
+      f = residual(p, full, x);
+      for (int i = 0; i < f.size(); ++i)
+        if (!std::isfinite(f[i])) f[i] = std::numeric_limits<double>::max();
+    }
     result.converged = false;
   }
   result.residual = f.norm();
+  if (!std::isfinite(result.residual)) result.residual = std::numeric_limits<double>::max();
   result.root_moment = x.moments[0];
   result.terminal_moment = f.tail<3>() + full.terminal_torque;
+  if (!result.terminal_moment.allFinite()) result.terminal_moment = Vec3::Zero();
   result.breaks = p.breaks;
   result.terminal_force = terminal_force;
   result.terminal_torque = terminal_torque;
   result.force_per_length = model.force_per_length;
+  result.support_scale = model.support_scale;
   result.frames = x.frames;
   result.moments = x.moments;
+  result.positions = x.positions;
+  result.forces = x.forces;
   return result;
 }
 
-std::vector<Eigen::Matrix<double, 6, 6>> shooting_sensitivity(const RodModel& model, const ShootingResult& solution,
-                                                              const ShootingOptions& options) {
-  Problem p{options, solution.breaks};
+std::vector<PieceSensitivity> shooting_sensitivity(const RodModel& model, const ShootingResult& solution,
+                                                   const ShootingOptions& options) {
+  const bool supported = model.support != nullptr;
+  Problem p{options, solution.breaks, supported};
   const RodModel loaded = solved_model(model, solution);
   const Level level{loaded, solution.terminal_force, solution.terminal_torque};
-  const Iterate x{solution.frames, solution.moments};
+  const Iterate x{solution.frames, solution.moments, solution.positions, solution.forces};
   Eigen::VectorXd f;
   Eigen::MatrixXd g_x;
   residual_and_jacobian(p, level, x, f, g_x);
-  // G_(f_L, t_L): the force acts on every piece (jets over f_L, each piece from its fixed start);
-  // the torque only in the last residual, m(1) − t_L.
   Eigen::MatrixXd g_load = Eigen::MatrixXd::Zero(p.size(), 6);
-  using J3 = RodJet3;
-  J3 force[3];
-  for (int i = 0; i < 3; ++i) force[i] = J3(level.terminal_force[i], i);
-  for (int k = 0; k < p.pieces(); ++k) {
-    RodState<J3> state;
-    Eigen::Map<Eigen::Matrix<J3, 3, 1>>(state.position).setZero();
-    Eigen::Map<Eigen::Matrix<J3, 3, 3>>(state.frame) = x.frames[k].cast<J3>();
-    Eigen::Map<Eigen::Matrix<J3, 3, 1>>(state.moment) = x.moments[k].cast<J3>();
-    integrate_rod_steps<J3>(loaded, options.integrator, options.segments, p.breaks[k], p.breaks[k + 1], force, state,
-                            RodTrace<J3>{});
-    const Eigen::Map<const Eigen::Matrix<J3, 3, 3>> end_frame(state.frame);
-    if (k + 1 < p.pieces()) {
-      const Eigen::Matrix<J3, 3, 1> psi = cayley::log<J3>(x.frames[k + 1].transpose().cast<J3>() * end_frame);
-      for (int i = 0; i < 3; ++i) {
-        g_load.block<1, 3>(6 * k + i, 0) = psi[i].v.transpose();
-        g_load.block<1, 3>(6 * k + 3 + i, 0) = state.moment[i].v.transpose();
+  const int tip = p.row(p.pieces() - 1);
+  if (supported) {
+    // On a support f_L and t_L enter only the tip's residuals, n(1) − f_L and m(1) − t_L.
+    g_load.block<3, 3>(tip, 0) = -Mat3::Identity();
+    g_load.block<3, 3>(tip + 3, 3) = -Mat3::Identity();
+  } else {
+    // The force acts on every piece through n(s) = f_L + f·(1 − s) (jets over f_L, each piece
+    // from its fixed start); the torque only in the last residual, m(1) − t_L.
+    using J3 = RodJet3;
+    J3 force[3];
+    for (int i = 0; i < 3; ++i) force[i] = J3(level.terminal_force[i], i);
+    for (int k = 0; k < p.pieces(); ++k) {
+      RodState<J3> state;
+      Eigen::Map<Eigen::Matrix<J3, 3, 1>>(state.position).setZero();
+      Eigen::Map<Eigen::Matrix<J3, 3, 3>>(state.frame) = x.frames[k].cast<J3>();
+      Eigen::Map<Eigen::Matrix<J3, 3, 1>>(state.moment) = x.moments[k].cast<J3>();
+      integrate_rod_steps<J3>(loaded, options.integrator, options.segments, p.breaks[k], p.breaks[k + 1], force,
+                              state, RodTrace<J3>{});
+      const Eigen::Map<const Eigen::Matrix<J3, 3, 3>> end_frame(state.frame);
+      if (k + 1 < p.pieces()) {
+        const Eigen::Matrix<J3, 3, 1> psi = cayley::log<J3>(x.frames[k + 1].transpose().cast<J3>() * end_frame);
+        for (int i = 0; i < 3; ++i) {
+          g_load.block<1, 3>(p.row(k) + i, 0) = psi[i].v.transpose();
+          g_load.block<1, 3>(p.row(k) + 3 + i, 0) = state.moment[i].v.transpose();
+        }
+      } else {
+        for (int i = 0; i < 3; ++i) g_load.block<1, 3>(tip + i, 0) = state.moment[i].v.transpose();
+        g_load.block<3, 3>(tip, 3) = -Mat3::Identity();
       }
-    } else {
-      for (int i = 0; i < 3; ++i) g_load.block<1, 3>(6 * k + i, 0) = state.moment[i].v.transpose();
-      g_load.block<3, 3>(6 * k, 3) = -Mat3::Identity();
     }
   }
-  const BandLU lu(g_x, Problem::kBand, Problem::kBand);
+  const BandLU lu(g_x, p.lower(), p.upper());
   const Eigen::MatrixXd s = -lu.solve(g_load);
   if (!s.allFinite()) return {};
-  std::vector<Eigen::Matrix<double, 6, 6>> blocks(p.pieces(), Eigen::Matrix<double, 6, 6>::Zero());
-  blocks[0].bottomRows<3>() = s.topRows<3>();
-  for (int k = 1; k < p.pieces(); ++k) blocks[k] = s.block<6, 6>(6 * k - 3, 0);
+  std::vector<PieceSensitivity> blocks(p.pieces(), PieceSensitivity::Zero());
+  for (int k = 0; k < p.pieces(); ++k) {
+    const std::vector<int> own = p.unknowns(k);
+    for (std::size_t j = 0; j < own.size(); ++j) blocks[k].row(own[j]) = s.row(p.column(k) + static_cast<int>(j));
+  }
   return blocks;
 }
 
 void trace_pieces(const RodModel& model, RodIntegrator integrator, int segments, const ShootingResult& solution,
-                  const std::vector<Eigen::Matrix<double, 6, 6>>& sensitivity, const RodTrace<RodJet6>& trace) {
+                  const std::vector<PieceSensitivity>& sensitivity, const RodTrace<RodJet6>& trace) {
   using J6 = RodJet6;
   const RodModel loaded = solved_model(model, solution);
   J6 force[3];
   for (int i = 0; i < 3; ++i) force[i] = J6(solution.terminal_force[i], i);
   RodState<J6> state;
   Eigen::Map<Eigen::Matrix<J6, 3, 1>>(state.position).setZero();
+  auto seeded = [&](double value, int row, std::size_t k) {
+    J6 z(value);
+    z.v = sensitivity[k].row(row).transpose();
+    return z;
+  };
   for (std::size_t k = 0; k + 1 < solution.breaks.size(); ++k) {
     Eigen::Matrix<J6, 3, 1> phi, moment;
     for (int i = 0; i < 3; ++i) {
-      phi[i] = J6(0.0);
-      phi[i].v = sensitivity[k].row(i).transpose();
-      moment[i] = J6(solution.moments[k][i]);
-      moment[i].v = sensitivity[k].row(3 + i).transpose();
+      phi[i] = seeded(0.0, kPhi + i, k);
+      moment[i] = seeded(solution.moments[k][i], kM + i, k);
     }
+    if (model.support)
+      for (int i = 0; i < 3; ++i) {
+        state.position[i] = seeded(solution.positions[k][i], kR + i, k);
+        state.force[i] = seeded(solution.forces[k][i], kN + i, k);
+      }
     Eigen::Map<Eigen::Matrix<J6, 3, 3>>(state.frame) = solution.frames[k].cast<J6>() * cayley::matrix<J6>(phi);
     Eigen::Map<Eigen::Matrix<J6, 3, 1>>(state.moment) = moment;
     integrate_rod_steps<J6>(loaded, integrator, segments, solution.breaks[k], solution.breaks[k + 1], force, state, trace);

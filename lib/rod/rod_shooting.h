@@ -9,6 +9,10 @@
 // Newton with the exact Jacobian from jets (6 parameters per piece), backtracking on the
 // residual, and load continuation λ: 0 → 1 on (f_L, t_L, f) from the unloaded rod (whose
 // solution is exact: m ≡ 0), the step doubling after an easy level and halving after a failure.
+//
+// On a support (RodModel::support) n(s) is no longer known in closed form: the state at a break
+// also holds r and n (12 parameters a piece), the root's unknowns are n(0) and m(0), and the tip
+// adds n(1) − f_L to the residuals. The continuation scales the support with the loads.
 #pragma once
 #include <vector>
 
@@ -35,9 +39,14 @@ struct ShootingResult {
   std::vector<int> breaks;
   std::vector<Mat3> frames;
   std::vector<Vec3> moments;
+  // On a support, also r and n at the start of each piece (positions[0] = 0, forces[0] = n(0));
+  // otherwise empty.
+  std::vector<Vec3> positions;
+  std::vector<Vec3> forces;
   Vec3 terminal_force = Vec3::Zero();    // the loads solved for (a later warm start retraces with them)
   Vec3 terminal_torque = Vec3::Zero();
   Vec3 force_per_length = Vec3::Zero();
+  double support_scale = 1.0;
   int iterations = 0;      // Newton steps (Jacobian evaluations)
   double residual = 0.0;   // norm of all mismatches and m(1) − t_L
   bool converged = false;
@@ -46,6 +55,9 @@ struct ShootingResult {
 // All quantities dimensionless (rod_integrate.h). `guess` is the warm start for m(0) (zero: none).
 ShootingResult shoot_root_moment(const RodModel& model, const Vec3& terminal_force, const Vec3& terminal_torque,
                                  const Vec3& guess, const ShootingOptions& options);
+
+// n(0) of a solution: its first piece's force on a support, else f_L + f.
+Vec3 root_force(const ShootingResult& solution);
 
 // The same from an earlier solution at a nearby load (its pieces and their start states), which
 // unlike m(0) alone stays a good start under large loads, where a sweep from m(0) diverges.
@@ -58,7 +70,8 @@ Vec3 trace_pieces(const RodModel& model, RodIntegrator integrator, int segments,
                   const RodTrace<double>& trace);
 
 // The number of pieces shooting uses for a load: 1 up to |f_L| + |f| ≈ 9, then ≈ √(|f_L| + |f|)/3,
-// at most min(segments, 48).
+// or on a support ≈ k^¼/3 where its stiffness k makes the equations stiffer still; at most
+// min(segments, 48).
 int shooting_pieces(const RodModel& model, const Vec3& terminal_force, int segments);
 
 }  // namespace hairfit
