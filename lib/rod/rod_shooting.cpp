@@ -411,12 +411,17 @@ ShootingResult shoot_root_moment(const RodModel& model, const Vec3& terminal_for
     }
     double lambda = 0.0, previous_lambda = -1.0, step = 1.0;
     Iterate at = sweep_from(p, level_at(model, terminal_force, terminal_torque, 0.0), 0.0 * tangent), previous = at;
+    // After a rejected secant the path bends more than the secant saw: the predictor becomes the
+    // path's tangent at the last solution, −J⁻¹·∂F/∂λ, whose miss shrinks with the step squared.
+    Eigen::VectorXd path_tangent;
     while (lambda < 1.0 && step >= 1e-6 && result.iterations < options.max_iterations) {
       const double target = std::min(1.0, lambda + step);
       const Level level = level_at(model, terminal_force, terminal_torque, target);
       Iterate trial = at;
       if (previous_lambda < 0.0) {
         trial = sweep_from(p, level, target * tangent);
+      } else if (path_tangent.size() > 0) {
+        trial = moved(p, at, (target - lambda) * path_tangent);
       } else {
         const double ratio = (target - lambda) / (lambda - previous_lambda);
         for (std::size_t k = 0; k < trial.moments.size(); ++k)
@@ -435,9 +440,21 @@ ShootingResult shoot_root_moment(const RodModel& model, const Vec3& terminal_for
         previous_lambda = lambda;
         at = trial;
         lambda = target;
+        path_tangent.resize(0);
         if (result.iterations - before <= 3) step = std::min(1.0, 2.0 * step);
       } else {
         step *= 0.5;
+        if (p.supported && previous_lambda >= 0.0 && path_tangent.size() == 0) {
+          const Level here = level_at(model, terminal_force, terminal_torque, lambda);
+          Eigen::VectorXd f;
+          Eigen::MatrixXd jacobian;
+          residual_and_jacobian(p, here, at, f, jacobian);
+          const double epsilon = 1e-7;
+          const Eigen::VectorXd rate =
+              (residual(p, level_at(model, terminal_force, terminal_torque, lambda + epsilon), at) - f) / epsilon;
+          path_tangent = -BandLU(jacobian, p.lower(), p.upper()).solve(rate);
+          if (!path_tangent.allFinite()) path_tangent.resize(0);
+        }
       }
     }
     converged = lambda >= 1.0;
