@@ -30,6 +30,7 @@ bool SceneEffects::uses_map(const std::string& name) const {
 std::vector<std::string> SceneEffects::names() const {
   std::vector<std::string> out;
   if (gravity) out.push_back("gravity");
+  if (contact) out.push_back("contact");
   if (density == DensityModel::binary) out.push_back("density:binary");
   if (density == DensityModel::continuous) out.push_back("density:continuous");
   for (const std::string& m : maps) out.push_back("map:" + m);

@@ -35,6 +35,7 @@ struct SceneInputs {
 // Effects are off unless declared; what is off is never computed.
 struct SceneEffects {
   bool gravity = false;
+  bool contact = false;  // the scalp as a support ([contact])
   DensityModel density = DensityModel::none;
   std::vector<std::string> maps;  // which of "density", "tilt", "length" are used
   bool cutting = false;
@@ -89,6 +90,11 @@ struct SceneRod {
   std::string integrator = "rk4";  // rk2 | rk4: Lie-group Runge–Kutta schemes
   int segments = 64;               // integration steps per rod
   double gravity = 981.0;          // cm/s², when effects.gravity
+};
+
+struct SceneContact {
+  double stiffness = 5.0;  // dyn/cm²: force per length per cm into the contact layer
+  double layer = 0.3;      // cm: how far above the scalp the support begins
 };
 
 struct ScenePreguides {
@@ -155,6 +161,7 @@ struct Scene {
   SceneFields fields;
   SceneRoots roots;
   SceneRod rod;
+  SceneContact contact;
   ScenePreguides preguides;
   SceneGuides guides;
   SceneDensity density;

@@ -183,6 +183,9 @@ std::vector<SceneKey> build_keys() {
 
   keys.push_back(boolean("effects.gravity", REF(effects.gravity), "preguides, guides",
                          "Load every rod by its weight per length ρ·A·g along units.down."));
+  keys.push_back(boolean("effects.contact", REF(effects.contact), "preguides, guides",
+                         "The scalp as a support: a unilateral force per length from the scalp's distance field holds "
+                         "hair out of the head and lets long hair lie on it ([contact])."));
   {
     SceneKey k = make("effects.density", KeyKind::text, "", any(), "guides, density",
                       "Density model against hair–hair crowding (paper §3.5): none, binary (BOM) or continuous (CDM).");
@@ -277,6 +280,14 @@ std::vector<SceneKey> build_keys() {
                          "Integration steps per rod (and nodes − 1 of every guide)."));
   keys.push_back(number("rod.gravity", REF(rod.gravity), "cm/s²", closed(0, 1e5), "gravity",
                         "Gravitational acceleration g, when effects.gravity."));
+
+  keys.push_back(number("contact.stiffness", REF(contact.stiffness), "dyn/cm²", above(0, 1e9), "contact",
+                        "Force per length per cm into the contact layer, k: the support is k·g(φ) along the scalp's "
+                        "normal, g = (δ − φ)²/(2δ) within the layer δ above the scalp and δ/2 − φ below it (C¹). "
+                        "The default carries a hair's weight (0.019 dyn/cm for the default material) 2.5 mm above "
+                        "the scalp and forty times that at the scalp itself."));
+  keys.push_back(number("contact.layer", REF(contact.layer), "cm", above(0, 100), "contact",
+                        "δ: how far above the scalp the support begins."));
 
   keys.push_back(pair("preguides.depth_range", REF(preguides.depth_range), "", closed(0, 1), "preguides",
                       "Target immersion depth of a pre-guide's tip as a share of the local thickness, from the top of the head to its lowest roots."));

@@ -311,4 +311,75 @@ std::vector<std::int8_t> DistanceField::sides_on_lattice(const std::vector<doubl
 
 Vec3 DistanceField::gradient(const Vec3& p) const { return value_and_gradient(p).gradient; }
 
+double DistanceField::nearest_sample(const Vec3& p) const {
+  int node[3];
+  for (int d = 0; d < 3; ++d) node[d] = static_cast<int>(std::lround(std::clamp((p[d] - origin_[d]) / h_, 0.0, last_node_[d])));
+  return sample(node[0], node[1], node[2]);
+}
+
+FieldSmooth DistanceField::smooth(const Vec3& p) const {
+  // Per axis the four nodes i−1 … i+2 around the cell [i, i+1] holding p, with the cubic B-spline
+  // weights at the fraction t and their first and second derivatives.
+  int first[3];
+  double b[3][4], db[3][4], ddb[3][4];
+  for (int d = 0; d < 3; ++d) {
+    const double u = std::clamp((p[d] - origin_[d]) / h_, 0.0, last_node_[d]);
+    const int i = std::min(static_cast<int>(u), std::max(dims_[d] - 2, 0));
+    const double t = u - i, s = 1.0 - t;
+    first[d] = i - 1;
+    b[d][0] = s * s * s / 6.0;
+    b[d][1] = (3.0 * t * t * t - 6.0 * t * t + 4.0) / 6.0;
+    b[d][2] = (-3.0 * t * t * t + 3.0 * t * t + 3.0 * t + 1.0) / 6.0;
+    b[d][3] = t * t * t / 6.0;
+    db[d][0] = -0.5 * s * s / h_;
+    db[d][1] = (1.5 * t * t - 2.0 * t) / h_;
+    db[d][2] = (-1.5 * t * t + t + 0.5) / h_;
+    db[d][3] = 0.5 * t * t / h_;
+    ddb[d][0] = s / (h_ * h_);
+    ddb[d][1] = (3.0 * t - 2.0) / (h_ * h_);
+    ddb[d][2] = (1.0 - 3.0 * t) / (h_ * h_);
+    ddb[d][3] = t / (h_ * h_);
+  }
+  // Separably: along x for each of the 16 lines (value, d/dx, d²/dx²), then along y, then z.
+  int64_t offset[3][4];
+  for (int d = 0; d < 3; ++d)
+    for (int a = 0; a < 4; ++a) offset[d][a] = stride_[d] * std::clamp(first[d] + a, 0, dims_[d] - 1);
+  const double* v = samples_->data();
+  FieldSmooth out;
+  double& f = out.value;
+  double fx = 0, fy = 0, fz = 0, fxx = 0, fyy = 0, fzz = 0, fxy = 0, fxz = 0, fyz = 0;
+  for (int c = 0; c < 4; ++c) {
+    double l0 = 0, lx = 0, ly = 0, lxx = 0, lxy = 0, lyy = 0;  // the plane z = c, weighted in x and y
+    for (int bj = 0; bj < 4; ++bj) {
+      const double* line = v + offset[1][bj] + offset[2][c];
+      double s0 = 0, s1 = 0, s2 = 0;
+      for (int a = 0; a < 4; ++a) {
+        const double x = line[offset[0][a]];
+        s0 += x * b[0][a];
+        s1 += x * db[0][a];
+        s2 += x * ddb[0][a];
+      }
+      l0 += s0 * b[1][bj];
+      lx += s1 * b[1][bj];
+      ly += s0 * db[1][bj];
+      lxx += s2 * b[1][bj];
+      lxy += s1 * db[1][bj];
+      lyy += s0 * ddb[1][bj];
+    }
+    f += l0 * b[2][c];
+    fx += lx * b[2][c];
+    fy += ly * b[2][c];
+    fz += l0 * db[2][c];
+    fxx += lxx * b[2][c];
+    fyy += lyy * b[2][c];
+    fzz += l0 * ddb[2][c];
+    fxy += lxy * b[2][c];
+    fxz += lx * db[2][c];
+    fyz += ly * db[2][c];
+  }
+  out.gradient = Vec3(fx, fy, fz);
+  out.hessian << fxx, fxy, fxz, fxy, fyy, fyz, fxz, fyz, fzz;
+  return out;
+}
+
 }  // namespace hairfit

@@ -59,6 +59,12 @@ struct FieldValueGradient {
   Vec3 gradient = Vec3::Zero();  // dimensionless (cm per cm)
 };
 
+struct FieldSmooth {
+  double value = 0.0;            // cm, signed
+  Vec3 gradient = Vec3::Zero();  // dimensionless
+  Mat3 hessian = Mat3::Zero();   // 1/cm
+};
+
 class DistanceField {
  public:
   // Grid geometry: sample (i,j,k) sits at origin + h·(i,j,k), 0 ≤ i < dims.x() etc.
@@ -77,6 +83,15 @@ class DistanceField {
   double value(const Vec3& p) const;
   Vec3 gradient(const Vec3& p) const;
   FieldValueGradient value_and_gradient(const Vec3& p) const;
+  // The uniform cubic B-spline whose control points are the samples, at p: C² (where the
+  // trilinear interpolant is only C⁰), so forces built from its gradient are C¹ (the scalp's
+  // contact). It reproduces linear fields exactly and smooths others by about a voxel. Node
+  // indices beyond the grid clamp to its faces.
+  FieldSmooth smooth(const Vec3& p) const;
+  // The sample at the grid node nearest p (clamped to the grid). The 4×4×4 samples smooth(p)
+  // blends lie within 2√3 voxels of that node, so where samples are distances (1-Lipschitz)
+  // smooth(p).value ≥ nearest_sample(p) − 2√3·h.
+  double nearest_sample(const Vec3& p) const;
   // Which side of the surface p lies on, when the samples alone decide it: +1 where value(p) > 0
   // and −1 where value(p) < 0 for certain (every sample the interpolation at p reads lies on that
   // side, beyond 1e-290 cm), 0 where only value(p) can tell (near the surface; non-finite p).

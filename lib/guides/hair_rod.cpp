@@ -10,6 +10,14 @@ Rod hair_rod(double length, const HairMaterial& m) {
   return rod;
 }
 
+RodModel hair_rod_model(double length, const HairMaterial& material, const RodRoot& root, const DistanceField* scalp) {
+  const Rod rod = hair_rod(length, material);
+  RodModel model = make_rod_model(rod, root);
+  if (material.contact.active() && scalp)
+    model.support = std::make_shared<ScalpContact>(*scalp, material.contact, root.position, length, rod.stiffness[0]);
+  return model;
+}
+
 Vec3 bending_direction(const Vec3& normal, const Vec3& direction, const Vec3& down, const Vec3& front) {
   const Vec3 d = direction.normalized();
   const Vec3 candidates[] = {d.dot(normal) * d - normal, down, -front, Vec3::UnitX(), Vec3::UnitY()};

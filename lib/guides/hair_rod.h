@@ -1,6 +1,7 @@
 // What pre-guides and principal guides share: a hair fibre as a clamped Cosserat rod rooted on
 // the scalp, its root frame and the plane it bends in.
 #pragma once
+#include "guides/scalp_contact.h"
 #include "rod/rod.h"
 
 namespace hairfit {
@@ -11,6 +12,7 @@ struct HairMaterial {
   double cross_section = 1.5e-5;    // A, cm²
   double mass_density = 1.32;       // ρ, g/cm³
   Vec3 gravity = Vec3::Zero();      // g, cm/s² as a world vector; zero when gravity is off
+  ContactLaw contact;               // the scalp as a support (effects.contact); inactive when off
 };
 
 struct RodDiscretisation {
@@ -26,6 +28,10 @@ constexpr double kHeavyRod = 50.0;
 // A fibre of the given length (cm): circular section, straight at rest, loaded by its weight
 // ρ·A·g per length when the material has gravity.
 Rod hair_rod(double length, const HairMaterial& material);
+
+// The dimensionless model of that fibre clamped at `root`, on the scalp as its support when the
+// material declares contact (`scalp` is then required).
+RodModel hair_rod_model(double length, const HairMaterial& material, const RodRoot& root, const DistanceField* scalp);
 
 // The direction a fibre at a root bends in (paper §3.4): perpendicular to the growth direction, in
 // the plane of the surface normal and the growth direction, pointing away from the normal (the

@@ -638,7 +638,8 @@ GuideSolve optimise_heavy_guide(const GuideTargets& targets, const double start[
 
 GuideSolve optimise_guide(const GuideTargets& targets, const double start[6], int max_iterations, double tolerance,
                           const StallTest& stall) {
-  if (targets.model.force_per_length.norm() > kHeavyRod) return optimise_heavy_guide(targets, start, max_iterations, tolerance, stall);
+  if (targets.model.support || targets.model.force_per_length.norm() > kHeavyRod)
+    return optimise_heavy_guide(targets, start, max_iterations, tolerance, stall);
   GuideSolve result;
   std::copy(start, start + 6, result.eta);
   const LoadCoordinates coordinates(targets.model, targets.rod, start);

@@ -101,7 +101,7 @@ class Cantilever {
   bool solve(const RodModel& model, double load, ShootingResult& at, int& solves, std::optional<RodEnd>& end) const {
     end.reset();
     const Vec3 force = load * bend_;
-    if (model.force_per_length.norm() > kHeavyRod || load > kHeavyRod) {
+    if (model.support || model.force_per_length.norm() > kHeavyRod || load > kHeavyRod) {
       ShootingOptions options;
       options.integrator = rod_.integrator;
       options.segments = rod_.segments;
@@ -264,7 +264,7 @@ struct PreguideMarch {
 bool replays_march(const RodModel& model, const PreguideOptions& o) {
   if (!o.share_marches) return false;
   const bool straight = std::all_of(model.kappa_hat.begin(), model.kappa_hat.end(), [](const Vec3& k) { return k.isZero(0.0); });
-  return straight && model.force_per_length.isZero(0.0) && o.max_load <= kHeavyRod;
+  return straight && model.force_per_length.isZero(0.0) && !o.material.contact.active() && o.max_load <= kHeavyRod;
 }
 
 PreguideMarch shared_march(const Vec3& compliance, const PreguideOptions& o) {
@@ -290,7 +290,7 @@ PreGuide solve_preguide(const RootSet& roots, int i, const Boundary& boundary, c
                         const std::vector<PreguideMarch>& shared) {
   PreGuide g = preguide_start(roots, i, boundary, o);
   const Vec3 bend = bending_direction(g.normal, g.direction, o.down, o.front);
-  const RodModel model = make_rod_model(hair_rod(g.length, o.material), RodRoot{g.root, root_frame(g.direction, bend)});
+  const RodModel model = hair_rod_model(g.length, o.material, RodRoot{g.root, root_frame(g.direction, bend)}, boundary.scalp);
   const Cantilever cantilever(bend, o.rod);
 
   // The states the march visits, with their misses (miss > 0: the tip is not yet deep enough):
@@ -347,6 +347,7 @@ PreGuide solve_preguide(const RootSet& roots, int i, const Boundary& boundary, c
     while (share < 1.0 && share_step > 1e-5 && g.solves < kNewtonBudget) {
       const double next = std::min(1.0, share + share_step);
       scaled.force_per_length = next * model.force_per_length;
+      scaled.support_scale = next * model.support_scale;  // the head carries what weight there is
       const Vec3 predictor = share > share_prev ? Vec3(start.m0() + (start.m0() - m_prev) * ((next - share) / (share - share_prev)))
                                                 : start.m0();
       ShootingResult trial = predicted(start.solution, predictor);
@@ -442,7 +443,8 @@ PreGuide preguide_start(const RootSet& roots, int i, const Boundary& boundary, c
 PreGuides make_preguides(const RootSet& roots, const Boundary& boundary, const PreguideOptions& options) {
   PreGuides result;
   result.items.resize(roots.size());
-  if (options.immersion == PreguideImmersion::layer && options.material.gravity.isZero(0.0)) {
+  if (options.immersion == PreguideImmersion::layer && options.material.gravity.isZero(0.0) &&
+      !options.material.contact.active()) {
     ProgressCounter progress(options.progress);
     parallel_for(roots.size(), options.threads, [&](int i) {
       result.items[i] = solve_layer_preguide(roots, i, boundary, options);

@@ -54,6 +54,7 @@ HairMaterial hair_material(const Scene& scene) {
   m.cross_section = scene.hair.cross_section;
   m.mass_density = scene.hair.mass_density;
   m.gravity = scene.effects.gravity ? Vec3(scene.rod.gravity * scene.units.down) : Vec3::Zero();
+  if (scene.effects.contact) m.contact = ContactLaw{scene.contact.stiffness, scene.contact.layer};
   return m;
 }
 

@@ -26,11 +26,12 @@ void append(std::vector<std::string>& to, std::initializer_list<const char*> ite
 }
 
 // The rod's material and discretisation (stage_options.cpp hair_material, rod_discretisation);
-// weight only with gravity.
+// weight only with gravity, the support only with contact.
 void read_rod(const Scene& scene, StageDeclaration& d) {
   append(d.reads, {"hair.youngs_modulus", "hair.shear_modulus", "hair.cross_section", "rod.integrator", "rod.segments",
-                   "effects.gravity", "units.down", "units.front"});
+                   "effects.gravity", "effects.contact", "units.down", "units.front"});
   if (scene.effects.gravity) append(d.reads, {"hair.mass_density", "rod.gravity"});
+  if (scene.effects.contact) append(d.reads, {"contact.stiffness", "contact.layer"});
 }
 
 // strand_options(): winding and cutting parameters only when those effects are on.

@@ -274,19 +274,21 @@ Iterate sweep(const Problem& p, const Level& level, const Vec3& root_moment, con
   return x;
 }
 
-// Damped Newton at one level from x; true (x updated) when the residual is below tol.
+// Damped Newton at one level from x; true (x updated) when the residual is below tol. The
+// residual of each accepted iterate comes from the backtracking that accepted it (no jets): a
+// Jacobian is formed only for an iterate that needs a step.
 bool newton(const Problem& p, const Level& level, double tol, int max_steps, Iterate& x, int& iterations,
             double& residual_norm) {
   Eigen::VectorXd f;
   Eigen::MatrixXd jacobian;
+  double norm = residual(p, level, x).norm();
   for (int step = 0; step <= max_steps; ++step) {
-    residual_and_jacobian(p, level, x, f, jacobian);
-    const double norm = f.norm();
     if (!std::isfinite(norm)) return false;
     residual_norm = norm;
     if (norm <= tol) return true;
     if (step == max_steps || iterations >= p.options.max_iterations) return false;
     ++iterations;
+    residual_and_jacobian(p, level, x, f, jacobian);
     const BandLU lu(jacobian, p.lower(), p.upper());
     const Eigen::VectorXd delta = -lu.solve(f);
     if (!delta.allFinite()) return false;
@@ -298,6 +300,7 @@ bool newton(const Problem& p, const Level& level, double tol, int max_steps, Ite
       const double n = residual(p, level, candidate).norm();
       if (std::isfinite(n) && n <= (1.0 - 1e-4 * alpha) * norm) {
         x = candidate;
+        norm = n;
         accepted = true;
       }
     }
