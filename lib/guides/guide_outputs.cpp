@@ -11,7 +11,8 @@ void write_guides_csv(const std::filesystem::path& path, const Guides& guides) {
   write_file_atomically(path, [&](std::ostream& out) {
     out << "guide,root_x,root_y,root_z,length_cm,force_x,force_y,force_z,root_moment_x,root_moment_y,root_moment_z,"
            "terminal_torque_x,terminal_torque_y,terminal_torque_z,force_scale_dyn,moment_scale_dyn_cm,iterations,"
-           "evaluations,f1_direction,f2_similarity,f3_boundary,f4_density,cost,converged,termination\n";
+           "evaluations,f1_direction,f2_similarity,f3_boundary,f4_density,cost,converged,termination,contact_force_dyn_cm,"
+           "contact_share\n";
     // Every number round-trips: 17 significant digits, as printf's %.17g writes them.
     std::string line;
     char buffer[64];
@@ -36,6 +37,8 @@ void write_guides_csv(const std::filesystem::path& path, const Guides& guides) {
       for (double f : {g.f1, g.f2, g.f3, g.f4, g.cost}) number(f);
       line += g.converged ? ",1," : ",0,";
       line += g.termination;
+      number(g.contact_force);
+      number(g.contact_share);
       line += '\n';
       out << line;
     }

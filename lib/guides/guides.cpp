@@ -184,6 +184,14 @@ Guide solve_guide(const RootSet& bases, int b, const PreGuides& preguides, const
   g.converged = solve.converged;
   g.termination = solve.termination;
   g.initial_cost = 2.0 * solve.initial_cost;  // Ceres reports ½Σr²
+  if (o.material.contact.active()) {
+    int touching = 0;
+    for (const Vec3& p : g.shape.nodes) {
+      g.contact_force = std::max(g.contact_force, contact_force(*boundary.scalp, o.material.contact, p).norm());
+      touching += boundary.scalp->value(p) < o.material.contact.layer;
+    }
+    g.contact_share = static_cast<double>(touching) / std::max<std::size_t>(1, g.shape.nodes.size());
+  }
   if (use == GuideUse::start) return g;
   const GuideTerms terms =
       solve.heavy ? evaluate_guide_terms(targets, solve.solution) : evaluate_guide_terms(targets, solve.eta);
@@ -440,6 +448,9 @@ GuideFigures guide_figures(const Guides& guides, const PreGuides& preguides, con
     f.max_weight = std::max(f.max_weight, weight);
     f.unresolved_weight += weight > segments * segments;
     f.shorter_than_voxel += g.length < voxel;
+    f.max_contact_force = std::max(f.max_contact_force, g.contact_force);
+    f.contact_share += g.contact_share;
+    f.guides_in_contact += g.contact_share > 0.0;
     f.failures += !g.converged;
     f.mean_iterations += g.iterations;
     f.max_iterations = std::max(f.max_iterations, g.iterations);
@@ -466,6 +477,7 @@ GuideFigures guide_figures(const Guides& guides, const PreGuides& preguides, con
   if (f.guides > 0) {
     f.mean_iterations /= f.guides;
     f.mean_evaluations /= f.guides;
+    f.contact_share /= f.guides;
   }
   if (nodes > 0) {
     f.inside_fraction = static_cast<double>(inside) / nodes;

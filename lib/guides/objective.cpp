@@ -414,10 +414,12 @@ class HeavyGuideCost : public ceres::CostFunction {
     const ShootingResult s = solve(x);
     if (!s.converged) return false;
     near_ = s;
+    sensitivity_.clear();
     if (!jacobians || !jacobians[0]) return cost_.residuals_of_solution(s, residuals);
     const int n = t_.rod.segments + 1;
     const auto sensitivity = shooting_sensitivity(t_.model, s, options_);
     if (sensitivity.empty()) return false;
+    sensitivity_ = sensitivity;
     std::vector<Jet> nodes(3 * n), frames(9 * n), curvature(3 * n), r(num_residuals());
     trace_pieces(t_.model, t_.rod.integrator, t_.rod.segments, s, sensitivity,
                  RodTrace<Jet>{nodes.data(), frames.data(), curvature.data(), nullptr});
@@ -429,9 +431,12 @@ class HeavyGuideCost : public ceres::CostFunction {
     return true;
   }
 
-  // The solution at x, warm-started from the last one.
+  // The solution at x, warm-started from the last one, moved to first order in the load change
+  // where its sensitivity is known (the last evaluation formed a Jacobian there).
   ShootingResult solve(const double* x) const {
-    return shoot_root_moment(t_.model, Vec3(x[0], x[1], x[2]), Vec3(x[3], x[4], x[5]), near_, options_);
+    const Vec3 force(x[0], x[1], x[2]), torque(x[3], x[4], x[5]);
+    if (sensitivity_.empty() || !t_.model.support) return shoot_root_moment(t_.model, force, torque, near_, options_);
+    return shoot_root_moment(t_.model, force, torque, predicted_solution(near_, sensitivity_, force, torque), options_);
   }
 
  private:
@@ -439,6 +444,7 @@ class HeavyGuideCost : public ceres::CostFunction {
   const GuideTargets& t_;
   ShootingOptions options_;
   mutable ShootingResult near_;  // Ceres evaluates one residual block from one thread
+  mutable std::vector<PieceSensitivity> sensitivity_;  // of near_, when known
 };
 
 // Σ wᵢFᵢ and the unweighted terms from the residual vector (blocks as GuideCost writes them).

@@ -108,7 +108,7 @@ class Cantilever {
       // A solve from nothing (the rod under its weight alone) continues from the unloaded rod; a
       // failed warm start returns at once, and the caller shortens its load step.
       options.restart_from_rest = at.breaks.empty() && at.root_moment.isZero();
-      options.max_iterations = options.restart_from_rest ? 40 : 10;
+      options.max_iterations = options.restart_from_rest ? 200 : 10;
       const ShootingResult r = shoot_root_moment(model, force, Vec3::Zero(), at, options);
       solves += std::max(1, r.iterations);
       if (r.converged) at = r;
@@ -342,9 +342,23 @@ PreGuide solve_preguide(const RootSet& roots, int i, const Boundary& boundary, c
     std::optional<RodEnd> start_traced;
     RodModel scaled = model;
     double share = 0.0, share_step = model.force_per_length.norm() > 0.0 ? 0.05 : 1.0;
+    // A heavy rod or one on the scalp: one solve from rest under the full weight, whose load
+    // continuation (rod_shooting.h) follows the branch of the unloaded rod, falling over where
+    // hair that grows up buckles.
+    const bool from_rest = model.support || model.force_per_length.norm() > kHeavyRod;
+    if (from_rest) {
+      std::optional<RodEnd> end;
+      ShootingResult trial;
+      if (cantilever.solve(model, 0.0, trial, g.solves, end)) {
+        start.solution = trial;
+        start_traced = end;
+        share = 1.0;
+      }
+      share_step = 0.0;
+    }
     Vec3 m_prev = Vec3::Zero(), tip_prev = g.direction;
     double share_prev = 0.0;
-    while (share < 1.0 && share_step > 1e-5 && g.solves < kNewtonBudget) {
+    while (!from_rest && share < 1.0 && share_step > 1e-5 && g.solves < kNewtonBudget) {
       const double next = std::min(1.0, share + share_step);
       scaled.force_per_length = next * model.force_per_length;
       scaled.support_scale = next * model.support_scale;  // the head carries what weight there is

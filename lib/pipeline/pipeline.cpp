@@ -496,6 +496,11 @@ class Runner {
     stage.add("max_weight", f.max_weight);
     stage.add("unresolved_weight", static_cast<std::int64_t>(f.unresolved_weight));
     stage.add("shorter_than_voxel", static_cast<std::int64_t>(f.shorter_than_voxel));
+    if (scene_.effects.contact) {
+      stage.add("max_contact_force", f.max_contact_force);
+      stage.add("contact_share", f.contact_share);
+      stage.add("guides_in_contact", static_cast<std::int64_t>(f.guides_in_contact));
+    }
     stage.add("start", scene_.guides.start);
     FlowCrossingOptions flow;
     flow.threads = options_.threads;

@@ -11,7 +11,7 @@ static_assert(sizeof(Roots) == 192, "Roots changed: update stage_codec.cpp");
 static_assert(sizeof(Clusters) == 288, "Clusters changed: update stage_codec.cpp");
 static_assert(sizeof(PreguideRoots) == 176, "PreguideRoots changed: update stage_codec.cpp");
 static_assert(sizeof(PreGuide) == 240, "PreGuide changed: update stage_codec.cpp");
-static_assert(sizeof(Guide) == 384, "Guide changed: update stage_codec.cpp");
+static_assert(sizeof(Guide) == 400, "Guide changed: update stage_codec.cpp");
 static_assert(sizeof(Strands) == 128, "Strands changed: update stage_codec.cpp");
 static_assert(sizeof(Curves) == 96, "Curves changed: update stage_codec.cpp");
 
@@ -221,6 +221,8 @@ void members(IO& io, Guide& g) {
   io(g.f2);
   io(g.f3);
   io(g.f4);
+  io(g.contact_force);
+  io(g.contact_share);
 }
 
 template <class IO>

@@ -24,6 +24,12 @@ using PieceSensitivity = Eigen::Matrix<double, 12, 6>;
 std::vector<PieceSensitivity> shooting_sensitivity(const RodModel& model, const ShootingResult& solution,
                                                               const ShootingOptions& options);
 
+// The first-order prediction of the solution at nearby loads (f_L, t_L): every piece's start state
+// moved by its sensitivity times the load change. A warm start for shoot_root_moment whose error
+// is quadratic in the change, where the solution itself as a start has a linear one.
+ShootingResult predicted_solution(const ShootingResult& solution, const std::vector<PieceSensitivity>& sensitivity,
+                                  const Vec3& terminal_force, const Vec3& terminal_torque);
+
 // Traces the solution piece by piece with jets over (f_L, t_L): nodes, frames and curvature as in
 // RodTrace, each carrying its derivative.
 void trace_pieces(const RodModel& model, RodIntegrator integrator, int segments, const ShootingResult& solution,

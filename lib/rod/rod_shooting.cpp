@@ -44,7 +44,9 @@ Vec3 trace_pieces(const RodModel& model, RodIntegrator integrator, int segments,
 int shooting_pieces(const RodModel& model, const Vec3& terminal_force, int segments) {
   const double tension = terminal_force.norm() + model.force_per_length.norm();
   double rate = std::sqrt(tension);
-  if (model.support) rate = std::max(rate, std::sqrt(std::sqrt(model.support_scale * model.support->stiffness())));
+  // On a support of stiffness k the equations grow like exp(β·s), β = (k/4)^¼ (the beam on an
+  // elastic foundation).
+  if (model.support) rate = std::max(rate, std::sqrt(std::sqrt(0.25 * model.support_scale * model.support->stiffness())));
   const int pieces = static_cast<int>(std::ceil(rate / 3.0));
   return std::clamp(pieces, 1, std::min(segments, 48));
 }
@@ -412,7 +414,15 @@ ShootingResult shoot_root_moment(const RodModel& model, const Vec3& terminal_for
       if (lu.isInvertible()) tangent = -lu.solve(rate);
       if (!tangent.allFinite()) tangent.setZero();
     }
+    // Under a weight or on a support the path from the unloaded rod may buckle (hair growing up
+    // falls over) and jump to a standing or curled equilibrium if taken in one stride: the first
+    // level is then a dimensionless load of about 5, and the step grows from there.
     double lambda = 0.0, previous_lambda = -1.0, step = 1.0;
+    if (supported || !model.force_per_length.isZero(0.0)) {
+      double load = terminal_force.norm() + model.force_per_length.norm();
+      if (supported) load = std::max(load, std::sqrt(model.support_scale * model.support->stiffness()));
+      step = std::min(1.0, 5.0 / std::max(load, 1.0));
+    }
     Iterate at = sweep_from(p, level_at(model, terminal_force, terminal_torque, 0.0), 0.0 * tangent), previous = at;
     // After a rejected secant the path bends more than the secant saw: the predictor becomes the
     // path's tangent at the last solution, −J⁻¹·∂F/∂λ, whose miss shrinks with the step squared.
@@ -554,6 +564,27 @@ std::vector<PieceSensitivity> shooting_sensitivity(const RodModel& model, const 
     for (std::size_t j = 0; j < own.size(); ++j) blocks[k].row(own[j]) = s.row(p.column(k) + static_cast<int>(j));
   }
   return blocks;
+}
+
+ShootingResult predicted_solution(const ShootingResult& solution, const std::vector<PieceSensitivity>& sensitivity,
+                                  const Vec3& terminal_force, const Vec3& terminal_torque) {
+  ShootingResult out = solution;
+  if (sensitivity.size() != solution.frames.size()) return out;
+  Eigen::Matrix<double, 6, 1> change;
+  change << terminal_force - solution.terminal_force, terminal_torque - solution.terminal_torque;
+  for (std::size_t k = 0; k < sensitivity.size(); ++k) {
+    const Eigen::Matrix<double, 12, 1> d = sensitivity[k] * change;
+    if (k > 0) out.frames[k] = solution.frames[k] * cayley::matrix<double>(Vec3(d.segment<3>(kPhi)));
+    out.moments[k] += d.segment<3>(kM);
+    if (!out.forces.empty()) {
+      if (k > 0) out.positions[k] += d.segment<3>(kR);
+      out.forces[k] += d.segment<3>(kN);
+    }
+  }
+  out.root_moment = out.moments[0];
+  out.terminal_force = terminal_force;
+  out.terminal_torque = terminal_torque;
+  return out;
 }
 
 void trace_pieces(const RodModel& model, RodIntegrator integrator, int segments, const ShootingResult& solution,
