@@ -313,7 +313,7 @@ Vec3 DistanceField::gradient(const Vec3& p) const { return value_and_gradient(p)
 
 double DistanceField::nearest_sample(const Vec3& p) const {
   int node[3];
-  for (int d = 0; d < 3; ++d) node[d] = static_cast<int>(std::lround(std::clamp((p[d] - origin_[d]) / h_, 0.0, last_node_[d])));
+  for (int d = 0; d < 3; ++d) node[d] = static_cast<int>(std::clamp((p[d] - origin_[d]) / h_, 0.0, last_node_[d]) + 0.5);
   return sample(node[0], node[1], node[2]);
 }
 

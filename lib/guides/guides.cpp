@@ -185,12 +185,15 @@ Guide solve_guide(const RootSet& bases, int b, const PreGuides& preguides, const
   g.termination = solve.termination;
   g.initial_cost = 2.0 * solve.initial_cost;  // Ceres reports ½Σr²
   if (o.material.contact.active()) {
+    // The share counts the nodes beyond the first tenth of the hair: every root sits in the layer.
+    const std::size_t n = g.shape.nodes.size(), first = (n + 9) / 10;
     int touching = 0;
-    for (const Vec3& p : g.shape.nodes) {
+    for (std::size_t i = 0; i < n; ++i) {
+      const Vec3& p = g.shape.nodes[i];
       g.contact_force = std::max(g.contact_force, contact_force(*boundary.scalp, o.material.contact, p).norm());
-      touching += boundary.scalp->value(p) < o.material.contact.layer;
+      if (i >= first) touching += boundary.scalp->value(p) < o.material.contact.layer;
     }
-    g.contact_share = static_cast<double>(touching) / std::max<std::size_t>(1, g.shape.nodes.size());
+    g.contact_share = n > first ? static_cast<double>(touching) / static_cast<double>(n - first) : 0.0;
   }
   if (use == GuideUse::start) return g;
   const GuideTerms terms =

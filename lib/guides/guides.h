@@ -69,7 +69,8 @@ struct Guide {
   double cost = 0.0;        // Σ wᵢ·Fᵢ at the result (as least squares: ½Σr² = ½·Σ wᵢFᵢ)
   double f1 = 0.0, f2 = 0.0, f3 = 0.0, f4 = 0.0;  // unweighted terms at the result
   // With effects.contact: the largest support force per length the scalp exerts on the guide
-  // (dyn/cm) and the share of its nodes within the contact layer; 0 without contact.
+  // (dyn/cm) and the share of its nodes beyond the first tenth of its length (the root's own
+  // region) within the contact layer; 0 without contact.
   double contact_force = 0.0;
   double contact_share = 0.0;
 };
@@ -122,7 +123,8 @@ struct GuideFigures {
   int unresolved_weight = 0;
   int shorter_than_voxel = 0;  // shorter than one voxel of the fields, which cannot shape them
   // With effects.contact: the largest guide's contact force (dyn/cm), the mean share of guide
-  // nodes in contact, and the guides resting on the scalp somewhere.
+  // nodes in contact (as Guide::contact_share), and the guides resting on the scalp beyond their
+  // root's tenth.
   double max_contact_force = 0.0;
   double contact_share = 0.0;
   int guides_in_contact = 0;

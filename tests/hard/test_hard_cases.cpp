@@ -205,3 +205,33 @@ TEST_CASE("hard: Ceres stopped after one iteration: every guide flagged, all fin
   CHECK(figure<std::int64_t>(r, "guides", "unresolved_weight") == 0);
   CHECK(figure<std::int64_t>(r, "guides", "shorter_than_voxel") == 0);
 }
+
+// Long hair under gravity on the scalp as a support (issue: long hair). 60 cm of real hair
+// weighs w ≈ 6000 in rod units; grown tangent to the scalp it lies on it from the root on; a
+// support a million times too stiff makes the rod's equations stiffer than its segments resolve;
+// and 60 cm of hair does not fit in the spheroid's volume. Each stays finite, and the report says
+// what happened: the weight, the contact, the failures, the inside fractions.
+TEST_CASE("hard: long hair under gravity on the scalp as a support") {
+  struct Case {
+    const char* name;
+    std::string extra;
+  };
+  const Case cases[] = {
+      {"w ≈ 6000 (60 cm), longer than the volume holds", "[hair]\ndensity = 0.5\nlength = 60\n"},
+      {"growing tangent to the scalp, in contact from the root on", "[hair]\ndensity = 0.5\nlength = 30\ntilt = 90\n"},
+      {"a support 1e6 times too stiff", "[hair]\ndensity = 0.5\nlength = 30\n[contact]\nstiffness = 5e6\n"},
+  };
+  for (const Case& c : cases) {
+    CAPTURE(std::string(c.name));
+    const PipelineResult r = run(c.extra + "[effects]\ngravity = true\ncontact = true\n");
+    check_all_finite(r);
+    CHECK(figure<double>(r, "guides", "max_weight") > 500.0);
+    CHECK(figure<double>(r, "guides", "max_contact_force") > 0.0);
+    const double share = figure<double>(r, "guides", "contact_share");
+    CHECK(share >= 0.0);
+    CHECK(share <= 1.0);
+    MESSAGE(std::string(c.name), ": guides inside ", figure<double>(r, "guides", "inside_fraction"), ", in the head ",
+            figure<double>(r, "guides", "inside_head_fraction"), ", failures ",
+            figure<std::int64_t>(r, "guides", "failures"), ", contact share ", share);
+  }
+}

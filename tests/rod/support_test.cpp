@@ -225,7 +225,7 @@ TEST_CASE("hard cases on a support stay finite and say whether they converged") 
     bool finite = true;
     for (double v : nodes) finite = finite && std::isfinite(v);
     CHECK(finite);
-    MESSAGE(c.name, ": converged ", s.converged, ", residual ", s.residual, ", tip y ", nodes[3 * options.segments + 1]);
+    MESSAGE(std::string(c.name), ": converged ", s.converged, ", residual ", s.residual, ", tip y ", nodes[3 * options.segments + 1]);
     // Where it converges, the far part of the rod rests where the support carries its weight.
     if (s.converged)
       CHECK(nodes[3 * options.segments + 1] == doctest::Approx(c.height + plane->resting(c.weight)).epsilon(1e-6));
