@@ -406,9 +406,6 @@ class HeavyGuideCost : public ceres::CostFunction {
     options_.integrator = t.rod.integrator;
     options_.segments = t.rod.segments;
     options_.max_iterations = 12;
-    // Each evaluation's equilibrium to 1e-9 of its loads (the shape to about that share of L):
-    // far below what the objective resolves, and one Newton step fewer than 1e-11 per evaluation.
-    options_.tolerance = 1e-9;
     options_.restart_from_rest = false;
   }
 
