@@ -15,6 +15,7 @@
 
 #include "rod/rod_shooting.h"
 #include "tests/rod/heavy_references.h"
+#include "tests/rod/ramp_plane.h"
 
 using namespace hairfit;
 
@@ -64,33 +65,6 @@ Timing time_solves(const RodModel& model, int segments, const Vec3& force) {
   return t;
 }
 
-// A plane y = height (rod units) pushing up with k·g(φ), g the C¹ ramp of the scalp contact.
-class RampPlane : public RodSupport {
- public:
-  RampPlane(double height, double k, double delta) : height_(height), k_(k), delta_(delta) {}
-  void force(const double r[3], double c[3], double* jacobian) const override {
-    const double phi = r[1] - height_;
-    double g = 0.0, slope = 0.0;
-    if (phi < 0.0) {
-      g = 0.5 * delta_ - phi;
-      slope = -1.0;
-    } else if (phi < delta_) {
-      g = (delta_ - phi) * (delta_ - phi) / (2.0 * delta_);
-      slope = -(delta_ - phi) / delta_;
-    }
-    c[0] = c[2] = 0.0;
-    c[1] = k_ * g;
-    if (jacobian) {
-      for (int i = 0; i < 9; ++i) jacobian[i] = 0.0;
-      jacobian[4] = k_ * slope;
-    }
-  }
-  double stiffness() const override { return k_; }
-
- private:
-  double height_, k_, delta_;
-};
-
 }  // namespace
 
 int main() {
@@ -117,7 +91,7 @@ int main() {
   std::printf("| --- | --- | --- | --- | --- |\n");
   RodModel supported = cantilever(1800.0);
   supported.root_frame = Eigen::AngleAxisd(0.3, Vec3::UnitZ()).toRotationMatrix() * supported.root_frame;
-  supported.support = std::make_shared<RampPlane>(-0.05, 4e5, 0.05);
+  supported.support = std::make_shared<test::RampPlane>(-0.05, 4e5, 0.05);
   const Vec3 reference = time_solves(supported, 1024, Vec3(0.0, 0.0, 1.0)).tip;
   for (int segments : {32, 64, 128, 256, 512}) {
     const Timing t = time_solves(supported, segments, Vec3(0.0, 0.0, 1.0));

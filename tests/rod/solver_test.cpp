@@ -12,6 +12,7 @@
 #include "rod/rod_jet.h"
 #include "rod/rod_sensitivity.h"
 #include "rod/rod_shooting.h"
+#include "load_derivatives.h"
 #include "rod_references.h"
 
 using namespace hairfit;
@@ -300,30 +301,7 @@ TEST_CASE("load derivatives of a heavy rod's solution agree with finite differen
   const ShootingResult at = shoot_root_moment(model, force, torque, Vec3::Zero(), options);
   REQUIRE(at.converged);
   REQUIRE(at.breaks.size() > 3);
-  const auto sensitivity = shooting_sensitivity(model, at, options);
-  REQUIRE(sensitivity.size() + 1 == at.breaks.size());
-  const int n = options.segments + 1;
-  std::vector<RodJet6> nodes(3 * n), frames(9 * n);
-  trace_pieces(model, options.integrator, options.segments, at, sensitivity,
-               RodTrace<RodJet6>{nodes.data(), frames.data(), nullptr, nullptr});
-  auto traced = [&](const Vec3& f, const Vec3& t) {
-    const ShootingResult s = shoot_root_moment(model, f, t, at, options);
-    REQUIRE(s.converged);
-    std::vector<double> out(3 * n);
-    trace_pieces(model, options.integrator, options.segments, s, RodTrace<double>{out.data(), nullptr, nullptr, nullptr});
-    return out;
-  };
-  const double h = 1e-5;
-  double worst = 0.0;
-  for (int j = 0; j < 6; ++j) {
-    Vec3 df = Vec3::Zero(), dt = Vec3::Zero();
-    (j < 3 ? df : dt)[j % 3] = h;
-    const std::vector<double> plus = traced(force + df, torque + dt), minus = traced(force - df, torque - dt);
-    for (int i = 0; i < 3 * n; ++i) {
-      const double fd = (plus[i] - minus[i]) / (2.0 * h);
-      worst = std::max(worst, std::fabs(nodes[i].v[j] - fd) / (1.0 + std::fabs(fd)));
-    }
-  }
+  const double worst = test::worst_load_derivative_error(model, options, at, force, torque);
   MESSAGE("worst relative derivative error " << worst << ", pieces " << at.breaks.size() - 1);
   CHECK(worst <= 1e-6);
 }
