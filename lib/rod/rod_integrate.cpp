@@ -285,6 +285,20 @@ inline V<S> scaled(double step, const V<S>& rate) {
   return {step * rate[0], step * rate[1], step * rate[2]};
 }
 
+// The classical RK4 increment w·(k1 + 2·(k2 + k3) + k4) of one 3-vector, w = h/6; and of r, whose
+// first stage rate is e3 in the step's own frame.
+template <typename S>
+inline V<S> rk4_increment(double w, const V<S>& k1, const V<S>& k2, const V<S>& k3, const V<S>& k4) {
+  V<S> out;
+  for (int a = 0; a < 3; ++a) out[a] = w * ((k1[a] + 2.0 * (k2[a] + k3[a])) + k4[a]);
+  return out;
+}
+template <typename S>
+inline V<S> rk4_position_increment(double w, const Rate<S>& k2, const Rate<S>& k3, const Rate<S>& k4) {
+  return {w * (2.0 * (k2.t[0] + k3.t[0]) + k4.t[0]), w * (2.0 * (k2.t[1] + k3.t[1]) + k4.t[1]),
+          w * ((1.0 + 2.0 * (k2.t[2] + k3.t[2])) + k4.t[2])};
+}
+
 template <typename T, typename S>
 inline void write_node(const Constants& k, const RodTrace<T>& trace, int i, double s, const V<S>& r, const M<S>& frame,
                        const V<S>& m, const Local<S>& local) {
@@ -379,13 +393,10 @@ inline void supported_steps(const RodModel& model, RodIntegrator integrator, int
       const V<S> n3 = force_rate(scaled(hh, k2.t));
       const Rate<S> k4 = stage_rate(k, scaled(h, k3.theta), advance(local.mu, h, k3.mu), advance(local.nu, h, n3), s + h);
       const V<S> n4 = force_rate(scaled(h, k3.t));
-      for (int a = 0; a < 3; ++a) {
-        theta[a] = w * ((k1.theta[a] + 2.0 * (k2.theta[a] + k3.theta[a])) + k4.theta[a]);
-        dm[a] = w * ((k1.mu[a] + 2.0 * (k2.mu[a] + k3.mu[a])) + k4.mu[a]);
-        dn[a] = w * ((n1[a] + 2.0 * (n2[a] + n3[a])) + n4[a]);
-      }
-      dr = {w * (2.0 * (k2.t[0] + k3.t[0]) + k4.t[0]), w * (2.0 * (k2.t[1] + k3.t[1]) + k4.t[1]),
-            w * ((1.0 + 2.0 * (k2.t[2] + k3.t[2])) + k4.t[2])};
+      theta = rk4_increment(w, k1.theta, k2.theta, k3.theta, k4.theta);
+      dm = rk4_increment(w, k1.mu, k2.mu, k3.mu, k4.mu);
+      dn = rk4_increment(w, n1, n2, n3, n4);
+      dr = rk4_position_increment(w, k2, k3, k4);
     }
     const V<S> dr_world = times(frame, dr), dm_world = times(frame, dm), dn_world = times(frame, dn);
     for (int a = 0; a < 3; ++a) {
@@ -443,12 +454,9 @@ inline void steps(const RodModel& model, RodIntegrator integrator, int segments,
       const Rate<S> k2 = stage_rate(k, scaled(hh, k1.theta), advance(local.mu, hh, k1.mu), n_mid, s + hh);
       const Rate<S> k3 = stage_rate(k, scaled(hh, k2.theta), advance(local.mu, hh, k2.mu), n_mid, s + hh);
       const Rate<S> k4 = stage_rate(k, scaled(h, k3.theta), advance(local.mu, h, k3.mu), force(k, local, s + h), s + h);
-      for (int a = 0; a < 3; ++a) {
-        theta[a] = w * ((k1.theta[a] + 2.0 * (k2.theta[a] + k3.theta[a])) + k4.theta[a]);
-        dm[a] = w * ((k1.mu[a] + 2.0 * (k2.mu[a] + k3.mu[a])) + k4.mu[a]);
-      }
-      dr = {w * (2.0 * (k2.t[0] + k3.t[0]) + k4.t[0]), w * (2.0 * (k2.t[1] + k3.t[1]) + k4.t[1]),
-            w * ((1.0 + 2.0 * (k2.t[2] + k3.t[2])) + k4.t[2])};
+      theta = rk4_increment(w, k1.theta, k2.theta, k3.theta, k4.theta);
+      dm = rk4_increment(w, k1.mu, k2.mu, k3.mu, k4.mu);
+      dr = rk4_position_increment(w, k2, k3, k4);
     }
     const V<S> dr_world = times(frame, dr), dm_world = times(frame, dm);
     for (int a = 0; a < 3; ++a) {
