@@ -417,11 +417,10 @@ class HeavyGuideCost : public ceres::CostFunction {
     sensitivity_.clear();
     if (!jacobians || !jacobians[0]) return cost_.residuals_of_solution(s, residuals);
     const int n = t_.rod.segments + 1;
-    const auto sensitivity = shooting_sensitivity(t_.model, s, options_);
-    if (sensitivity.empty()) return false;
-    sensitivity_ = sensitivity;
+    sensitivity_ = shooting_sensitivity(t_.model, s, options_);
+    if (sensitivity_.empty()) return false;
     std::vector<Jet> nodes(3 * n), frames(9 * n), curvature(3 * n), r(num_residuals());
-    trace_pieces(t_.model, t_.rod.integrator, t_.rod.segments, s, sensitivity,
+    trace_pieces(t_.model, t_.rod.integrator, t_.rod.segments, s, sensitivity_,
                  RodTrace<Jet>{nodes.data(), frames.data(), curvature.data(), nullptr});
     if (!cost_.residuals_of_shape(nodes.data(), frames.data(), curvature.data(), r.data())) return false;
     for (int i = 0; i < num_residuals(); ++i) {
@@ -431,8 +430,10 @@ class HeavyGuideCost : public ceres::CostFunction {
     return true;
   }
 
-  // The solution at x, warm-started from the last one, moved to first order in the load change
-  // where its sensitivity is known (the last evaluation formed a Jacobian there).
+  // The solution at x, warm-started from the last one; on a support, moved to first order in the
+  // load change where its sensitivity is known (the last evaluation formed a Jacobian there).
+  // Rods without a support start from the last solution itself, as they always have, so their
+  // guides stay bit for bit what they were.
   ShootingResult solve(const double* x) const {
     const Vec3 force(x[0], x[1], x[2]), torque(x[3], x[4], x[5]);
     if (sensitivity_.empty() || !t_.model.support) return shoot_root_moment(t_.model, force, torque, near_, options_);

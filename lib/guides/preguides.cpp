@@ -354,14 +354,12 @@ PreGuide solve_preguide(const RootSet& roots, int i, const Boundary& boundary, c
         start_traced = end;
         share = 1.0;
       }
-      share_step = 0.0;
     }
     Vec3 m_prev = Vec3::Zero(), tip_prev = g.direction;
     double share_prev = 0.0;
     while (!from_rest && share < 1.0 && share_step > 1e-5 && g.solves < kNewtonBudget) {
       const double next = std::min(1.0, share + share_step);
       scaled.force_per_length = next * model.force_per_length;
-      scaled.support_scale = next * model.support_scale;  // the head carries what weight there is
       const Vec3 predictor = share > share_prev ? Vec3(start.m0() + (start.m0() - m_prev) * ((next - share) / (share - share_prev)))
                                                 : start.m0();
       ShootingResult trial = predicted(start.solution, predictor);

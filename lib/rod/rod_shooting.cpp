@@ -424,8 +424,10 @@ ShootingResult shoot_root_moment(const RodModel& model, const Vec3& terminal_for
       step = std::min(1.0, 5.0 / std::max(load, 1.0));
     }
     Iterate at = sweep_from(p, level_at(model, terminal_force, terminal_torque, 0.0), 0.0 * tangent), previous = at;
-    // After a rejected secant the path bends more than the secant saw: the predictor becomes the
-    // path's tangent at the last solution, −J⁻¹·∂F/∂λ, whose miss shrinks with the step squared.
+    // On a support, after a rejected secant the path bends more than the secant saw (contact
+    // engages along it): the predictor becomes the path's tangent at the last solution,
+    // −J⁻¹·∂F/∂λ, whose miss shrinks with the step squared. Rods without a support keep their
+    // secants, and so their solutions bit for bit.
     Eigen::VectorXd path_tangent;
     while (lambda < 1.0 && step >= 1e-6 && result.iterations < options.max_iterations) {
       const double target = std::min(1.0, lambda + step);
