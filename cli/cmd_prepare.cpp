@@ -1,6 +1,7 @@
 // hairfit prepare SCAN.obj --out DIR (--plane P|--cap C|--mask RGB [--mask-tolerance D] [--mask-smoothing N])
 //   [--units U | --head-height H]
 //   [--up x,y,z] [--front x,y,z] [--crown-thickness T] [--ramp R] [--max-hole F] [--weld D]
+//   [--scalp auto|radial|level-set] [--scalp-voxel H] [--threads N]
 // From one raw scan to a ready-to-run scene: DIR/volume.obj, DIR/scalp.obj, DIR/scene.toml and
 // DIR/prepare.json (lib/prepare/prepare.h).
 #include <cmath>
@@ -70,7 +71,7 @@ HairSelection selection(const Args& args) {
 int command_prepare(const Arguments& argv) {
   const Args args(argv,
                   {"out", "plane", "cap", "mask", "mask-tolerance", "mask-smoothing", "units", "head-height", "up", "front",
-                   "crown-thickness", "ramp", "max-hole", "weld"},
+                   "crown-thickness", "ramp", "max-hole", "weld", "scalp", "scalp-voxel", "threads"},
                   {});
   if (args.positionals().size() != 1) throw UsageError{"expected exactly one SCAN.obj"};
   if (!args.has("out")) throw UsageError{"--out DIR is required"};
@@ -89,6 +90,14 @@ int command_prepare(const Arguments& argv) {
   o.scalp.ramp = args.number("ramp", o.scalp.ramp);
   o.hull.max_hole = args.number("max-hole", o.hull.max_hole);
   o.weld_tolerance = args.number("weld", o.weld_tolerance);
+  o.scalp_method = args.text("scalp").value_or(o.scalp_method);
+  if (o.scalp_method != "auto" && o.scalp_method != "radial" && o.scalp_method != "level-set")
+    throw UsageError{"--scalp must be auto, radial or level-set"};
+  o.scalp.voxel = args.number("scalp-voxel", o.scalp.voxel);
+  if (!(o.scalp.voxel >= 0.0)) throw UsageError{"--scalp-voxel must be a length ≥ 0 in cm (0: min(0.25, T / 6))"};
+  const double threads = args.number("threads", 0.0);
+  if (!(threads >= 0.0 && threads == std::floor(threads))) throw UsageError{"--threads must be a whole number ≥ 0"};
+  o.threads = static_cast<int>(threads);
   if (!(o.scalp.crown_thickness > 0.0)) throw UsageError{"--crown-thickness must be a positive length in cm"};
   if (!(o.scalp.ramp > 0.0)) throw UsageError{"--ramp must be a positive length in cm"};
   if (!(o.hull.max_hole >= 0.0)) throw UsageError{"--max-hole must be a share ≥ 0 of the hairline's length"};
@@ -107,6 +116,7 @@ int command_prepare(const Arguments& argv) {
               p.hull.mesh.triangles.size(), p.hull.kept_area, p.hull.hairline_length, p.hull.parts, p.hull.holes_filled);
   std::printf("  scalp    %.1f cm², thickness 0 at the hairline to %.2f cm (crown %.2f cm, ramp %.2f cm)\n",
               surface_area(p.scalp.scalp), max_thickness, o.scalp.crown_thickness, p.scalp.ramp_length);
+  std::printf("  scalp    made by %s\n", p.scalp_how.c_str());
   std::printf("  up       (%.3g, %.3g, %.3g) %s\n", p.up.x(), p.up.y(), p.up.z(), p.up_how.c_str());
   std::printf("  front    (%.3g, %.3g, %.3g) %s\n", p.front.x(), p.front.y(), p.front.z(), p.front_how.c_str());
   std::printf("  checks   disks, outward, inside (winding %.3f), no intersections, shared hairline: passed\n",

@@ -32,7 +32,7 @@ const Command kCommands[] = {
     {"rod", "rod [--length L] [--force x,y,z] [--torque x,y,z] [--solver ...] [--segments N]   solve one rod, print JSON (--help)",
      hairfit::cli::command_rod},
     {"field", "field MESH --voxel H --band B [--margin M] [--max-memory GIB] --out F.nrrd [--threads N]   one distance field, timed", hairfit::cli::command_field},
-    {"prepare", "prepare SCAN.obj --out DIR (--plane P,N | --cap C,A,DEG | --mask R,G,B [--mask-tolerance D] [--mask-smoothing N]) [--units U | --head-height H] [--up x,y,z] [--front x,y,z] [--crown-thickness T] [--ramp R] [--max-hole F] [--weld D]   hull, scalp and scene from one scan", hairfit::cli::command_prepare},
+    {"prepare", "prepare SCAN.obj --out DIR (--plane P,N | --cap C,A,DEG | --mask R,G,B [--mask-tolerance D] [--mask-smoothing N]) [--units U | --head-height H] [--up x,y,z] [--front x,y,z] [--crown-thickness T] [--ramp R] [--max-hole F] [--weld D] [--scalp auto|radial|level-set] [--scalp-voxel H] [--threads N]   hull, scalp and scene from one scan", hairfit::cli::command_prepare},
 };
 
 void print_help() {

@@ -3,11 +3,15 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
 #include "io/atomic_file.h"
 #include "io/obj_mesh.h"
+#include "core/fast_winding.h"
+#include "field/hair_region.h"
+#include "prepare/scalp_level_set.h"
 #include "prepare/surface_checks.h"
 #include "scalp/shell_hair.h"
 #include "prepare/weld.h"
@@ -122,37 +126,81 @@ double scale_for(const Mesh& scan, const Vec3& up, const PrepareOptions& o, cons
   return scale;
 }
 
+// `base` with the scalp added, scalp vertex v taken as base vertex shared[v] where that is ≥ 0,
+// turned over when `reversed`.
+Mesh with_scalp(Mesh base, const std::vector<int>& shared, const Prepared& p, bool reversed) {
+  const Mesh& scalp = p.scalp.scalp;
+  std::vector<int> index = shared;
+  for (std::size_t v = 0; v < scalp.positions.size(); ++v) {
+    if (index[v] >= 0) continue;
+    index[v] = static_cast<int>(base.positions.size());
+    base.positions.push_back(scalp.positions[v]);
+  }
+  for (const Vec3i& t : scalp.triangles)
+    base.triangles.emplace_back(index[t[0]], index[reversed ? t[2] : t[1]], index[reversed ? t[1] : t[2]]);
+  return base;
+}
+
 PrepareChecks check(const Prepared& p) {
   PrepareChecks c;
   const Mesh& hull = p.hull.mesh;
   const Mesh& scalp = p.scalp.scalp;
   c.hull_disk = analyse_topology(hull).is_disk();
   c.scalp_disk = analyse_topology(scalp).is_disk();
-  c.scalp_inward_triangles = static_cast<int>(inward_triangles(scalp, p.hull.centre).size());
-  c.hairline_shared = true;
-  std::vector<char> on_hairline(hull.positions.size(), 0);
-  for (int v : p.hull.hairline) {
-    on_hairline[v] = 1;
-    c.hairline_shared &= scalp.positions[v] == hull.positions[v];
+  c.hairline_shared = p.scalp.hairline.size() == p.hull.hairline.size();
+  for (std::size_t k = 0; c.hairline_shared && k < p.scalp.hairline.size(); ++k)
+    c.hairline_shared = scalp.positions[p.scalp.hairline[k]] == hull.positions[p.hull.hairline[k]];
+  // Facing: just outside each scalp triangle (1e-3 cm along its normal) lies the layer, inside the
+  // hull closed by the reversed scalp.
+  std::vector<int> on_hull(scalp.positions.size(), -1);
+  for (std::size_t k = 0; k < p.scalp.hairline.size(); ++k) on_hull[p.scalp.hairline[k]] = p.hull.hairline[k];
+  const FastWindingNumber layer(with_scalp(hull, on_hull, p, true), HairRegion::kFirstBeta);
+  for (int t = 0; t < static_cast<int>(scalp.triangles.size()); ++t) {
+    const Vec3i& f = scalp.triangles[t];
+    const Vec3 centroid = (scalp.positions[f[0]] + scalp.positions[f[1]] + scalp.positions[f[2]]) / 3.0;
+    if (winding_above_half(layer, centroid + 1e-3 * triangle_normal(scalp, t))) continue;
+    if (c.scalp_inward_triangles++ == 0) c.first_inward = centroid;
+    if (std::getenv("HAIRFIT_DEBUG")) {
+      std::fprintf(stderr, "inward %d of %zu:", t, scalp.triangles.size());
+      for (int k = 0; k < 3; ++k) std::fprintf(stderr, " %d %s th %.3g;", f[k], vec_text(scalp.positions[f[k]]).c_str(), p.scalp.thickness[f[k]]);
+      std::fprintf(stderr, "\n");
+    }
   }
   // One mesh of hull, floor and scalp sharing the hairline: any crossing among them shows up as a
   // self-intersection.
-  Mesh all = p.scalp.volume;
-  std::vector<int> index(scalp.positions.size());
-  for (std::size_t v = 0; v < scalp.positions.size(); ++v) {
-    if (on_hairline[v]) {
-      index[v] = static_cast<int>(v);
-      continue;
+  const Mesh all = with_scalp(p.scalp.volume, p.scalp.volume_vertex, p, false);
+  const auto pairs = self_intersections(all);
+  c.intersections = static_cast<int>(pairs.size());
+  if (std::getenv("HAIRFIT_DEBUG")) {
+    const int nh = static_cast<int>(hull.triangles.size()), nv = static_cast<int>(p.scalp.volume.triangles.size());
+    auto kind = [&](int t) { return t < nh ? "hull" : t < nv ? "floor" : "scalp"; };
+    for (const auto& [a, b] : pairs) {
+      const Vec3i& ta = all.triangles[a];
+      std::fprintf(stderr, "pair %s %d / %s %d at %s\n", kind(a), a, kind(b), b, vec_text(all.positions[ta[0]]).c_str());
     }
-    index[v] = static_cast<int>(all.positions.size());
-    all.positions.push_back(scalp.positions[v]);
   }
-  for (const Vec3i& t : scalp.triangles) all.triangles.emplace_back(index[t[0]], index[t[1]], index[t[2]]);
-  c.intersections = static_cast<int>(self_intersections(all).size());
+  if (!pairs.empty()) {
+    const Vec3i& t = all.triangles[pairs[0].first];
+    c.first_intersection = (all.positions[t[0]] + all.positions[t[1]] + all.positions[t[2]]) / 3.0;
+  }
   const int deepest = static_cast<int>(std::max_element(p.scalp.thickness.begin(), p.scalp.thickness.end()) -
                                        p.scalp.thickness.begin());
-  c.deepest_winding = winding_number(p.scalp.volume, scalp.positions[deepest]);
+  c.deepest_winding = FastWindingNumber(p.scalp.volume).direct(scalp.positions[deepest]);
   return c;
+}
+
+std::string failures(const PrepareChecks& c) {
+  std::string failed;
+  if (!c.hull_disk) failed += " the hull is not a disk;";
+  if (!c.scalp_disk) failed += " the scalp is not a disk;";
+  if (c.scalp_inward_triangles)
+    failed += " " + std::to_string(c.scalp_inward_triangles) + " scalp triangles face inward (e.g. at " + vec_text(c.first_inward) + ");";
+  if (c.intersections)
+    failed += " hull, floor and scalp intersect (" + std::to_string(c.intersections) + " pairs, e.g. at " +
+              vec_text(c.first_intersection) + ");";
+  if (!(c.deepest_winding > 0.5)) failed += " the scalp is not inside the hull;";
+  if (!c.hairline_shared) failed += " the scalp's hairline differs from the hull's;";
+  return failed;
 }
 
 double max_thickness(const Prepared& p) {
@@ -173,7 +221,8 @@ Prepared prepare_scan(const Mesh& raw_scan, const std::vector<Vec3>& colors, con
     for (int old : welded.new_to_old) welded_colors.push_back(colors[old]);
   const Mesh& scan = welded.mesh;
 
-  p.hull = cut_hull(scan, selection_field(scan, welded_colors, o.selection, file), o.hull, file);
+  const SelectionField field = selection_field(scan, welded_colors, o.selection, file);
+  p.hull = cut_hull(scan, field, o.hull, file);
   detect_directions(p.hull, o, p);
   p.scale_to_cm = scale_for(scan, p.up, o, file);
   for (Vec3& x : p.hull.mesh.positions) x *= p.scale_to_cm;
@@ -181,18 +230,35 @@ Prepared prepare_scan(const Mesh& raw_scan, const std::vector<Vec3>& colors, con
   p.hull.selected_area *= p.scale_to_cm * p.scale_to_cm;
   p.hull.kept_area *= p.scale_to_cm * p.scale_to_cm;
   p.hull.hairline_length *= p.scale_to_cm;
-  p.scalp = make_scalp(p.hull, o.scalp, file);
-  p.checks = check(p);
-  const PrepareChecks& c = p.checks;
-  std::string failed;
-  if (!c.hull_disk) failed += " the hull is not a disk;";
-  if (!c.scalp_disk) failed += " the scalp is not a disk;";
-  if (c.scalp_inward_triangles) failed += " " + std::to_string(c.scalp_inward_triangles) + " scalp triangles face inward;";
-  if (c.intersections) failed += " hull, floor and scalp intersect (" + std::to_string(c.intersections) + " pairs);";
-  if (!(c.deepest_winding > 0.5)) failed += " the scalp is not inside the hull;";
-  if (!c.hairline_shared) failed += " the scalp's hairline differs from the hull's;";
+  if (o.scalp_method != "auto" && o.scalp_method != "radial" && o.scalp_method != "level-set")
+    throw InputError("--scalp", "unknown scalp method \"" + o.scalp_method + "\"; valid: auto, radial, level-set");
+  std::string radial_failed;
+  if (o.scalp_method != "level-set") {
+    const int facing = static_cast<int>(inward_triangles(p.hull.mesh, p.hull.centre).size());
+    if (facing > 0 && o.scalp_method == "auto") {
+      radial_failed = std::to_string(facing) + " of the hull's " + std::to_string(p.hull.mesh.triangles.size()) +
+                      " triangles face the head centre (it overhangs, folds or lies in tubes)";
+    } else {
+      p.scalp = make_scalp(p.hull, o.scalp, file);
+      p.checks = check(p);
+      radial_failed = failures(p.checks);
+      if (radial_failed.empty() || o.scalp_method == "radial") p.scalp_how = "radial: the hull is star-shaped about the head centre";
+    }
+  }
+  if (p.scalp_how.empty()) {
+    // The rest of the scan, cut at the same hairline, tells the level set where the skin is.
+    SelectionField bare = field;
+    for (double& f : bare.values) f = -f;
+    if (field.at) bare.at = [at = field.at](const Vec3& x) { return -at(x); };
+    Mesh skin = clip_at_level_set(scan, bare, o.hull.clip).mesh;
+    for (Vec3& x : skin.positions) x *= p.scale_to_cm;
+    p.scalp = make_level_set_scalp(p.hull, skin, o.scalp, file, o.threads);
+    p.checks = check(p);
+    p.scalp_how = o.scalp_method == "level-set" ? "level set: declared" : "level set: the radial scalp cannot be used here (" + radial_failed + ")";
+  }
+  const std::string failed = failures(p.checks);
   if (!failed.empty())
-    throw InputError(file, "the scalp derived from this hull fails its checks:" + failed +
+    throw InputError(file, "the scalp derived from this hull (" + p.scalp.method + ") fails its checks:" + failed +
                                " try a smaller --crown-thickness or a longer --ramp, or repair the scan near the hairline");
   return p;
 }
@@ -269,14 +335,17 @@ void write_prepared(const Prepared& p, const std::filesystem::path& scan, const 
                     {"holes_filled", p.hull.holes_filled},
                     {"hairline_cm", p.hull.hairline_length},
                     {"centre", vec(p.hull.centre)}};
-  record["scalp"] = {{"triangles", p.scalp.scalp.triangles.size()},
+  record["scalp"] = {{"method", p.scalp.method},
+                     {"method_how", p.scalp_how},
+                     {"triangles", p.scalp.scalp.triangles.size()},
                      {"area_cm2", surface_area(p.scalp.scalp)},
                      {"crown_thickness_cm", o.scalp.crown_thickness},
                      {"ramp_cm", p.scalp.ramp_length},
                      {"hairline_reach_cm", p.scalp.hairline_reach},
                      {"max_thickness_cm", max_thickness(p)},
                      {"envelope_rms_cm", p.scalp.envelope_rms},
-                     {"envelope_outliers", p.scalp.envelope_outliers}};
+                     {"envelope_outliers", p.scalp.envelope_outliers},
+                     {"dropped_parts", p.scalp.dropped_parts}};
   record["checks"] = {{"hull_disk", p.checks.hull_disk},
                       {"scalp_disk", p.checks.scalp_disk},
                       {"scalp_inward_triangles", p.checks.scalp_inward_triangles},

@@ -20,14 +20,21 @@ struct PrepareOptions {
   double weld_tolerance = -1.0;     // scan units; < 0: 1e-6 × the scan's bounding-box diagonal
   HullOptions hull;
   ScalpOptions scalp;               // cm
+  // How the scalp is made: "radial" (scalp_offset.h: moved toward the head centre under a robust
+  // envelope; only for hulls star-shaped about it), "level-set" (scalp_level_set.h: any hull), or
+  // "auto": radial where the hull is star-shaped and the result passes every check, else the
+  // level set.
+  std::string scalp_method = "auto";
+  int threads = 0;                  // 0: all; the result is the same for any count
 };
 
 struct PrepareChecks {
   bool hull_disk = false, scalp_disk = false;
-  int scalp_inward_triangles = 0;   // triangles facing the head centre (must be 0)
+  int scalp_inward_triangles = 0;   // triangles whose outer side is not in the layer (must be 0)
   int intersections = 0;            // among hull, floor and scalp, triangles sharing no vertex
   double deepest_winding = 0.0;     // winding number in the volume of the scalp vertex farthest in
   bool hairline_shared = false;     // scalp and hull hairline vertices identical
+  Vec3 first_inward = Vec3::Zero(), first_intersection = Vec3::Zero();  // where, for the message
 };
 
 struct Prepared {
@@ -37,6 +44,7 @@ struct Prepared {
   Vec3 up = Vec3::UnitY(), front = Vec3::UnitZ();
   std::string up_how, front_how;  // "declared", or how they were detected
   int welded_vertices = 0;
+  std::string scalp_how;  // which method made the scalp, and why
   PrepareChecks checks;
 };
 

@@ -30,6 +30,25 @@ double median(std::vector<double> v) {
 
 }  // namespace
 
+void smooth_off_hairline(const Mesh& mesh, const std::vector<int>& hairline, std::vector<double>& f, int passes,
+                         const std::function<void(int)>& after) {
+  const int n = static_cast<int>(mesh.positions.size());
+  std::vector<char> on_hairline(n, 0);
+  for (int v : hairline) on_hairline[v] = 1;
+  const auto next = vertex_neighbours(mesh);
+  std::vector<double> previous;
+  for (int pass = 0; pass < passes; ++pass) {
+    previous = f;
+    for (int v = 0; v < n; ++v) {
+      if (on_hairline[v] || next[v].empty()) continue;
+      double mean = 0.0;
+      for (int k : next[v]) mean += previous[k];
+      f[v] = 0.5 * previous[v] + 0.5 * mean / next[v].size();
+      if (after) after(v);
+    }
+  }
+}
+
 ScalpResult make_scalp(const Hull& hull, const ScalpOptions& o, const std::string& file) {
   if (!(o.crown_thickness > 0.0) || !(o.ramp > 0.0) || o.smoothing_passes < 0)
     throw InputError(file, "the crown thickness and the ramp must be positive lengths and the smoothing passes ≥ 0");
@@ -69,20 +88,7 @@ ScalpResult make_scalp(const Hull& hull, const ScalpOptions& o, const std::strin
   r.ramp_length = std::min(o.ramp, 0.8 * g_max);
   std::vector<double> w(n);
   for (int v = 0; v < n; ++v) w[v] = smoothstep(g[v] / r.ramp_length);
-  auto smooth = [&](std::vector<double>& f, int passes, const std::function<void(int)>& after) {
-    std::vector<double> previous;
-    for (int pass = 0; pass < passes; ++pass) {
-      previous = f;
-      for (int v = 0; v < n; ++v) {
-        if (on_hairline[v] || next[v].empty()) continue;
-        double mean = 0.0;
-        for (int k : next[v]) mean += previous[k];
-        f[v] = 0.5 * previous[v] + 0.5 * mean / next[v].size();
-        after(v);
-      }
-    }
-  };
-  smooth(w, 10, [](int) {});
+  smooth_off_hairline(mesh, hull.hairline, w, 10);
 
   // The envelope: iteratively reweighted least squares with Tukey's biweight (c = 4.685 robust
   // standard deviations, from the median absolute residual), weighted by vertex area.
@@ -147,9 +153,13 @@ ScalpResult make_scalp(const Hull& hull, const ScalpOptions& o, const std::strin
   };
   for (int v = 0; v < n; ++v)
     if (!on_hairline[v]) clamp(v);
-  smooth(rho, o.smoothing_passes, clamp);
+  smooth_off_hairline(mesh, hull.hairline, rho, o.smoothing_passes, clamp);
 
+  r.method = "radial";
   r.scalp = mesh;
+  r.hairline = hull.hairline;
+  r.volume_vertex.assign(n, -1);
+  for (int v : hull.hairline) r.volume_vertex[v] = v;
   r.thickness.assign(n, 0.0);
   r.ramp = w;
   for (int v = 0; v < n; ++v) {

@@ -18,6 +18,7 @@
 // The hair volume the pipeline needs is closed: the hull plus a floor under the scalp at
 // ρ − w·T (reversed, so the volume's normals face out), sharing the hairline.
 #pragma once
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -28,19 +29,29 @@ namespace hairfit {
 struct ScalpOptions {
   double crown_thickness = 2.0;  // cm of hair over the skull away from the hairline (T)
   double ramp = 3.0;             // cm from the hairline over which the thickness grows
-  int smoothing_passes = 40;     // Jacobi passes of ρ (λ = ½), hairline fixed
+  int smoothing_passes = 40;     // Jacobi passes of ρ (λ = ½), hairline fixed (radial)
+  double voxel = 0.0;            // cm: the level set's grid; 0 takes min(0.25, T / 6)
 };
 
 struct ScalpResult {
-  Mesh scalp;                     // the hull's triangles, moved inward; hairline vertices identical
-  Mesh volume;                    // closed: the hull, then the floor (hull vertices first)
-  std::vector<double> thickness;  // per hull vertex: R − ρ, cm
-  std::vector<double> ramp;       // per hull vertex: w ∈ [0, 1]
+  std::string method;             // "radial" (here) or "level set" (scalp_level_set.h)
+  Mesh scalp;                     // radial: the hull's triangles, moved inward
+  std::vector<int> hairline;      // scalp vertices at the hull's hairline, in Hull::hairline's order (same positions)
+  std::vector<int> volume_vertex; // per scalp vertex: the volume's vertex at the same place, or −1
+  Mesh volume;                    // closed: the hull, then the floor (hull vertices first, the hairline shared)
+  std::vector<double> thickness;  // per scalp vertex: the layer's thickness above it, cm (radial: R − ρ)
+  std::vector<double> ramp;       // per scalp vertex: w ∈ [0, 1]
   double ramp_length = 0.0;       // cm actually used (at most 0.8 × the largest hairline distance)
   double hairline_reach = 0.0;    // cm: the largest distance from the hairline along the hull's edges
   double envelope_rms = 0.0;      // cm: RMS of R − f over the vertices the robust fit kept
   int envelope_outliers = 0;      // vertices the fit rejected (the bumps)
+  int dropped_parts = 0;          // level set: pieces apart from the scalp and floor, left out
 };
+
+// Jacobi passes of f over the mesh (each vertex to ½ itself + ½ its neighbours' mean), the hairline
+// vertices fixed; `after(v)` runs on each vertex once it is updated (a clamp).
+void smooth_off_hairline(const Mesh& mesh, const std::vector<int>& hairline, std::vector<double>& f, int passes,
+                         const std::function<void(int)>& after = {});
 
 // Throws InputError naming `file` when the hull is not star-shaped about its centre (some triangle
 // faces the centre: e.g. hair hanging below the head, which the radial offset cannot follow), or
