@@ -263,20 +263,13 @@ Prepared prepare_scan(const Mesh& raw_scan, const std::vector<Vec3>& colors, con
   return p;
 }
 
-PreparedHair prepared_hair(const Prepared& p, const PrepareOptions& o) {
-  const ShellHair shell = hair_for_shell(o.scalp.crown_thickness, p.scalp.hairline_reach);
-  PreparedHair hair;
-  hair.tilt = shell.tilt;
-  hair.length = shell.length;
-  return hair;
-}
-
 std::string prepared_scene_text(const Prepared& p, const std::string& scan_name, const PrepareOptions& o) {
-  const PreparedHair hair = prepared_hair(p, o);
+  // What the run will derive from the layer (scalp/shell_hair.h), for the comment.
+  const ShellHair shell = hair_for_shell(o.scalp.crown_thickness, p.scalp.hairline_reach);
   char text[4096];
   std::snprintf(
       text, sizeof text,
-      "# Written by `hairfit prepare` from %s: hair = %s; crown thickness %.4g cm, ramp %.4g cm.\n"
+      "# Written by `hairfit prepare` from %s: hair = %s; scalp by %s; crown thickness %.4g cm, ramp %.4g cm.\n"
       "# Keys not written here take their defaults (spec/reference.md); edit freely.\n"
       "format = \"%s\"\n"
       "seed = 1\n"
@@ -293,16 +286,16 @@ std::string prepared_scene_text(const Prepared& p, const std::string& scan_name,
       "[effects]\n"
       "cutting = true               # a scanned hull is tight: fibres that leave it for long are cut\n"
       "\n"
-      "# Hair that fits the shell: 0 cm thick at the hairline, %.3g cm over the crown (%.3g cm at most,\n"
-      "# under bumps), and no point of it farther than %.3g cm from the hairline.\n"
-      "[hair]\n"
-      "tilt_toward = \"thicker\"      # at the hairline the normal leaves the hull: grow into the hair mass\n"
-      "tilt = %.0f                    # 90° − atan(%.3g cm / %.3g cm), at most 80°: rising no faster than the layer can hold\n"
-      "length = %.1f                # cm, ⅔ of that reach: how far a root lies on average from the innermost point\n",
-      scan_name.c_str(), o.selection.describe().c_str(), o.scalp.crown_thickness, p.scalp.ramp_length, kSceneFormat,
-      p.scale_to_cm, toml_vector(-p.up).c_str(), p.up_how.c_str(), toml_vector(p.front).c_str(), p.front_how.c_str(),
-      o.scalp.crown_thickness, max_thickness(p), p.scalp.hairline_reach, hair.tilt, o.scalp.crown_thickness, p.scalp.hairline_reach,
-      hair.length);
+      "# Hair that fits the shell: 0 cm thick at the hairline, %.3g cm over the crown, and no point of it\n"
+      "# farther than %.3g cm from the hairline. hair.length and hair.tilt are left to the run, which\n"
+      "# derives them from the layer (about %.1f cm at %.0f°) with the thin-shell defaults: roots tilt\n"
+      "# toward the thicker layer along a growth field steered by the hull's relief, and pre-guides and\n"
+      "# guides run in the layer. Set them here to choose otherwise.\n"
+      "[hair]\n",
+      scan_name.c_str(), o.selection.describe().c_str(), p.scalp.method.c_str(), o.scalp.crown_thickness,
+      p.scalp.ramp_length, kSceneFormat, p.scale_to_cm, toml_vector(-p.up).c_str(), p.up_how.c_str(),
+      toml_vector(p.front).c_str(), p.front_how.c_str(), max_thickness(p), p.scalp.hairline_reach, shell.length,
+      shell.tilt);
   return text;
 }
 

@@ -54,20 +54,8 @@ struct Prepared {
 Prepared prepare_scan(const Mesh& scan, const std::vector<Vec3>& colors, const PrepareOptions& options,
                       const std::string& file);
 
-// Hair the prepared shell can hold: the layer is at most T = crown thickness thick and its points
-// lie up to `reach` (ScalpResult::hairline_reach) from the hairline, so hair tilts toward the
-// thicker layer by 90° − atan(T / reach) (rising T over that distance), and is ⅔·reach long
-// (rounded to 0.5 cm): on a disk-like cap, the mean distance from a root to the innermost point,
-// toward which the thicker layer leads. (On the test bust, reach 15.5 cm: hair 10.5 cm long keeps
-// 0.991 of its grown points inside after cutting, 10 cm 0.992.)
-struct PreparedHair {
-  double tilt = 0.0;    // degrees, whole
-  double length = 0.0;  // cm
-};
-PreparedHair prepared_hair(const Prepared& prepared, const PrepareOptions& options);
-
-// The scene text: relative paths, cm, down = −up, front, cutting on, the hair of prepared_hair
-// tilting toward the thicker layer, everything else default.
+// The scene text: relative paths, cm, down = −up, front, cutting on, hair length and tilt left
+// for the run to derive from the layer (with the thin-shell defaults), everything else default.
 std::string prepared_scene_text(const Prepared& prepared, const std::string& scan_name, const PrepareOptions& options);
 
 // Writes the four files into `dir` (each atomically, all computed first).
