@@ -456,6 +456,8 @@ class Runner {
     p.positions = v.roots->pores.positions;
     p.lengths = v.roots->pores.lengths;
     p.guide = v.clusters->pore_cluster;
+    for (const SurfacePoint& w : v.roots->pores.where)
+      p.normals.push_back(v.chart->outward * triangle_normal(v.chart->mesh, w.triangle));
     return p;
   }
 

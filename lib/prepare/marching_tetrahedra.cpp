@@ -57,6 +57,9 @@ ZeroSet marching_tetrahedra(const SampleGrid& grid, const std::vector<double>& v
   };
   auto emit = [&](int a, int b, int c) { out.mesh.triangles.emplace_back(a, b, c); };
 
+  // A node value of exactly 0 is read as slightly positive: the surface then passes by the node
+  // instead of through it, where the vertices of all its crossing edges would coincide.
+  const double zero = 1e-7 * grid.spacing;
   const Vec3i& n = grid.dims;
   for (int k = 0; k + 1 < n.z(); ++k)
     for (int j = 0; j + 1 < n.y(); ++j)
@@ -64,7 +67,7 @@ ZeroSet marching_tetrahedra(const SampleGrid& grid, const std::vector<double>& v
         int negatives = 0;
         for (int c = 0; c < 8; ++c) {
           node[c] = grid.node(i + (c & 1), j + ((c >> 1) & 1), k + ((c >> 2) & 1));
-          value[c] = values[node[c]];
+          value[c] = values[node[c]] == 0.0 ? zero : values[node[c]];
           negatives += value[c] < 0.0;
         }
         if (negatives == 0 || negatives == 8) continue;

@@ -35,7 +35,8 @@ struct ZeroSet {
   std::vector<EdgePoint> at;   // per vertex
 };
 
-// values[grid.node(i, j, k)]: a node counts as negative where its value is < 0. Vertices are
+// values[grid.node(i, j, k)]: a node counts as negative where its value is < 0 (a value of exactly
+// 0 is read as 10⁻⁷·h, so no vertex lands on a node). Vertices are
 // shared between the tetrahedra around an edge, so the mesh is a manifold wherever the zero set
 // is (a closed one where the negative region stays off the grid's faces). Deterministic: cells in
 // x-fastest order.

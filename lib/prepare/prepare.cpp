@@ -242,6 +242,7 @@ Prepared prepare_scan(const Mesh& raw_scan, const std::vector<Vec3>& colors, con
       p.scalp = make_scalp(p.hull, o.scalp, file);
       p.checks = check(p);
       radial_failed = failures(p.checks);
+      if (!radial_failed.empty()) radial_failed = radial_failed.substr(1, radial_failed.size() - 2);  // " …;"
       if (radial_failed.empty() || o.scalp_method == "radial") p.scalp_how = "radial: the hull is star-shaped about the head centre";
     }
   }

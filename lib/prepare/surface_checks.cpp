@@ -65,8 +65,17 @@ bool triangles_intersect(const Vec3& a0, const Vec3& a1, const Vec3& a2, const V
   const Vec3 nb = (b1 - b0).cross(b2 - b0), na = (a1 - a0).cross(a2 - a0);
   std::array<double, 3> da, db;
   for (int i = 0; i < 3; ++i) da[i] = nb.dot(a[i] - b0), db[i] = na.dot(b[i] - a0);
+  // Coplanar to rounding (each vertex within 1e-10 of its triangle's size from the other's plane,
+  // as where a flat surface is split into neighbouring pieces): the intersection line below would
+  // be rounding noise, so decide in the plane.
+  auto longest_edge = [](const std::array<Vec3, 3>& t) {
+    return std::max({(t[1] - t[0]).norm(), (t[2] - t[1]).norm(), (t[0] - t[2]).norm()});
+  };
+  auto flat = [](const std::array<double, 3>& d, double scale) {
+    return std::max({std::abs(d[0]), std::abs(d[1]), std::abs(d[2])}) <= 1e-10 * scale;
+  };
+  if (flat(da, nb.norm() * longest_edge(a)) && flat(db, na.norm() * longest_edge(b))) return coplanar_intersect(nb, a, b);
   if (same_side(da) || same_side(db)) return false;
-  if (da[0] == 0 && da[1] == 0 && da[2] == 0) return coplanar_intersect(nb, a, b);
   // Both triangles straddle (or touch) the other's plane: compare their intervals on the line.
   const Vec3 direction = na.cross(nb);
   int axis = 0;

@@ -132,13 +132,32 @@ bool dips(const HeadExit& out_of_head, const Vec3& a, const Vec3& b, const doubl
   return false;
 }
 
-// Passes every point but the root through `out_of_head`, then, root to tip, every segment's
+// Whether the first segment rises less than kRootRise above the plane with unit normal n.
+bool first_segment_low(const Vec3& n, const Vec3* points) {
+  const Vec3 d = points[1] - points[0];
+  return d.dot(n) < kRootRise * d.norm();
+}
+
+// Turns the first segment about the root, in the plane of it and n, to rise kRootRise above the
+// plane with unit normal n where it rises less (its length kept).
+void raise_first_segment(const Vec3& n, Vec3* points) {
+  if (!first_segment_low(n, points)) return;
+  const Vec3 d = points[1] - points[0];
+  const Vec3 along = d - d.dot(n) * n;
+  const double length = d.norm(), across = along.norm();
+  const Vec3 tangent = across > 1e-12 * length ? Vec3(along / across) : Vec3(Vec3::Zero());
+  points[1] = points[0] + length * (std::sqrt(1.0 - kRootRise * kRootRise) * tangent + kRootRise * n);
+}
+
+// Passes every point but the root through `out_of_head` (and, given the pore's triangle normal,
+// raises the first segment above the triangle's plane), then, root to tip, every segment's
 // probes: where a chord dips into the head at the fraction t of its length (the probe lies behind
 // the scalp and the exit moves it by Δ), its far end moves out by Δ / t, which lifts the probe out
 // with it.
-void keep_out(const HeadExit& out_of_head, Vec3* points, int n) {
+void keep_out(const HeadExit& out_of_head, const Vec3* root_normal, Vec3* points, int n) {
   double unused;
   for (int i = 1; i < n; ++i) points[i] = out_of_head(points[i], unused);
+  if (root_normal) raise_first_segment(*root_normal, points);
   for (int i = 1; i < n; ++i) {
     auto lift = [&](double t) {
       const Vec3 q = points[i - 1] + t * (points[i] - points[i - 1]);
@@ -161,7 +180,8 @@ void keep_out(const HeadExit& out_of_head, Vec3* points, int n) {
 // `out_of_head`, the fibre is kept out of the head (keep_out) inside the length solve, so the
 // moved fibre still has exactly its length.
 void fibre_along(const GuideTrack& track, const Vec3& pore, double length, double wisp_extent,
-                 const std::vector<Station>& stations, const HeadExit* out_of_head, Vec3* points, SweepPoint* layout) {
+                 const std::vector<Station>& stations, const HeadExit* out_of_head, const Vec3* root_normal, Vec3* points,
+                 SweepPoint* layout) {
   const int n = static_cast<int>(stations.size());
   RootFrame root;
   track.at(0.0, root.position, root.tangent, root.d1, root.d2);
@@ -180,7 +200,7 @@ void fibre_along(const GuideTrack& track, const Vec3& pore, double length, doubl
   // scene this takes 4.7 sweeps a fibre where regula falsi on [0, length] (Illinois) took 6.7.
   auto excess = [&](double reach) {
     sweep(track, layout, n, root, reach, points);
-    if (out_of_head) keep_out(*out_of_head, points, n);
+    if (out_of_head) keep_out(*out_of_head, root_normal, points, n);
     return polyline_length(points, n) - length;
   };
   const double tolerance = 1e-12 * length;
@@ -222,18 +242,19 @@ void fibre_along(const GuideTrack& track, const Vec3& pore, double length, doubl
 // `in_head` (if given) receives FibrePointSides::in_head of each point of the result (−1 at the
 // root and throughout a moved fibre). `grown`: `points` already hold fibre_along's result.
 void fibre_kept_out(const GuideTrack& track, const Vec3& pore, double length, double wisp_extent,
-                    const std::vector<Station>& stations, const HeadExit& out_of_head, Vec3* points, SweepPoint* layout,
-                    std::int8_t* in_head = nullptr, bool grown = false) {
-  if (!grown) fibre_along(track, pore, length, wisp_extent, stations, nullptr, points, layout);
+                    const std::vector<Station>& stations, const HeadExit& out_of_head, const Vec3* root_normal,
+                    Vec3* points, SweepPoint* layout, std::int8_t* in_head = nullptr, bool grown = false) {
+  if (!grown) fibre_along(track, pore, length, wisp_extent, stations, nullptr, nullptr, points, layout);
   if (!out_of_head) return;
   const int n = static_cast<int>(stations.size());
   if (in_head) in_head[0] = -1;
   for (int i = 1; i < n; ++i) {
     double value = std::numeric_limits<double>::quiet_NaN();
-    const bool chord_dips = i == 1 ? dips(out_of_head, points[0], points[1], kFirstSegmentProbes)
+    const bool chord_dips = i == 1 ? dips(out_of_head, points[0], points[1], kFirstSegmentProbes) ||
+                                         (root_normal && first_segment_low(*root_normal, points))
                                    : dips(out_of_head, points[i - 1], points[i], kSegmentProbes);
     if (out_of_head(points[i], value) != points[i] || chord_dips) {
-      fibre_along(track, pore, length, wisp_extent, stations, &out_of_head, points, layout);
+      fibre_along(track, pore, length, wisp_extent, stations, &out_of_head, root_normal, points, layout);
       if (in_head) std::fill(in_head, in_head + n, std::int8_t(-1));
       return;
     }
@@ -261,7 +282,7 @@ void grow_fibre(const GuideTrack& guide, const Vec3& pore, double length, double
   const std::vector<Station>& stations = stations_for(options, fibre_point_count(options));
   thread_local std::vector<SweepPoint> layout;
   layout.resize(stations.size());
-  fibre_along(guide, pore, length, wisp_extent, stations, nullptr, points, layout.data());
+  fibre_along(guide, pore, length, wisp_extent, stations, nullptr, nullptr, points, layout.data());
 }
 
 std::vector<Vec3> make_fibre(const std::vector<Vec3>& guide, const Vec3& pore, double length, double wisp_extent,
@@ -269,7 +290,7 @@ std::vector<Vec3> make_fibre(const std::vector<Vec3>& guide, const Vec3& pore, d
   const std::vector<Station>& stations = stations_for(options, fibre_point_count(options));
   std::vector<Vec3> points(stations.size());
   std::vector<SweepPoint> layout(stations.size());
-  fibre_kept_out(GuideTrack(guide), pore, length, wisp_extent, stations, out_of_head, points.data(), layout.data());
+  fibre_kept_out(GuideTrack(guide), pore, length, wisp_extent, stations, out_of_head, nullptr, points.data(), layout.data());
   return points;
 }
 
@@ -319,8 +340,9 @@ Strands make_strands(const Curves& guides, const Pores& pores, const StrandOptio
     scratch.layout.resize(n);
     Vec3* points = out.points.data() + n * i;
     std::int8_t* head = in_head ? in_head->data() + n * i : nullptr;
+    const Vec3* root_normal = pores.normals.empty() ? nullptr : &pores.normals[i];
     fibre_kept_out(tracks[pores.guide[i]], pores.positions[i], pores.lengths[i], extent[pores.guide[i]], stations,
-                   out_of_head, points, scratch.layout.data(), head, grown != nullptr);
+                   out_of_head, root_normal, points, scratch.layout.data(), head, grown != nullptr);
     if (cutting) {
       scratch.distances.resize(n);
       if (head) scratch.before_cut.assign(points, points + n);

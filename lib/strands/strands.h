@@ -29,7 +29,14 @@ struct Pores {
   std::vector<Vec3> positions;
   std::vector<double> lengths;
   std::vector<int> guide;
+  // Per pore, the unit normal of the scalp triangle it lies on, or empty. Given with a head exit,
+  // every fibre's first segment leaves its pore at least kRootRise above that triangle's plane, so
+  // its chord cannot start into the head (the probes along it see only the interpolated field).
+  std::vector<Vec3> normals;
 };
+
+// sin of the least angle a fibre's first segment rises above its pore's triangle (2°).
+constexpr double kRootRise = 0.0348994967025;
 
 struct Strands {
   Curves fibres;            // one per pore, in pore order; fibres.guide = the pore's guide

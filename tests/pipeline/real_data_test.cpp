@@ -10,59 +10,18 @@
 #include "field/hair_region.h"
 #include "pipeline/inputs.h"
 #include "pipeline/pipeline.h"
+#include "../support/independent_check.h"
 #include "../support/run_hairfit.h"
 
 using namespace hairfit;
 using hairfit::testing::run_hairfit;
 using hairfit::testing::source_path;
+using Independent = hairfit::testing::IndependentCheck;
 
 namespace {
 
-// Whether segment pq crosses triangle abc (Möller–Trumbore, the segment's open interior).
-bool crosses(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Vec3 d = q - p, e1 = b - a, e2 = c - a, h = d.cross(e2);
-  const double det = e1.dot(h);
-  if (std::abs(det) < 1e-300) return false;
-  const Vec3 s = p - a;
-  const double u = s.dot(h) / det;
-  if (u < 0 || u > 1) return false;
-  const Vec3 w = s.cross(e1);
-  const double v = d.dot(w) / det;
-  if (v < 0 || u + v > 1) return false;
-  const double t = e2.dot(w) / det;
-  return t > 1e-9 && t < 1 - 1e-9;
-}
-
-struct Independent {
-  double inside = 0.0;      // share of fibre points after the root inside the region (direct sums)
-  long long crossings = 0;  // fibre segments that cross the scalp
-  long long segments = 0;
-  bool finite = true;
-};
-
 Independent independent_check(const Inputs& in, const Curves& fibres) {
-  const FastWindingNumber hull(in.volume.mesh), scalp(in.scalp.mesh), head(closed_head(in.scalp.mesh));
-  const bool closed = in.volume_report.closed();
-  Independent r;
-  long long inside = 0, points = 0;
-  for (std::size_t c = 0; c < fibres.count(); ++c)
-    for (std::size_t k = fibres.offsets[c]; k < fibres.offsets[c + 1]; ++k) {
-      const Vec3& p = fibres.points[k];
-      r.finite = r.finite && p.allFinite();
-      if (k == fibres.offsets[c]) continue;  // the root: on the scalp by construction
-      const double h = closed ? hull.direct(p) : hull.direct(p) - scalp.direct(p);
-      inside += h > 0.5 && head.direct(p) <= 0.5;
-      ++points;
-      ++r.segments;
-      const Vec3& prev = fibres.points[k - 1];
-      bool crossing = false;
-      for (const Vec3i& t : in.scalp.mesh.triangles)
-        crossing = crossing || crosses(prev, p, in.scalp.mesh.positions[t[0]], in.scalp.mesh.positions[t[1]],
-                                       in.scalp.mesh.positions[t[2]]);
-      r.crossings += crossing;
-    }
-  r.inside = points ? double(inside) / points : 0.0;
-  return r;
+  return hairfit::testing::independent_check(in.volume.mesh, in.volume_report.closed(), in.scalp.mesh, fibres);
 }
 
 double figure(const RunReport& report, const std::string& stage, const std::string& name) {

@@ -1,0 +1,117 @@
+// `hairfit prepare` on busts that reproduce what real sculpted scans do (prepare/sculpted_bust.h):
+// a bun overhanging the nape, braids lying on the head, ribbon bows standing off the hair, hair
+// folding over the ears, a tilted head, and the plain bust. Each must give a scene that validates
+// and runs with its strands inside the prepared volume and off the scalp, checked without the run's
+// distance fields (direct winding-number sums, exact segment–triangle tests).
+#include <doctest/doctest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "io/obj_mesh.h"
+#include "pipeline/inputs.h"
+#include "pipeline/pipeline.h"
+#include "prepare/prepare.h"
+#include "prepare/sculpted_bust.h"
+#include "prepare/surface_checks.h"
+#include "spec/scene.h"
+#include "../support/independent_check.h"
+#include "../support/run_hairfit.h"
+#include "../support/scene_text.h"
+#include "../support/scratch.h"
+
+using namespace hairfit;
+namespace fs = std::filesystem;
+
+namespace {
+
+PrepareOptions mask_options() {
+  PrepareOptions o;
+  o.selection.kind = HairSelection::Kind::mask;
+  o.selection.color = Vec3(kHairColor[0], kHairColor[1], kHairColor[2]);
+  o.threads = 2;
+  return o;
+}
+
+double figure(const RunReport& report, const std::string& stage, const std::string& name) {
+  for (const StageReport& s : report.stages)
+    if (s.name == stage)
+      for (const auto& [key, value] : s.figures)
+        if (key == name) return std::get<double>(value);
+  return std::nan("");
+}
+
+}  // namespace
+
+TEST_CASE("sculpted busts are closed raw scans of genus 0 with the hair painted") {
+  for (BustStyle style : all_bust_styles()) {
+    INFO(bust_style_name(style));
+    const BustScan scan = make_sculpted_bust(style, 0.4);
+    const MeshTopology topology = analyse_topology(scan.mesh);
+    CHECK(topology.closed());
+    CHECK(topology.components == 1);
+    CHECK(topology.euler_characteristic == 2);
+    CHECK(topology.orientation_consistent);
+    // Outward: the enclosed volume is positive, between the skull's and a 20 cm ball's.
+    double volume = 0.0;
+    for (const Vec3i& t : scan.mesh.triangles)
+      volume += scan.mesh.positions[t[0]].dot(scan.mesh.positions[t[1]].cross(scan.mesh.positions[t[2]])) / 6.0;
+    CHECK(volume > 4.0 / 3.0 * M_PI * 7.6 * 9.0 * 9.6);
+    CHECK(volume < 4.0 / 3.0 * M_PI * 20.0 * 20.0 * 20.0);
+    const long hair = std::count_if(scan.colors.begin(), scan.colors.end(), [](const Vec3& c) { return c.x() < 0.5; });
+    CHECK(hair > 0.2 * scan.colors.size());
+    CHECK(hair < 0.6 * scan.colors.size());
+  }
+}
+
+TEST_CASE("every sculpted bust prepares into a scene whose strands stay inside and off the scalp") {
+  for (BustStyle style : all_bust_styles()) {
+    const std::string name = bust_style_name(style);
+    INFO(name);
+    const BustScan scan = make_sculpted_bust(style, 0.4);
+    const PrepareOptions o = mask_options();
+    const Prepared p = prepare_scan(scan.mesh, scan.colors, o, name + ".obj");
+    // The checks passed (prepare_scan throws otherwise); the overhanging styles cannot use the
+    // radial scalp, the plain bust can.
+    CHECK(p.checks.intersections == 0);
+    CHECK(p.checks.scalp_inward_triangles == 0);
+    CHECK(p.checks.hairline_shared);
+    if (style == BustStyle::plain) CHECK(p.scalp.method == "radial");
+    if (style != BustStyle::plain && style != BustStyle::tilted) {
+      CHECK(p.scalp.method == "level set");
+      CHECK(!inward_triangles(p.hull.mesh, p.hull.centre).empty());
+    }
+    // The layer is 0 thick at the hairline and the crown thickness away from it.
+    CHECK(*std::max_element(p.scalp.thickness.begin(), p.scalp.thickness.end()) ==
+          doctest::Approx(o.scalp.crown_thickness).epsilon(0.1));
+    for (int v : p.scalp.hairline) CHECK(p.scalp.thickness[v] == 0.0);
+
+    const fs::path dir = hairfit::testing::fresh_scratch_folder("sculpted-" + name);
+    const fs::path scan_file = dir / (name + ".obj");
+    write_obj_mesh(scan_file, scan.mesh, {}, scan.colors);
+    write_prepared(p, scan_file, o, dir / "scene");
+    std::ofstream(dir / "scene" / "small.toml")
+        << hairfit::testing::with_keys(hairfit::testing::read_all((dir / "scene" / "scene.toml").string()),
+                                       hairfit::testing::small_run_keys());
+    const Scene scene = parse_scene(dir / "scene" / "small.toml");
+    const Inputs inputs = load_inputs(scene);
+    RunOptions run;
+    run.threads = 2;
+    run.write_outputs = false;
+    const PipelineResult r = run_pipeline(scene, inputs, run);
+    const Curves& fibres = r.values.strands->fibres;
+    REQUIRE(fibres.count() > 500);
+    const auto check = hairfit::testing::independent_check(inputs.volume.mesh, true, inputs.scalp.mesh, fibres);
+    MESSAGE(name << " (" << p.scalp.method << "): strands inside by direct sums " << check.inside << " (fields "
+                 << figure(r.report, "strands", "inside_fraction") << "), segments crossing the scalp "
+                 << check.crossings << " of " << check.segments << ", flow crossing "
+                 << figure(r.report, "guides", "flow_crossing"));
+    std::string places;
+    for (int k : check.crossing_segment) places += " " + std::to_string(k);
+    MESSAGE("crossing segments along their fibres:" << places);
+    CHECK(check.finite);
+    CHECK(check.inside >= 0.99);
+    CHECK(check.crossings == 0);
+  }
+}
