@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
@@ -160,25 +159,12 @@ PrepareChecks check(const Prepared& p) {
     const Vec3 centroid = (scalp.positions[f[0]] + scalp.positions[f[1]] + scalp.positions[f[2]]) / 3.0;
     if (winding_above_half(layer, centroid + 1e-3 * triangle_normal(scalp, t))) continue;
     if (c.scalp_inward_triangles++ == 0) c.first_inward = centroid;
-    if (std::getenv("HAIRFIT_DEBUG")) {
-      std::fprintf(stderr, "inward %d of %zu:", t, scalp.triangles.size());
-      for (int k = 0; k < 3; ++k) std::fprintf(stderr, " %d %s th %.3g;", f[k], vec_text(scalp.positions[f[k]]).c_str(), p.scalp.thickness[f[k]]);
-      std::fprintf(stderr, "\n");
-    }
   }
   // One mesh of hull, floor and scalp sharing the hairline: any crossing among them shows up as a
   // self-intersection.
   const Mesh all = with_scalp(p.scalp.volume, p.scalp.volume_vertex, p, false);
   const auto pairs = self_intersections(all);
   c.intersections = static_cast<int>(pairs.size());
-  if (std::getenv("HAIRFIT_DEBUG")) {
-    const int nh = static_cast<int>(hull.triangles.size()), nv = static_cast<int>(p.scalp.volume.triangles.size());
-    auto kind = [&](int t) { return t < nh ? "hull" : t < nv ? "floor" : "scalp"; };
-    for (const auto& [a, b] : pairs) {
-      const Vec3i& ta = all.triangles[a];
-      std::fprintf(stderr, "pair %s %d / %s %d at %s\n", kind(a), a, kind(b), b, vec_text(all.positions[ta[0]]).c_str());
-    }
-  }
   if (!pairs.empty()) {
     const Vec3i& t = all.triangles[pairs[0].first];
     c.first_intersection = (all.positions[t[0]] + all.positions[t[1]] + all.positions[t[2]]) / 3.0;

@@ -37,51 +37,47 @@ double signed_volume(const Mesh& mesh) {
   return v / 6.0;
 }
 
-// The surface the thickness is read from: hull and skin triangles with the thickness at their
-// corners, sampled every half voxel so the nearest sample names the nearest triangle (or one
-// within half a voxel of it).
-struct ThicknessSource {
+// What the thickness is read from: the hull's and the skin's triangles with the distance from the
+// hairline at their corners (0 on the skin), sampled every half voxel so the nearest sample names
+// the nearest triangle (or one within half a voxel of it).
+struct HairlineDistance {
   Mesh mesh;
-  std::vector<double> thickness;  // per vertex
+  std::vector<double> distance;  // per vertex, cm
   std::vector<Vec3> samples;
   std::vector<int> sample_triangle;
 
-  // The thickness at the closest point of the triangle holding the sample nearest `foot` (near
-  // p's closest point on the surface), searched within 2 voxels of it first, then up to `reach`
-  // around p.
-  // `distance` is p's exact distance to the surface: a triangle as close as that holds p's closest
-  // point; otherwise the sample nearest p itself decides (within half a sample spacing of it).
-  double at(const Vec3& p, double distance, const Vec3& foot, const PointGrid& grid, double reach, double tolerance,
-            bool& missed) const {
+  // The distance from the hairline at p's closest point on the surface, read on the triangle of
+  // the sample nearest `foot` (about that closest point, so the search stays within 2 voxels)
+  // when that triangle lies within `tolerance` of p's exact distance `to_surface`; else on the
+  // triangle of the sample nearest p (searched up to `reach`).
+  double at(const Vec3& p, double to_surface, const Vec3& foot, const PointGrid& grid, double reach, double tolerance) const {
     int s = grid.nearest(foot, -1, 2.0 * grid.cell());
-    missed = s < 0;
     if (s >= 0) {
       double value = 0.0;
-      if (closest(p, sample_triangle[s], value) <= distance + tolerance) return value;
-      missed = true;
+      if (closest(p, sample_triangle[s], value) <= to_surface + tolerance) return value;
     }
     s = grid.nearest(p, -1, reach);
     double value = 0.0;
     if (s >= 0) closest(p, sample_triangle[s], value);
     return value;
   }
-  // The distance from p to triangle t, and the thickness at its closest point.
+  // The distance from p to triangle t, and the hairline distance at its closest point.
   double closest(const Vec3& p, int t, double& value) const {
     const Vec3i& f = mesh.triangles[t];
     const Vec3 &a = mesh.positions[f[0]], &b = mesh.positions[f[1]], &c = mesh.positions[f[2]];
     const Vec3 w = closest_barycentric(p, a, b, c);
-    value = w[0] * thickness[f[0]] + w[1] * thickness[f[1]] + w[2] * thickness[f[2]];
+    value = w[0] * distance[f[0]] + w[1] * distance[f[1]] + w[2] * distance[f[2]];
     return (w[0] * a + w[1] * b + w[2] * c - p).norm();
   }
 };
 
-ThicknessSource thickness_source(const Mesh& hull, const std::vector<double>& hull_distance, const Mesh& skin,
-                                 double spacing) {
-  ThicknessSource s;
+HairlineDistance hairline_distance(const Mesh& hull, const std::vector<double>& hull_distance, const Mesh& skin,
+                                   double spacing) {
+  HairlineDistance s;
   s.mesh = hull;
-  s.thickness = hull_distance;
+  s.distance = hull_distance;
   const int offset = static_cast<int>(hull.positions.size());
-  for (const Vec3& p : skin.positions) s.mesh.positions.push_back(p), s.thickness.push_back(0.0);
+  for (const Vec3& p : skin.positions) s.mesh.positions.push_back(p), s.distance.push_back(0.0);
   for (const Vec3i& t : skin.triangles) s.mesh.triangles.emplace_back(t[0] + offset, t[1] + offset, t[2] + offset);
   for (int t = 0; t < static_cast<int>(s.mesh.triangles.size()); ++t) {
     const Vec3i& f = s.mesh.triangles[t];
@@ -325,18 +321,31 @@ ScalpResult make_level_set_scalp(const Hull& hull, const Mesh& skin_in, const Sc
   spec.band = std::ceil((2.0 * T + 3.0 * h) / h);
   spec.margin = 3.0 * h;
   spec.name = file;
+  // Only the scan near the hull matters: every point within 2T of the hull's level sets has its
+  // closest point on the hull or on skin within reach of it, so the field is built of the hull and
+  // the skin triangles that come within that reach of the hull's box (the sign still comes from
+  // the whole scan's winding number).
+  const auto [hull_low, hull_high] = bounding_box(mesh);
+  const double reach_out = 2.0 * T + r.ramp_length + 4.0 * h;
+  Mesh near = mesh;
+  for (const Vec3i& t : skin.triangles) {
+    const Vec3 &a = skin.positions[t[0]], &b = skin.positions[t[1]], &c = skin.positions[t[2]];
+    const Vec3 low = a.cwiseMin(b).cwiseMin(c), high = a.cwiseMax(b).cwiseMax(c);
+    if ((low.array() <= hull_high.array() + reach_out).all() && (high.array() >= hull_low.array() - reach_out).all())
+      near.triangles.emplace_back(t[0] + offset, t[1] + offset, t[2] + offset);
+  }
+  near.positions = both.positions;
   const DistanceField field = make_distance_field(
-      both, spec, threads, [&winding](const Vec3& p) { return winding_above_half(winding, p); });
+      near, spec, threads, [&winding](const Vec3& p) { return winding_above_half(winding, p); });
 
   SampleGrid grid;
   grid.origin = field.origin();
   grid.spacing = h;
   grid.dims = field.dims();
-  const ThicknessSource source = thickness_source(mesh, hull_distance, skin, 0.5 * h);
+  const HairlineDistance source = hairline_distance(mesh, hull_distance, skin, 0.5 * h);
   const PointGrid samples(source.samples, h);
   std::vector<double> thickness(grid.nodes()), scalp_value(grid.nodes()), floor_value(grid.nodes());
   const double reach = 2.0 * T + 5.0 * h;
-  std::vector<long> misses(grid.dims.z(), 0);
   parallel_for(grid.dims.z(), threads, [&](int k) {
     for (int j = 0; j < grid.dims.y(); ++j)
       for (int i = 0; i < grid.dims.x(); ++i) {
@@ -352,9 +361,7 @@ ScalpResult make_level_set_scalp(const Hull& hull, const Mesh& skin_in, const Sc
           const FieldValueGradient f = field.value_and_gradient(x);
           const double length = f.gradient.norm();
           const Vec3 foot = length > 0.5 ? Vec3(x - f.value * f.gradient / length) : x;
-          bool missed = false;
-          distance = source.at(x, std::abs(f.value), foot, samples, reach, 0.25 * h, missed);
-          if (missed) ++misses[k];
+          distance = source.at(x, std::abs(f.value), foot, samples, reach, 0.25 * h);
         }
         const double t = T * ramp_shape(distance / r.ramp_length);
         thickness[n] = t;
@@ -362,7 +369,6 @@ ScalpResult make_level_set_scalp(const Hull& hull, const Mesh& skin_in, const Sc
         floor_value[n] = t + T * ramp_shape(kFloorSteepness * distance / r.ramp_length) - d;
       }
   });
-  if (std::getenv("HAIRFIT_DEBUG")) std::fprintf(stderr, "foot misses %ld\n", std::accumulate(misses.begin(), misses.end(), 0L));
   const double epsilon = T * ramp_shape(1.5 * h / r.ramp_length);
   std::vector<Vec3> hairline;
   for (int v : hull.hairline) hairline.push_back(mesh.positions[v]);

@@ -69,8 +69,9 @@ TEST_CASE("a scan in millimetres with a painted mask becomes a scene that valida
   // layer with the thin-shell defaults (scalp/shell_hair.h); the comment says what they come to.
   const auto record = nlohmann::json::parse(read_all((out / "prepare.json").string()));
   const double reach = record["scalp"]["hairline_reach_cm"].get<double>();
-  CHECK(scene.find("\ntilt =") == std::string::npos);
-  CHECK(scene.find("\nlength = ") == std::string::npos);
+  const std::string hair = scene.substr(scene.find("[hair]"));
+  CHECK(hair.find("\ntilt =") == std::string::npos);
+  CHECK(hair.find("\nlength =") == std::string::npos);
   CHECK(scene.find("derives them from the layer") != std::string::npos);
   // The procedural bust is star-shaped about its centre: the radial scalp serves it.
   CHECK(record["scalp"]["method"] == "radial");

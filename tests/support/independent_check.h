@@ -5,8 +5,6 @@
 #pragma once
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <unordered_map>
 #include <vector>
 
@@ -91,25 +89,6 @@ inline IndependentCheck independent_check(const Mesh& volume, bool volume_closed
       }
       r.crossings += crossing;
       if (crossing) r.crossing_segment.push_back(static_cast<int>(k - fibres.offsets[c]));
-      if (crossing && k == fibres.offsets[c] + 1 && std::getenv("HAIRFIT_DEBUG")) {
-        // The root's triangle: the nearest by centroid among the candidates' neighbourhood.
-        double best = INFINITY; int tb = -1;
-        for (int t = 0; t < (int)scalp.triangles.size(); ++t) {
-          const Vec3i& f = scalp.triangles[t];
-          const Vec3 a = scalp.positions[f[0]], b = scalp.positions[f[1]], cc = scalp.positions[f[2]];
-          const Vec3 n = (b - a).cross(cc - a).normalized();
-          const double plane = std::abs((q - a).dot(n));
-          const Vec3 proj = q - (q - a).dot(n) * n;
-          const bool in = (b - a).cross(proj - a).dot(n) >= -1e-9 && (cc - b).cross(proj - b).dot(n) >= -1e-9 && (a - cc).cross(proj - cc).dot(n) >= -1e-9;
-          if (in && plane < best) best = plane, tb = t;
-        }
-        if (tb >= 0) {
-          const Vec3i& f = scalp.triangles[tb];
-          const Vec3 n = (scalp.positions[f[1]] - scalp.positions[f[0]]).cross(scalp.positions[f[2]] - scalp.positions[f[0]]).normalized();
-          std::fprintf(stderr, "first-segment crossing: root off its plane %.2e, rise %.2f deg, length %.3f\n", best,
-                       std::asin((p - q).normalized().dot(n)) * 180 / M_PI, (p - q).norm());
-        }
-      }
     }
   r.inside = points ? double(inside) / points : 0.0;
   return r;

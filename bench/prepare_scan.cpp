@@ -1,0 +1,64 @@
+// `hairfit prepare` on the sculpted busts (lib/prepare/sculpted_bust.h) at the size of a real scan:
+// the time of prepare_scan (weld, cut, scalp, checks; no file writing) by wall clock and by CPU
+// over all threads, the method the scalp took, and what the checks found. The plain and tilted
+// busts are also prepared both ways (radial and level set), the two designs side by side.
+//   cmake -S . -B build -DHAIRFIT_BENCH=ON && cmake --build build --target bench_prepare_scan
+//   build/bench/bench_prepare_scan [spacing_cm = 0.23 (about 270 000 triangles)] [threads = 0: all]
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+#include <cstdlib>
+#include <string>
+
+#include "core/error.h"
+#include "prepare/prepare.h"
+#include "prepare/sculpted_bust.h"
+
+using namespace hairfit;
+
+namespace {
+
+double cpu_seconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
+
+void run(BustStyle style, const BustScan& scan, const std::string& method, int threads) {
+  PrepareOptions o;
+  o.selection.kind = HairSelection::Kind::mask;
+  o.selection.color = Vec3(kHairColor[0], kHairColor[1], kHairColor[2]);
+  o.scalp_method = method;
+  o.threads = threads;
+  const auto wall0 = std::chrono::steady_clock::now();
+  const double cpu0 = cpu_seconds();
+  std::string outcome;
+  Prepared p;
+  try {
+    p = prepare_scan(scan.mesh, scan.colors, o, bust_style_name(style));
+    outcome = "passed";
+  } catch (const InputError& e) {
+    outcome = std::string("refused: ") + e.what();
+    if (outcome.size() > 90) outcome = outcome.substr(0, 90) + "…";
+  }
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  const double cpu = cpu_seconds() - cpu0;
+  std::printf("| %s | %zu | %s | %s | %.2f | %.2f | %zu | %zu | %s |\n", bust_style_name(style).c_str(),
+              scan.mesh.triangles.size(), method.c_str(), p.scalp.method.empty() ? "–" : p.scalp.method.c_str(), wall, cpu,
+              p.hull.mesh.triangles.size(), p.scalp.scalp.triangles.size(), outcome.c_str());
+  std::fflush(stdout);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const double spacing = argc > 1 ? std::atof(argv[1]) : 0.23;
+  const int threads = argc > 2 ? std::atoi(argv[2]) : 0;
+  std::printf("| bust | scan triangles | --scalp | made by | wall s | CPU s | hull triangles | scalp triangles | checks |\n");
+  std::printf("| --- | ---: | --- | --- | ---: | ---: | ---: | ---: | --- |\n");
+  for (BustStyle style : all_bust_styles()) {
+    const BustScan scan = make_sculpted_bust(style, spacing);
+    run(style, scan, "auto", threads);
+    if (style == BustStyle::plain || style == BustStyle::tilted) {
+      run(style, scan, "radial", threads);
+      run(style, scan, "level-set", threads);
+    }
+  }
+  return 0;
+}
