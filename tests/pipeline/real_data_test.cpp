@@ -11,9 +11,11 @@
 #include "pipeline/inputs.h"
 #include "pipeline/pipeline.h"
 #include "../support/independent_check.h"
+#include "../support/report_figure.h"
 #include "../support/run_hairfit.h"
 
 using namespace hairfit;
+using hairfit::testing::figure;
 using hairfit::testing::run_hairfit;
 using hairfit::testing::source_path;
 using Independent = hairfit::testing::IndependentCheck;
@@ -24,13 +26,6 @@ Independent independent_check(const Inputs& in, const Curves& fibres) {
   return hairfit::testing::independent_check(in.volume.mesh, in.volume_report.closed(), in.scalp.mesh, fibres);
 }
 
-double figure(const RunReport& report, const std::string& stage, const std::string& name) {
-  for (const StageReport& s : report.stages)
-    if (s.name == stage)
-      for (const auto& [key, value] : s.figures)
-        if (key == name) return std::get<double>(value);
-  return std::nan("");
-}
 
 }  // namespace
 

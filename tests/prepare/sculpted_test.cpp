@@ -17,11 +17,13 @@
 #include "prepare/surface_checks.h"
 #include "spec/scene.h"
 #include "../support/independent_check.h"
+#include "../support/report_figure.h"
 #include "../support/run_hairfit.h"
 #include "../support/scene_text.h"
 #include "../support/scratch.h"
 
 using namespace hairfit;
+using hairfit::testing::figure;
 namespace fs = std::filesystem;
 
 namespace {
@@ -34,13 +36,6 @@ PrepareOptions mask_options() {
   return o;
 }
 
-double figure(const RunReport& report, const std::string& stage, const std::string& name) {
-  for (const StageReport& s : report.stages)
-    if (s.name == stage)
-      for (const auto& [key, value] : s.figures)
-        if (key == name) return std::get<double>(value);
-  return std::nan("");
-}
 
 }  // namespace
 
