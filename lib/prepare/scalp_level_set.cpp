@@ -287,12 +287,14 @@ void relax(Sheet& s, const DistanceField& field, double crown, double epsilon, i
 
 }  // namespace
 
+double level_set_voxel(const ScalpOptions& o) { return o.voxel > 0.0 ? o.voxel : std::min(0.25, o.crown_thickness / 6.0); }
+
 ScalpResult make_level_set_scalp(const Hull& hull, const Mesh& skin_in, const ScalpOptions& o, const std::string& file,
                                  int threads) {
   if (!(o.crown_thickness > 0.0) || !(o.ramp > 0.0) || !(o.voxel >= 0.0))
     throw InputError(file, "the crown thickness and the ramp must be positive lengths and the scalp voxel ≥ 0");
   const double T = o.crown_thickness;
-  const double h = o.voxel > 0.0 ? o.voxel : std::min(0.25, T / 6.0);
+  const double h = level_set_voxel(o);
   const Mesh& mesh = hull.mesh;
   ScalpResult r;
   r.method = "level set";

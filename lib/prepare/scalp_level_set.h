@@ -23,6 +23,9 @@
 
 namespace hairfit {
 
+// The grid spacing the level set uses: options.voxel, or min(0.25, T / 6) cm when that is 0.
+double level_set_voxel(const ScalpOptions& options);
+
 // `skin`: the rest of the scan (clipped at the same hairline, f ≤ 0), in cm as the hull is. Throws
 // InputError naming `file` when the options are out of range or the level set gives no disk
 // under the hull (the message says what it found).

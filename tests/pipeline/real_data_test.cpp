@@ -12,6 +12,7 @@
 #include "pipeline/pipeline.h"
 #include "../support/independent_check.h"
 #include "../support/report_figure.h"
+#include "../support/run_in_process.h"
 #include "../support/run_hairfit.h"
 
 using namespace hairfit;
@@ -74,10 +75,7 @@ TEST_CASE("real data: open multi-part hulls that dip under the skin run end to e
     INFO(name);
     const Scene scene = parse_scene(source_path(std::string("fixtures/") + c.fixture + "/scene.toml"));
     const Inputs inputs = load_inputs(scene);
-    RunOptions o;
-    o.threads = 2;
-    o.write_outputs = false;
-    const PipelineResult r = run_pipeline(scene, inputs, o);
+    const PipelineResult r = hairfit::testing::run_in_process(scene, inputs);
     const Curves& fibres = r.values.strands->fibres;
     REQUIRE(fibres.count() > 1000);
     const Independent check = independent_check(inputs, fibres);

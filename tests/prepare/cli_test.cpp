@@ -184,7 +184,8 @@ TEST_CASE("bad input: a clear message, exit code 2 and nothing written") {
 
 // The target: the produced scene runs end to end with inside_fraction ≥ 0.99 after
 // cutting. The written scene leaves hair length and tilt to the run (derived from the layer, with
-// the thin-shell defaults): 0.997 of the strand points inside; with them written into the scene
+// the thin-shell defaults) and declares a whorl (hair.swirl = 70): 0.995 of the strand points
+// inside (0.996 without the whorl); with length and tilt written into the scene
 // (tilt toward the thicker layer by 90° − atan(T/reach), ⅔ of the reach long) it was 0.991, with
 // the paper's defaults (25 cm along the normal) 0.90. Roots are not counted: they lie on the scalp.
 TEST_CASE("the prepared scene runs end to end with strands inside after cutting") {
