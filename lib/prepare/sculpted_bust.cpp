@@ -105,7 +105,7 @@ double bow_value(const BustShape& s, const Vec3& p, double side) {
   return value;
 }
 
-// Hair hanging over the ears: a shell 0.6 to 1.4 cm off the skin on the sides, from within the
+// Hair hanging over the ears: a shell 0.8 to 1.7 cm off the skin on the sides, from within the
 // full layer (55° from the cap axis) down past the hairline to 105°, with air between it and the
 // skin where the layer thins out.
 double ear_flap_value(const BustShape& s, const Vec3& p) {
