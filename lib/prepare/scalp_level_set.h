@@ -2,15 +2,18 @@
 // scan's own signed distance (the first way, made concrete).
 //
 // With δ(x) the depth below the scan (its signed distance, positive inside: the hull and the bare
-// skin together) and T(x) the thickness the hair layer should have there — T·r(g) at the closest
-// point of the hull, g its distance from the hairline along the hull's edges and r a ramp rising
-// from 0 with slope π/(2·ramp), 0 at the closest point of the bare skin — the scalp is the zero set
-// of T − δ and the floor that closes the volume the zero set of 2T − δ. Both come from marching
-// tetrahedra on the field's grid (marching_tetrahedra.h), so each is free of self-intersections,
-// and since 2T − δ − (T − δ) = T ≥ 0 they cannot cross where the sampled thickness is positive.
-// Under the bare skin the thickness is 0, so each zero set continues as the skin there; each is
-// clipped where T falls to ε (1.5 voxels up the ramp), its largest part kept, and a strip joins it
-// to the hull's hairline, vertex for vertex.
+// skin together, signed by the scan's winding number) and T(x) the thickness the hair layer should
+// have there — T·r(g) with g the distance from the hairline (along the hull's edges, relaxed) at
+// x's closest point of the scan, 0 on the bare skin, and r(s) = sin(π/2·min(1, s/ramp)) — the
+// scalp is the zero set of T − δ and the floor that closes the volume the zero set of
+// T + T·r(3g) − δ (as deep as 2T away from the hairline, but leaving it three times as steeply).
+// Both come from marching tetrahedra on the field's grid (marching_tetrahedra.h), so each is free
+// of self-intersections, and since the floor's value exceeds the scalp's by T·r(3g) ≥ 0 they cannot
+// cross where the sampled thickness is positive. Under the bare skin the thickness is 0, so each
+// zero set continues as the skin there; each is clipped where T falls to ε (its value 1.5 voxels
+// from the hairline) and its largest part kept. A strip joins the scalp to the hull's hairline,
+// vertex for vertex, and the floor joins the scalp's end, so the two strips cannot cross; the
+// scalp is then relaxed (relax(): the closest point's turns between hull and skin leave creases).
 //
 // A level set of a distance follows the scan at depth T: a bun thicker than 2T keeps an eroded core
 // under it, braids and bows thinner than that leave no trace, and hair folding over the ears with
