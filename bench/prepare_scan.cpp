@@ -1,6 +1,7 @@
 // `hairfit prepare` on the sculpted busts (lib/prepare/sculpted_bust.h) at the size of a real scan:
 // the time of prepare_scan (weld, cut, scalp, checks; no file writing) by wall clock and by CPU
-// over all threads, the method the scalp took, and what the checks found. The plain and tilted
+// over all threads, the method the scalp took, how smooth the scalp is under the hair (its mean
+// curvature), and what the checks found. The plain and tilted
 // busts are also prepared both ways (radial and level set), the two designs side by side.
 //   cmake -S . -B build -DHAIRFIT_BENCH=ON && cmake --build build --target bench_prepare_scan
 //   build/bench/bench_prepare_scan [spacing_cm = 0.23 (about 270 000 triangles)] [threads = 0: all]
@@ -39,9 +40,10 @@ void run(BustStyle style, const BustScan& scan, const std::string& method, int t
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   const double cpu = cpu_seconds() - cpu0;
-  std::printf("| %s | %zu | %s | %s | %.2f | %.2f | %zu | %zu | %s |\n", bust_style_name(style).c_str(),
+  std::printf("| %s | %zu | %s | %s | %.2f | %.2f | %zu | %zu | %.3f / %.3f | %s |\n", bust_style_name(style).c_str(),
               scan.mesh.triangles.size(), method.c_str(), p.scalp.method.empty() ? "–" : p.scalp.method.c_str(), wall, cpu,
-              p.hull.mesh.triangles.size(), p.scalp.scalp.triangles.size(), outcome.c_str());
+              p.hull.mesh.triangles.size(), p.scalp.scalp.triangles.size(), p.checks.curvature_p95, p.checks.curvature_max,
+              outcome.c_str());
   std::fflush(stdout);
 }
 
@@ -50,8 +52,8 @@ void run(BustStyle style, const BustScan& scan, const std::string& method, int t
 int main(int argc, char** argv) {
   const double spacing = argc > 1 ? std::atof(argv[1]) : 0.23;
   const int threads = argc > 2 ? std::atoi(argv[2]) : 0;
-  std::printf("| bust | scan triangles | --scalp | made by | wall s | CPU s | hull triangles | scalp triangles | checks |\n");
-  std::printf("| --- | ---: | --- | --- | ---: | ---: | ---: | ---: | --- |\n");
+  std::printf("| bust | scan triangles | --scalp | made by | wall s | CPU s | hull triangles | scalp triangles | scalp |H| p95 / max (1/cm) | checks |\n");
+  std::printf("| --- | ---: | --- | --- | ---: | ---: | ---: | ---: | ---: | --- |\n");
   for (BustStyle style : all_bust_styles()) {
     const BustScan scan = make_sculpted_bust(style, spacing);
     run(style, scan, "auto", threads);

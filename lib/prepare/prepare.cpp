@@ -173,6 +173,15 @@ PrepareChecks check(const Prepared& p) {
     const Vec3i& t = all.triangles[pairs[0].first];
     c.first_intersection = (all.positions[t[0]] + all.positions[t[1]] + all.positions[t[2]]) / 3.0;
   }
+  const std::vector<double> curvature = mean_curvature(scalp);
+  std::vector<double> under;
+  for (std::size_t v = 0; v < curvature.size(); ++v)
+    if (p.scalp.ramp[v] >= 0.5) under.push_back(curvature[v]);
+  if (!under.empty()) {
+    std::sort(under.begin(), under.end());
+    c.curvature_p95 = under[static_cast<std::size_t>(0.95 * (under.size() - 1))];
+    c.curvature_max = under.back();
+  }
   const int deepest = static_cast<int>(std::max_element(p.scalp.thickness.begin(), p.scalp.thickness.end()) -
                                        p.scalp.thickness.begin());
   c.deepest_winding = FastWindingNumber(p.scalp.volume).direct(scalp.positions[deepest]);
@@ -365,7 +374,9 @@ void write_prepared(const Prepared& p, const std::filesystem::path& scan, const 
                       {"scalp_inward_triangles", p.checks.scalp_inward_triangles},
                       {"intersections", p.checks.intersections},
                       {"deepest_winding", p.checks.deepest_winding},
-                      {"hairline_shared", p.checks.hairline_shared}};
+                      {"hairline_shared", p.checks.hairline_shared},
+                      {"scalp_curvature_p95_per_cm", p.checks.curvature_p95},
+                      {"scalp_curvature_max_per_cm", p.checks.curvature_max}};
   const std::string scene = prepared_scene_text(p, scan.filename().string(), o);
   write_obj_mesh(dir / "volume.obj", p.scalp.volume);
   write_obj_mesh(dir / "scalp.obj", p.scalp.scalp);

@@ -96,6 +96,8 @@ TEST_CASE("every sculpted bust prepares into a scene whose strands stay inside a
     const Curves& fibres = r.values.strands->fibres;
     REQUIRE(fibres.count() > 500);
     const auto check = hairfit::testing::independent_check(inputs.volume.mesh, true, inputs.scalp.mesh, fibres);
+    MESSAGE(name << " (" << p.scalp.method << "): scalp mean curvature under the hair, 95th percentile "
+                 << p.checks.curvature_p95 << "/cm, largest " << p.checks.curvature_max << "/cm");
     MESSAGE(name << " (" << p.scalp.method << "): strands inside by direct sums " << check.inside << " (fields "
                  << figure(r.report, "strands", "inside_fraction") << "), segments crossing the scalp "
                  << check.crossings << " of " << check.segments << ", flow crossing "
