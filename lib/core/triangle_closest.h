@@ -7,7 +7,8 @@
 namespace hairfit {
 
 // Weights (wa, wb, wc) ≥ 0 summing to 1 with wa·a + wb·b + wc·c the point of triangle abc nearest p.
-// A degenerate triangle gives the nearest of its corners and edges.
+// A degenerate triangle still gives one of its points (the first region test that holds; corner a
+// when none does), not necessarily its nearest.
 inline Vec3 closest_barycentric(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
   const Vec3 ab = b - a, ac = c - a, ap = p - a;
   const double d1 = ab.dot(ap), d2 = ac.dot(ap);
