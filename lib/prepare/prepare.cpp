@@ -184,22 +184,27 @@ PrepareChecks check(const Prepared& p) {
   }
   const int deepest = static_cast<int>(std::max_element(p.scalp.thickness.begin(), p.scalp.thickness.end()) -
                                        p.scalp.thickness.begin());
-  c.deepest_winding = FastWindingNumber(p.scalp.volume).direct(scalp.positions[deepest]);
+  c.deepest_winding = winding_number(p.scalp.volume, scalp.positions[deepest]);
   return c;
 }
 
+// The checks that failed, each a clause ("the hull is not a disk"), joined by "; ": empty when all
+// passed.
 std::string failures(const PrepareChecks& c) {
-  std::string failed;
-  if (!c.hull_disk) failed += " the hull is not a disk;";
-  if (!c.scalp_disk) failed += " the scalp is not a disk;";
+  std::vector<std::string> failed;
+  if (!c.hull_disk) failed.push_back("the hull is not a disk");
+  if (!c.scalp_disk) failed.push_back("the scalp is not a disk");
   if (c.scalp_inward_triangles)
-    failed += " " + std::to_string(c.scalp_inward_triangles) + " scalp triangles face inward (e.g. at " + vec_text(c.first_inward) + ");";
+    failed.push_back(std::to_string(c.scalp_inward_triangles) + " scalp triangles face inward (e.g. at " +
+                     vec_text(c.first_inward) + ")");
   if (c.intersections)
-    failed += " hull, floor and scalp intersect (" + std::to_string(c.intersections) + " pairs, e.g. at " +
-              vec_text(c.first_intersection) + ");";
-  if (!(c.deepest_winding > 0.5)) failed += " the scalp is not inside the hull;";
-  if (!c.hairline_shared) failed += " the scalp's hairline differs from the hull's;";
-  return failed;
+    failed.push_back("hull, floor and scalp intersect (" + std::to_string(c.intersections) + " pairs, e.g. at " +
+                     vec_text(c.first_intersection) + ")");
+  if (!(c.deepest_winding > 0.5)) failed.push_back("the scalp is not inside the hull");
+  if (!c.hairline_shared) failed.push_back("the scalp's hairline differs from the hull's");
+  std::string text;
+  for (const std::string& f : failed) text += (text.empty() ? "" : "; ") + f;
+  return text;
 }
 
 double max_thickness(const Prepared& p) {
@@ -241,7 +246,6 @@ Prepared prepare_scan(const Mesh& raw_scan, const std::vector<Vec3>& colors, con
       p.scalp = make_scalp(p.hull, o.scalp, file);
       p.checks = check(p);
       radial_failed = failures(p.checks);
-      if (!radial_failed.empty()) radial_failed = radial_failed.substr(1, radial_failed.size() - 2);  // " …;"
       if (radial_failed.empty() || o.scalp_method == "radial") p.scalp_how = "radial: the hull is star-shaped about the head centre";
     }
   }
@@ -269,25 +273,25 @@ Prepared prepare_scan(const Mesh& raw_scan, const std::vector<Vec3>& colors, con
         p.checks = check(p);
         failed = failures(p.checks);
       } catch (const InputError& e) {
-        failed = std::string(" ") + e.what() + ";";
+        failed = e.what();
       }
       char text[64];
       std::snprintf(text, sizeof text, "%.3g cm", grid.voxel);
       if (failed.empty()) {
-        if (!tried.empty()) p.scalp_how += "; voxel " + std::string(text) + " after" + tried;
+        if (!tried.empty()) p.scalp_how += "; voxel " + std::string(text) + " after " + tried;
         passed = true;
         break;
       }
-      tried += (tried.empty() ? " " : "; ") + std::string(text) + " failed:" + failed.substr(0, failed.size() - 1);
+      tried += (tried.empty() ? "" : "; ") + std::string(text) + " failed: " + failed;
     }
     if (!passed)
       throw InputError(file, "the level-set scalp derived from this hull fails its checks at every voxel tried (" +
-                                 tried.substr(1) + "); try a smaller --crown-thickness or a longer --ramp, or repair the scan near the hairline");
+                                 tried + "); try a smaller --crown-thickness or a longer --ramp, or repair the scan near the hairline");
   }
   const std::string failed = failures(p.checks);
   if (!failed.empty())
-    throw InputError(file, "the scalp derived from this hull (" + p.scalp.method + ") fails its checks:" + failed +
-                               " try a smaller --crown-thickness or a longer --ramp, or repair the scan near the hairline");
+    throw InputError(file, "the scalp derived from this hull (" + p.scalp.method + ") fails its checks: " + failed +
+                               "; try a smaller --crown-thickness or a longer --ramp, or repair the scan near the hairline");
   return p;
 }
 

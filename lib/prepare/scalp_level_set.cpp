@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <numeric>
 
 #include "core/error.h"
@@ -71,14 +70,12 @@ struct HairlineDistance {
   }
 };
 
-HairlineDistance hairline_distance(const Mesh& hull, const std::vector<double>& hull_distance, const Mesh& skin,
-                                   double spacing) {
+// `scan`: the hull's vertices and triangles first, then the skin's; `hull_distance` per hull vertex.
+HairlineDistance hairline_distance(const Mesh& scan, const std::vector<double>& hull_distance, double spacing) {
   HairlineDistance s;
-  s.mesh = hull;
+  s.mesh = scan;
   s.distance = hull_distance;
-  const int offset = static_cast<int>(hull.positions.size());
-  for (const Vec3& p : skin.positions) s.mesh.positions.push_back(p), s.distance.push_back(0.0);
-  for (const Vec3i& t : skin.triangles) s.mesh.triangles.emplace_back(t[0] + offset, t[1] + offset, t[2] + offset);
+  s.distance.resize(scan.positions.size(), 0.0);
   for (int t = 0; t < static_cast<int>(s.mesh.triangles.size()); ++t) {
     const Vec3i& f = s.mesh.triangles[t];
     const Vec3 &a = s.mesh.positions[f[0]], &b = s.mesh.positions[f[1]], &c = s.mesh.positions[f[2]];
@@ -289,7 +286,7 @@ void relax(Sheet& s, const DistanceField& field, double crown, double epsilon, i
 
 double level_set_voxel(const ScalpOptions& o) { return o.voxel > 0.0 ? o.voxel : std::min(0.25, o.crown_thickness / 6.0); }
 
-ScalpResult make_level_set_scalp(const Hull& hull, const Mesh& skin_in, const ScalpOptions& o, const std::string& file,
+ScalpResult make_level_set_scalp(const Hull& hull, const Mesh& skin, const ScalpOptions& o, const std::string& file,
                                  int threads) {
   if (!(o.crown_thickness > 0.0) || !(o.ramp > 0.0) || !(o.voxel >= 0.0))
     throw InputError(file, "the crown thickness and the ramp must be positive lengths and the scalp voxel ≥ 0");
@@ -298,23 +295,22 @@ ScalpResult make_level_set_scalp(const Hull& hull, const Mesh& skin_in, const Sc
   const Mesh& mesh = hull.mesh;
   ScalpResult r;
   r.method = "level set";
-  const std::vector<double> g = edge_distances(mesh, vertex_neighbours(mesh), hull.hairline);
+  const std::vector<std::vector<int>> next = vertex_neighbours(mesh);
+  const std::vector<double> g = edge_distances(mesh, next, hull.hairline);
   r.hairline_reach = *std::max_element(g.begin(), g.end());
   r.ramp_length = std::min(o.ramp, 0.8 * r.hairline_reach);
   // The distance from the hairline, relaxed so the zigzag of edge paths does not show in the layer.
   std::vector<double> hull_distance = g;
-  smooth_off_hairline(mesh, hull.hairline, hull_distance, 10);
+  smooth_off_hairline(next, hull.hairline, hull_distance, 10);
 
-  // The skin faces the way the hull does: together they enclose the head.
-  Mesh skin = skin_in;
+  // The scan: the hull, then the skin, turned to face the way the hull does (together they
+  // enclose the head).
   Mesh both = mesh;
   const int offset = static_cast<int>(mesh.positions.size());
   for (const Vec3& p : skin.positions) both.positions.push_back(p);
   for (const Vec3i& t : skin.triangles) both.triangles.emplace_back(t[0] + offset, t[1] + offset, t[2] + offset);
-  if (signed_volume(both) < 0.0) {
-    for (Vec3i& t : skin.triangles) std::swap(t[1], t[2]);
+  if (signed_volume(both) < 0.0)
     for (std::size_t t = mesh.triangles.size(); t < both.triangles.size(); ++t) std::swap(both.triangles[t][1], both.triangles[t][2]);
-  }
 
   // The scan's signed distance, exact to the floor's depth 2T and a little beyond.
   const FastWindingNumber winding(both, HairRegion::kFirstBeta);
@@ -330,13 +326,14 @@ ScalpResult make_level_set_scalp(const Hull& hull, const Mesh& skin_in, const Sc
   const auto [hull_low, hull_high] = bounding_box(mesh);
   const double reach_out = 2.0 * T + r.ramp_length + 4.0 * h;
   Mesh near = mesh;
-  for (const Vec3i& t : skin.triangles) {
-    const Vec3 &a = skin.positions[t[0]], &b = skin.positions[t[1]], &c = skin.positions[t[2]];
+  near.positions = both.positions;
+  for (std::size_t t = mesh.triangles.size(); t < both.triangles.size(); ++t) {
+    const Vec3i& f = both.triangles[t];
+    const Vec3 &a = both.positions[f[0]], &b = both.positions[f[1]], &c = both.positions[f[2]];
     const Vec3 low = a.cwiseMin(b).cwiseMin(c), high = a.cwiseMax(b).cwiseMax(c);
     if ((low.array() <= hull_high.array() + reach_out).all() && (high.array() >= hull_low.array() - reach_out).all())
-      near.triangles.emplace_back(t[0] + offset, t[1] + offset, t[2] + offset);
+      near.triangles.push_back(f);
   }
-  near.positions = both.positions;
   const DistanceField field = make_distance_field(
       near, spec, threads, [&winding](const Vec3& p) { return winding_above_half(winding, p); });
 
@@ -344,7 +341,7 @@ ScalpResult make_level_set_scalp(const Hull& hull, const Mesh& skin_in, const Sc
   grid.origin = field.origin();
   grid.spacing = h;
   grid.dims = field.dims();
-  const HairlineDistance source = hairline_distance(mesh, hull_distance, skin, 0.5 * h);
+  const HairlineDistance source = hairline_distance(both, hull_distance, 0.5 * h);
   const PointGrid samples(source.samples, h);
   std::vector<double> thickness(grid.nodes()), scalp_value(grid.nodes()), floor_value(grid.nodes());
   const double reach = 2.0 * T + 5.0 * h;

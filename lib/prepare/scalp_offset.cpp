@@ -30,12 +30,11 @@ double median(std::vector<double> v) {
 
 }  // namespace
 
-void smooth_off_hairline(const Mesh& mesh, const std::vector<int>& hairline, std::vector<double>& f, int passes,
-                         const std::function<void(int)>& after) {
-  const int n = static_cast<int>(mesh.positions.size());
+void smooth_off_hairline(const std::vector<std::vector<int>>& next, const std::vector<int>& hairline,
+                         std::vector<double>& f, int passes, const std::function<void(int)>& after) {
+  const int n = static_cast<int>(next.size());
   std::vector<char> on_hairline(n, 0);
   for (int v : hairline) on_hairline[v] = 1;
-  const auto next = vertex_neighbours(mesh);
   std::vector<double> previous;
   for (int pass = 0; pass < passes; ++pass) {
     previous = f;
@@ -88,7 +87,7 @@ ScalpResult make_scalp(const Hull& hull, const ScalpOptions& o, const std::strin
   r.ramp_length = std::min(o.ramp, 0.8 * g_max);
   std::vector<double> w(n);
   for (int v = 0; v < n; ++v) w[v] = smoothstep(g[v] / r.ramp_length);
-  smooth_off_hairline(mesh, hull.hairline, w, 10);
+  smooth_off_hairline(next, hull.hairline, w, 10);
 
   // The envelope: iteratively reweighted least squares with Tukey's biweight (c = 4.685 robust
   // standard deviations, from the median absolute residual), weighted by vertex area.
@@ -153,7 +152,7 @@ ScalpResult make_scalp(const Hull& hull, const ScalpOptions& o, const std::strin
   };
   for (int v = 0; v < n; ++v)
     if (!on_hairline[v]) clamp(v);
-  smooth_off_hairline(mesh, hull.hairline, rho, o.smoothing_passes, clamp);
+  smooth_off_hairline(next, hull.hairline, rho, o.smoothing_passes, clamp);
 
   r.method = "radial";
   r.scalp = mesh;

@@ -48,10 +48,11 @@ struct ScalpResult {
   int dropped_parts = 0;          // level set: pieces apart from the scalp and floor, left out
 };
 
-// Jacobi passes of f over the mesh (each vertex to ½ itself + ½ its neighbours' mean), the hairline
-// vertices fixed; `after(v)` runs on each vertex once it is updated (a clamp).
-void smooth_off_hairline(const Mesh& mesh, const std::vector<int>& hairline, std::vector<double>& f, int passes,
-                         const std::function<void(int)>& after = {});
+// Jacobi passes of f over a mesh (each vertex to ½ itself + ½ its neighbours' mean; `neighbours`
+// as vertex_neighbours gives them), the hairline vertices fixed; `after(v)` runs on each vertex
+// once it is updated (a clamp).
+void smooth_off_hairline(const std::vector<std::vector<int>>& neighbours, const std::vector<int>& hairline,
+                         std::vector<double>& f, int passes, const std::function<void(int)>& after = {});
 
 // Throws InputError naming `file` when the hull is not star-shaped about its centre (some triangle
 // faces the centre: e.g. hair hanging below the head, which the radial offset cannot follow), or
