@@ -317,6 +317,18 @@ double DistanceField::nearest_sample(const Vec3& p) const {
   return sample(node[0], node[1], node[2]);
 }
 
+double DistanceField::distance_lower_bound(const Vec3& p) const {
+  if (!p.allFinite()) return -std::numeric_limits<double>::infinity();
+  int node[3];
+  Vec3 at;
+  for (int d = 0; d < 3; ++d) {
+    node[d] = static_cast<int>(std::clamp((p[d] - origin_[d]) / h_, 0.0, last_node_[d]) + 0.5);
+    at[d] = origin_[d] + node[d] * h_;
+  }
+  const double known = in_band(node[0], node[1], node[2]) ? std::abs(sample(node[0], node[1], node[2])) : band_cm_;
+  return known - (p - at).norm();
+}
+
 FieldSmooth DistanceField::smooth(const Vec3& p) const {
   // Per axis the four nodes i−1 … i+2 around the cell [i, i+1] holding p, with the cubic B-spline
   // weights at the fraction t and their first and second derivatives.

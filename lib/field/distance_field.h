@@ -92,6 +92,11 @@ class DistanceField {
   // blends lie within 2√3 voxels of that node, so where samples are distances (1-Lipschitz)
   // smooth(p).value ≥ nearest_sample(p) − 2√3·h.
   double nearest_sample(const Vec3& p) const;
+  // A distance (cm) that the true distance from p to the mesh is never below: at the grid node
+  // nearest p its exact |sample| in the band, the band's width beyond it (every node nearer the
+  // mesh is in the band), less the node's distance from p (distance is 1-Lipschitz). May be
+  // negative; exact tests (the strands' chords against the scalp) skip what it rules out.
+  double distance_lower_bound(const Vec3& p) const;
   // Which side of the surface p lies on, when the samples alone decide it: +1 where value(p) > 0
   // and −1 where value(p) < 0 for certain (every sample the interpolation at p reads lies on that
   // side, beyond 1e-290 cm), 0 where only value(p) can tell (near the surface; non-finite p).

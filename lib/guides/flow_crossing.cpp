@@ -31,42 +31,108 @@ std::vector<Vec3> point_tangents(const Curves& curves) {
   return tangents;
 }
 
+// The bin of the angle whose cosine is c: k with c in (cos((k + 1)·δ), cos(k·δ)], found by
+// comparing c with the bins' edges (no acos per pair): a table over c ∈ [−1, 1] in steps finer
+// than the narrowest bin gives the first candidate, and the edges settle it.
+class AngleBins {
+ public:
+  AngleBins() : edges_(kBins + 1), first_(kTable + 1) {
+    for (int k = 0; k <= kBins; ++k) edges_[k] = std::cos(k * (M_PI / kBins));
+    edges_[0] = 1.0, edges_[kBins] = -1.0;
+    // first_[s]: the bin of the largest c in table step s, c = 1 − 2s/kTable (bins run from c = 1).
+    int k = 0;
+    for (int s = 0; s <= kTable; ++s) {
+      const double c = 1.0 - 2.0 * s / kTable;
+      while (k < kBins - 1 && c <= edges_[k + 1]) ++k;
+      first_[s] = k;
+    }
+  }
+  int operator()(double c) const {
+    const int s = std::clamp(static_cast<int>((1.0 - c) * (0.5 * kTable)), 0, kTable);
+    int k = first_[s];
+    while (k < kBins - 1 && c <= edges_[k + 1]) ++k;
+    return k;
+  }
+
+ private:
+  static constexpr int kTable = 1 << 16;
+  std::vector<double> edges_;  // edges_[k] = cos(k·δ), descending from 1 to −1
+  std::vector<int> first_;
+};
+
 }  // namespace
 
 FlowCrossing flow_crossing(const Curves& curves, const FlowCrossingOptions& o) {
   if (!(o.near >= 0.0) || !(o.far > o.near) || !(o.angle >= 0.0 && o.angle <= 180.0))
     throw std::invalid_argument("flow_crossing: needs 0 ≤ near < far and an angle in [0°, 180°]");
   FlowCrossing result;
-  const std::vector<Vec3>& points = curves.points;
-  if (points.empty()) return result;
   const std::vector<Vec3> tangents = point_tangents(curves);
-  std::vector<int> curve_of(points.size());
+  // The points that take part (a tangent), with their curves, in the grid's cell order, so that
+  // the pair loops read memory contiguously.
+  std::vector<Vec3> points, directions;
+  std::vector<int> curve_of;
   for (std::size_t c = 0; c < curves.count(); ++c)
-    std::fill(curve_of.begin() + curves.offsets[c], curve_of.begin() + curves.offsets[c + 1], static_cast<int>(c));
+    for (std::size_t k = curves.offsets[c]; k < curves.offsets[c + 1]; ++k)
+      if (!tangents[k].isZero(0.0)) {
+        points.push_back(curves.points[k]);
+        directions.push_back(tangents[k]);
+        curve_of.push_back(static_cast<int>(c));
+      }
+  if (points.empty()) return result;
   const PointGrid grid(points, o.far);
-  const double near2 = o.near * o.near;
-  const double cos_limit = std::cos(o.angle * M_PI / 180.0);
-
-  // Each pair is counted once, from its lower index; histograms per block of points, summed in
-  // block order (integers: the totals do not depend on the thread count).
   const int count = static_cast<int>(points.size());
-  constexpr int kBlock = 1024;
-  const int blocks = (count + kBlock - 1) / kBlock;
+  std::vector<Vec3> at(count), along(count);
+  std::vector<int> curve(count);
+  for (int k = 0; k < count; ++k) {
+    const int i = grid.order()[k];
+    at[k] = points[i], along[k] = directions[i], curve[k] = curve_of[i];
+  }
+  const double near2 = o.near * o.near, far2 = o.far * o.far;
+  const double cos_limit = std::cos(o.angle * M_PI / 180.0);
+  const AngleBins bin_of;
+
+  // Exact: each pair is counted once, within a cell and between a cell and each neighbouring cell
+  // that comes after it. Sampled: every pair of a query point (every stride-th point, in curve
+  // order) is counted from it. Histograms per block of cells, summed in block order (integers:
+  // the totals do not depend on the thread count).
+  const int stride = o.max_points > 0 && count > o.max_points ? (count + o.max_points - 1) / o.max_points : 1;
+  std::vector<char> query(count, 1);
+  if (stride > 1)
+    for (int k = 0; k < count; ++k) query[k] = grid.order()[k] % stride == 0;
+  const int cells = grid.cell_count();
+  constexpr int kBlock = 64;
+  const int blocks = (cells + kBlock - 1) / kBlock;
   std::vector<std::vector<std::int64_t>> histograms(blocks);
   std::vector<std::int64_t> crossing(blocks, 0);
   parallel_for(blocks, o.threads, [&](int b) {
     std::vector<std::int64_t>& h = histograms[b];
     h.assign(kBins, 0);
-    for (int i = b * kBlock; i < std::min(count, (b + 1) * kBlock); ++i) {
-      if (tangents[i].isZero(0.0)) continue;
-      grid.for_each_within(points[i], o.far, [&](int j, double d2) {
-        if (j <= i || d2 < near2 || curve_of[j] == curve_of[i] || tangents[j].isZero(0.0)) return;
-        const double c = std::clamp(tangents[i].dot(tangents[j]), -1.0, 1.0);
-        crossing[b] += c < cos_limit;
-        const int bin = std::min(kBins - 1, static_cast<int>(std::acos(c) * (180.0 / M_PI) * (kBins / 180.0)));
-        ++h[bin];
-      });
+    std::int64_t crossed = 0;
+    auto pair = [&](int i, int j) {
+      const double d2 = (at[i] - at[j]).squaredNorm();
+      if (d2 < near2 || d2 > far2 || curve[i] == curve[j]) return;
+      const double c = std::clamp(along[i].dot(along[j]), -1.0, 1.0);
+      crossed += c < cos_limit;
+      ++h[bin_of(c)];
+    };
+    std::vector<PointGrid::CellRange> near_cells;
+    for (int cell = b * kBlock; cell < std::min(cells, (b + 1) * kBlock); ++cell) {
+      const int begin = grid.cell_begin(cell), end = grid.cell_begin(cell + 1);
+      grid.neighbourhood(cell, 1, near_cells);
+      for (const PointGrid::CellRange& other : near_cells) {
+        if (stride == 1) {
+          if (other.begin < begin) continue;
+          for (int i = begin; i < end; ++i)
+            for (int j = other.begin == begin ? i + 1 : other.begin; j < other.end; ++j) pair(i, j);
+        } else {
+          for (int i = begin; i < end; ++i)
+            if (query[i])
+              for (int j = other.begin; j < other.end; ++j)
+                if (j != i) pair(i, j);
+        }
+      }
     }
+    crossing[b] = crossed;
   });
   std::vector<std::int64_t> total(kBins, 0);
   std::int64_t crossings = 0;
@@ -74,14 +140,18 @@ FlowCrossing flow_crossing(const Curves& curves, const FlowCrossingOptions& o) {
     for (int k = 0; k < kBins; ++k) total[k] += histograms[b][k];
     crossings += crossing[b];
   }
-  for (std::int64_t n : total) result.pairs += n;
-  if (result.pairs == 0) return result;
-  result.crossing_share = static_cast<double>(crossings) / static_cast<double>(result.pairs);
+  std::int64_t counted = 0;
+  for (std::int64_t n : total) counted += n;
+  result.sampled_points = stride > 1 ? static_cast<int>(std::count(query.begin(), query.end(), 1)) : 0;
+  // Sampled, each pair is seen from each of its ends that is a query point: about 2 / stride times.
+  result.pairs = stride > 1 ? static_cast<std::int64_t>(std::llround(0.5 * static_cast<double>(counted) * stride)) : counted;
+  if (counted == 0) return result;
+  result.crossing_share = static_cast<double>(crossings) / static_cast<double>(counted);
   // The median: the bin holding the middle pair, read at its centre.
   std::int64_t seen = 0;
   for (int k = 0; k < kBins; ++k) {
     seen += total[k];
-    if (2 * seen >= result.pairs) {
+    if (2 * seen >= counted) {
       result.median_degrees = (k + 0.5) * (180.0 / kBins);
       break;
     }

@@ -17,6 +17,7 @@
 #include "io/curve_files.h"
 #include "field/field_nrrd.h"
 #include "field/hair_region.h"
+#include "pipeline/scalp_exit.h"
 #include "pipeline/stage_cache.h"
 #include "pipeline/stage_codec.h"
 #include "pipeline/stage_options.h"
@@ -56,30 +57,6 @@ void add_widths(Curves& curves, double cross_section, int threads) {
     for (std::size_t i = 0; i < n; ++i)
       curves.widths[curves.offsets[c] + i] = static_cast<float>(root * (1.0 - 0.5 * i / std::max<std::size_t>(1, n - 1)));
   });
-}
-
-// Moves a point behind the scalp, or in front of it by less than a clearance, out to that clearance
-// by Newton steps along the field's gradient. The clearance (0.5 mm) is the sagitta of a 2 cm
-// chord over a head of 10 cm radius: a fibre lying along the scalp has its points that far out, so
-// the straight segments between them do not dip under it. Most points are well in front of the
-// scalp, which the field's side() tells without interpolating (reported as +infinity).
-HeadExit scalp_exit(const DistanceField& scalp) {
-  return [&scalp](const Vec3& p, double& value_at_p) {
-    if (scalp.side(p) > 0) {
-      value_at_p = std::numeric_limits<double>::infinity();
-      return p;
-    }
-    value_at_p = scalp.value(p);  // = value_and_gradient(p).value; the gradient only when it is near
-    if (!(value_at_p < kHeadExitClearance)) return p;
-    Vec3 q = p;
-    for (int step = 0; step < 4; ++step) {
-      const FieldValueGradient vg = scalp.value_and_gradient(q);
-      const double g2 = vg.gradient.squaredNorm();
-      if (vg.value >= 0.9 * kHeadExitClearance || !(g2 > 1e-12)) break;
-      q -= (vg.value - kHeadExitClearance) / g2 * vg.gradient;
-    }
-    return q;
-  };
 }
 
 class Runner {
@@ -509,6 +486,7 @@ class Runner {
     const FlowCrossing crossing = flow_crossing(v.guides->curves(), flow);
     stage.add("flow_crossing", crossing.crossing_share);
     stage.add("flow_median_degrees", crossing.median_degrees);
+    stage.add("flow_sampled_points", static_cast<std::int64_t>(crossing.sampled_points));  // 0: every pair counted
   }
 
   void write_guides() {
@@ -528,8 +506,10 @@ class Runner {
     StrandOptions o = strand_options(scene_, options_.threads);
     o.progress = loop_progress();
     FibrePointSides known;  // looked up on the way: the counts need not ask again
-    Strands s = make_strands(v.guides->curves(), pores(), o, volume_distance, scalp_exit(*v.scalp_field), &known,
-                             volume_quick, deposited_fibres_.empty() ? nullptr : &deposited_fibres_);
+    const TriangleGrid scalp_triangles(v.chart->mesh);
+    Strands s = make_strands(v.guides->curves(), pores(), o, volume_distance,
+                             scalp_exit(*v.scalp_field, &scalp_triangles, v.chart->outward), &known, volume_quick,
+                             deposited_fibres_.empty() ? nullptr : &deposited_fibres_);
     add_widths(s.fibres, scene_.hair.cross_section, options_.threads);
     v.strands = std::make_shared<const Strands>(std::move(s));
     const Curves& fibres = v.strands->fibres;
@@ -563,6 +543,9 @@ class Runner {
     stage.add("inside_head_fraction", in_head / points);  // the two ways of not being inside
     stage.add("outside_volume_fraction", out_volume / points);
     if (scene_.effects.cutting) stage.add("cut_share", static_cast<double>(v.strands->cut_count) / std::max<std::size_t>(1, fibres.count()));
+    // Segments whose chord crosses the scalp's triangles (exact tests): those the lift could not
+    // clear, a first segment whose root lies behind a neighbouring triangle's plane.
+    stage.add("scalp_crossings", static_cast<std::int64_t>(scalp_crossings(fibres, *v.scalp_field, scalp_triangles, options_.threads)));
     CoverageOptions cover;
     cover.threads = options_.threads;
     const Coverage coverage = strand_coverage(

@@ -149,6 +149,45 @@ void raise_first_segment(const Vec3& n, Vec3* points) {
   points[1] = points[0] + length * (std::sqrt(1.0 - kRootRise * kRootRise) * tangent + kRootRise * n);
 }
 
+// Whether chord a→b crosses the scalp (HeadExit::chord_crossing), where the clearances at its
+// ends leave room for it to.
+bool chord_crosses(const HeadExit& out_of_head, const Vec3& a, const Vec3& b, ChordCrossing& first,
+                   double clearance_a = std::numeric_limits<double>::quiet_NaN(),
+                   double clearance_b = std::numeric_limits<double>::quiet_NaN()) {
+  if (std::isnan(clearance_a)) clearance_a = out_of_head.clearance ? out_of_head.clearance(a) : 0.0;
+  if (std::isnan(clearance_b)) clearance_b = out_of_head.clearance ? out_of_head.clearance(b) : 0.0;
+  return clearance_a + clearance_b <= (b - a).norm() && out_of_head.chord_crossing(a, b, first);
+}
+
+// Lifts of one segment's end off the plane of the triangle its chord crosses, and passes over the
+// fibre, before a crossing is left as it is (each lift clears one triangle; a lift of a segment's
+// near end can make the segment before it cross, which the next pass finds).
+constexpr int kLiftsPerSegment = 4;
+constexpr int kCrossingPasses = 3;
+
+// Root to tip, where a segment's chord crosses the scalp (the exact test of `out_of_head`), the
+// end behind the crossed triangle's plane moves out along its normal to kProbeClearance in front
+// of it, so the chord no longer meets that triangle. The root stays where it is: a first segment
+// whose root lies behind the crossed plane keeps that crossing.
+void lift_off_crossings(const HeadExit& out_of_head, Vec3* points, int n) {
+  double unused;
+  for (int pass = 0; pass < kCrossingPasses; ++pass) {
+    bool lifted = false;
+    for (int i = 1; i < n; ++i)
+      for (int lift = 0; lift < kLiftsPerSegment; ++lift) {
+        ChordCrossing hit;
+        if (!chord_crosses(out_of_head, points[i - 1], points[i], hit)) break;
+        const double near = hit.normal.dot(points[i - 1] - hit.point), far = hit.normal.dot(points[i] - hit.point);
+        Vec3& end = far <= near ? points[i] : points[i - 1];
+        if (&end == points) break;
+        end += (kProbeClearance - std::min(far, near)) * hit.normal;
+        end = out_of_head(end, unused);
+        lifted = true;
+      }
+    if (!lifted) return;
+  }
+}
+
 // Passes every point but the root through `out_of_head` (and, given the pore's triangle normal,
 // raises the first segment above the triangle's plane), then, root to tip, every segment's
 // probes: where a chord dips into the head at the fraction t of its length (the probe lies behind
@@ -174,6 +213,7 @@ void keep_out(const HeadExit& out_of_head, const Vec3* root_normal, Vec3* points
     else
       for (double t : kSegmentProbes) lift(t);
   }
+  if (out_of_head.chord_crossing) lift_off_crossings(out_of_head, points, n);
 }
 
 // The fibre of exactly `length` along the track, into points[0..n) (n = stations.size()); with
@@ -232,6 +272,14 @@ void fibre_along(const GuideTrack& track, const Vec3& pore, double length, doubl
       if (hi - lo <= 1e-15 * length) break;
       next = f1 != f0 ? r1 - f1 * (r1 - r0) / (f1 - f0) : std::numeric_limits<double>::quiet_NaN();
     }
+    // A lift off the scalp can make the length jump with the reach, so that no reach gives it
+    // exactly: the fibre at the shortest reach known too long then ends short of its last point
+    // by the excess, along its last chord (a part of a chord that crosses nothing crosses nothing).
+    if (std::fabs(f1) > tolerance && std::isfinite(hi)) {
+      const double too_long = r1 == hi ? f1 : excess(hi);
+      const double last = (points[n - 1] - points[n - 2]).norm();
+      if (too_long > 0.0 && too_long < last) points[n - 1] = points[n - 2] + (1.0 - too_long / last) * (points[n - 1] - points[n - 2]);
+    }
   }
   points[0] = pore;  // exactly, not up to round-off
 }
@@ -248,17 +296,24 @@ void fibre_kept_out(const GuideTrack& track, const Vec3& pore, double length, do
   if (!out_of_head) return;
   const int n = static_cast<int>(stations.size());
   if (in_head) in_head[0] = -1;
+  const bool chords = static_cast<bool>(out_of_head.chord_crossing);
+  const bool bounded = chords && out_of_head.clearance;
+  double clearance_before = bounded ? out_of_head.clearance(points[0]) : 0.0;
   for (int i = 1; i < n; ++i) {
     double value = std::numeric_limits<double>::quiet_NaN();
     const bool chord_dips = i == 1 ? dips(out_of_head, points[0], points[1], kFirstSegmentProbes) ||
                                          (root_normal && first_segment_low(*root_normal, points))
                                    : dips(out_of_head, points[i - 1], points[i], kSegmentProbes);
-    if (out_of_head(points[i], value) != points[i] || chord_dips) {
+    const double clearance = bounded ? out_of_head.clearance(points[i]) : 0.0;
+    ChordCrossing unused;
+    if (out_of_head(points[i], value) != points[i] || chord_dips ||
+        (chords && chord_crosses(out_of_head, points[i - 1], points[i], unused, clearance_before, clearance))) {
       fibre_along(track, pore, length, wisp_extent, stations, &out_of_head, root_normal, points, layout);
       if (in_head) std::fill(in_head, in_head + n, std::int8_t(-1));
       return;
     }
     if (in_head) in_head[i] = std::isnan(value) ? -1 : value < 0.0;
+    clearance_before = clearance;
   }
 }
 

@@ -2,7 +2,10 @@
 // cluster, inside a generalised cylinder whose radius varies along the guide, optionally winding
 // about it, then optionally cut where it leaves the volume.
 #pragma once
+#include <cstddef>
 #include <cstdint>
+#include <functional>
+#include <type_traits>
 #include <vector>
 
 #include "core/curves.h"
@@ -44,11 +47,38 @@ struct Strands {
   int cut_count = 0;
 };
 
-// Returns a point behind the scalp moved back out of the head, and any other point unchanged, and
-// sets `scalp` to the scalp's signed distance at the given point (negative inside the head), or to
-// +infinity where the point is certainly in front of the scalp; make_strands hands it on (only its
-// sign matters; scalp_exit in lib/pipeline builds it from the scalp's distance field).
-using HeadExit = std::function<Vec3(const Vec3& p, double& scalp)>;
+// Where a fibre's chord first crosses the scalp: the share t of the way along it, a point of the
+// crossed triangle's plane, and that plane's unit normal pointing out of the head.
+struct ChordCrossing {
+  double t = -1.0;
+  Vec3 point = Vec3::Zero();
+  Vec3 normal = Vec3::Zero();
+};
+
+// How make_strands keeps fibres out of the head (scalp_exit in lib/pipeline builds it from the
+// scalp's distance field and mesh).
+struct HeadExit {
+  // Returns a point behind the scalp moved back out of the head, and any other point unchanged,
+  // and sets `scalp` to the scalp's signed distance at the given point (negative inside the head),
+  // or to +infinity where the point is certainly in front of the scalp; make_strands hands it on
+  // (only its sign matters).
+  std::function<Vec3(const Vec3& p, double& scalp)> move_out;
+  // Optional, exact: whether the chord a→b crosses the scalp's triangles, and where first. With
+  // it, no fibre segment the repair can lift off the scalp is left crossing it (the probes of
+  // move_out see only the interpolated field, which rounds the scalp's folds and its rim).
+  std::function<bool(const Vec3& a, const Vec3& b, ChordCrossing& first)> chord_crossing;
+  // Optional, with chord_crossing: a distance (cm) the distance from p to the scalp is never
+  // below, cheap to look up. Chords whose ends' bounds add up to more than their length are not
+  // tested; without it every chord is.
+  std::function<double(const Vec3& p)> clearance;
+
+  HeadExit() = default;
+  HeadExit(std::nullptr_t) {}
+  template <class MoveOut, class = std::enable_if_t<std::is_invocable_r_v<Vec3, MoveOut, const Vec3&, double&>>>
+  HeadExit(MoveOut move) : move_out(std::move(move)) {}
+  explicit operator bool() const { return static_cast<bool>(move_out); }
+  Vec3 operator()(const Vec3& p, double& scalp) const { return move_out(p, scalp); }
+};
 
 // The clearance (cm) a head exit keeps the points it moves at, in front of the scalp.
 constexpr double kHeadExitClearance = 0.05;

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/random.h"
 #include "field/distance_field.h"
 #include "field/field_nrrd.h"
 #include "test_meshes.h"
@@ -444,4 +445,29 @@ TEST_CASE("field_to_nrrd: every sample in x-fastest order, the same for any thre
   CHECK(one.data[i + static_cast<std::size_t>(f.dims().x()) * (j + static_cast<std::size_t>(f.dims().y()) * k)] ==
         static_cast<float>(f.sample(i, j, k)));
   for (int threads : {2, 3}) CHECK(field_to_nrrd(f, threads).data == one.data);
+}
+
+TEST_CASE("distance_lower_bound never exceeds the exact distance, and is within a voxel of it near the mesh") {
+  // A sphere and a cube (edges and corners), at random points inside the grid, beyond it and far
+  // beyond the band, against brute-force distances.
+  for (const Mesh& mesh : {test::icosphere(2, 1.0), test::cube(0.5)}) {
+    const DistanceField f = make_distance_field(mesh, spec_for(0.07, 3, 0.4), 2);
+    Random r(11, RandomStage::test, 0);
+    int near = 0;
+    for (int k = 0; k < 4000; ++k) {
+      const double reach = k % 2 ? 1.2 : 2.5;  // every other point near the mesh
+      const Vec3 p(r.uniform(-reach, reach), r.uniform(-reach, reach), r.uniform(-reach, reach));
+      const double exact = test::brute_distance(mesh, p), lower = f.distance_lower_bound(p);
+      CHECK(lower <= exact + 1e-12);
+      if (exact < f.band_width() - f.voxel()) {
+        ++near;
+        // The nearest node is at most √3/2 voxels away, and its sample is exact: the bound loses
+        // at most twice that.
+        CHECK(lower >= exact - std::sqrt(3.0) * f.voxel() - 1e-12);
+      }
+    }
+    CHECK(near > 100);
+  }
+  CHECK(make_distance_field(test::icosphere(1, 1.0), spec_for(0.1, 3, 0.4), 1)
+            .distance_lower_bound(Vec3(std::nan(""), 0, 0)) == -std::numeric_limits<double>::infinity());
 }

@@ -81,3 +81,35 @@ TEST_CASE("opposite curves differ by 180°") {
   CHECK(f.crossing_share == 1.0);
   CHECK(f.median_degrees == doctest::Approx(179.975));
 }
+
+TEST_CASE("above max_points the figures are estimated from a sample, close to the exact count") {
+  // 400 wavy curves in a 6 cm box, 30 points each (12 000 points), sampled at 2 000.
+  Curves c;
+  for (int k = 0; k < 400; ++k) {
+    Random r(4, RandomStage::test, k);
+    const Vec3 start(r.uniform(0, 6), r.uniform(0, 6), r.uniform(0, 6));
+    const double phase = r.uniform(0, 2 * M_PI), tilt = r.uniform(-0.8, 0.8);
+    std::vector<Vec3> points;
+    for (int i = 0; i < 30; ++i) points.push_back(start + Vec3(0.2 * i, tilt * std::sin(0.4 * i + phase), 0.1 * i * tilt));
+    c.add(points, k);
+  }
+  FlowCrossingOptions exact;
+  exact.max_points = 0;
+  exact.threads = 2;
+  const FlowCrossing all = flow_crossing(c, exact);
+  FlowCrossingOptions sample = exact;
+  sample.max_points = 2000;
+  const FlowCrossing some = flow_crossing(c, sample);
+  CHECK(all.sampled_points == 0);
+  CHECK(some.sampled_points == 2000);
+  MESSAGE("crossing share " << all.crossing_share << " exact, " << some.crossing_share << " sampled; median "
+                            << all.median_degrees << "°, " << some.median_degrees << "°");
+  CHECK(all.crossing_share > 0.05);  // the case has crossings to estimate
+  CHECK(std::abs(some.crossing_share - all.crossing_share) < 0.02);
+  CHECK(std::abs(some.median_degrees - all.median_degrees) < 2.0);
+  CHECK(std::abs(static_cast<double>(some.pairs) / all.pairs - 1.0) < 0.05);
+  sample.threads = 1;
+  const FlowCrossing serial = flow_crossing(c, sample);
+  CHECK(serial.crossing_share == some.crossing_share);
+  CHECK(serial.median_degrees == some.median_degrees);
+}

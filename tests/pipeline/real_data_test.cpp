@@ -83,11 +83,10 @@ TEST_CASE("real data: open multi-part hulls that dip under the skin run end to e
                       << figure(r.report, "strands", "inside_fraction") << "; segments crossing the scalp "
                       << check.crossings << " of " << check.segments);
     CHECK(check.finite);
-    // Every fibre point lies outside the head and every segment is probed (its midpoint, and the
-    // first also a quarter along), but a chord can still graze the scalp between probes (measured:
-    // 74 of short04's 32 996 segments, 88 of bob01's 33 423, 32 of ponytail01's 32 643). Not yet
-    // zero, which the real-data target asks for.
-    CHECK(check.crossings < 0.003 * check.segments);
+    // Every chord is tested against the scalp's triangles and lifted off where it crosses them,
+    // and the run's own exact count agrees.
+    CHECK(check.crossings == 0);
+    CHECK(figure(r.report, "strands", "scalp_crossings") == 0);
     CHECK(check.inside >= c.strands_inside);
     // The fields' figure measures the same region: it agrees with the direct sums to within the
     // points that lie within a voxel of the surface.

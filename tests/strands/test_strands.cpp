@@ -4,6 +4,8 @@
 #include <limits>
 
 #include "core/random.h"
+#include "core/segment_triangle.h"
+#include "core/triangle_grid.h"
 #include "strands/cutting.h"
 #include "strands/guide_track.h"
 #include "strands/strands.h"
@@ -348,4 +350,67 @@ TEST_CASE("make_strands takes over fibres grown beforehand (grow_fibre): the sam
   }
   std::vector<Vec3> wrong(5);
   CHECK_THROWS_AS(make_strands(guides, pores, o, slab, project, nullptr, nullptr, &wrong), std::invalid_argument);
+}
+
+TEST_CASE("a chord through a narrow ridge the exit does not see is lifted off it, keeping root and length") {
+  // The scalp is y = h(x) with a ridge h = 0.4·exp(−(x − 5)²/0.2) across it, the head below; the
+  // exit sees only the plane y = 0 (as an interpolated field rounds a feature narrower than a
+  // voxel). The guide rises from the scalp to y = 0.15 within 1 cm and runs along x through the
+  // ridge, so fibre points land on both sides of it and chords pass through it. The exact chord test is the triangle grid's.
+  Mesh scalp;
+  const int nx = 240, nz = 40;
+  for (int k = 0; k <= nz; ++k)
+    for (int i = 0; i <= nx; ++i) {
+      const double x = -1.0 + 12.0 * i / nx, z = -2.0 + 4.0 * k / nz;
+      scalp.positions.emplace_back(x, 0.4 * std::exp(-(x - 5.0) * (x - 5.0) / 0.2), z);
+    }
+  for (int k = 0; k < nz; ++k)
+    for (int i = 0; i < nx; ++i) {
+      const int v = k * (nx + 1) + i;
+      scalp.triangles.emplace_back(v, v + nx + 1, v + 1);  // normals toward +y, out of the head
+      scalp.triangles.emplace_back(v + 1, v + nx + 1, v + nx + 2);
+    }
+  REQUIRE(triangle_normal(scalp, 0).y() > 0);
+  const TriangleGrid grid(scalp);
+  HeadExit exit = [](const Vec3& p, double& value) {
+    value = p.y();
+    return p.y() < 0.0 ? Vec3(p.x(), 0.0, p.z()) : p;
+  };
+  const HeadExit blind = exit;
+  exit.chord_crossing = [&](const Vec3& a, const Vec3& b, ChordCrossing& first) {
+    const SegmentHit hit = grid.first_crossing(a, b);
+    if (hit.t < 0) return false;
+    first = {hit.t, a + hit.t * (b - a), triangle_normal(scalp, hit.triangle)};
+    return true;
+  };
+  auto crossings = [&](const std::vector<Vec3>& fibre) {  // every triangle, no grid
+    int n = 0;
+    for (std::size_t i = 1; i < fibre.size(); ++i)
+      for (const Vec3i& f : scalp.triangles)
+        if (segment_triangle_parameter(fibre[i - 1], fibre[i], scalp.positions[f[0]], scalp.positions[f[1]], scalp.positions[f[2]]) >= 0) {
+          ++n;
+          break;
+        }
+    return n;
+  };
+  std::vector<Vec3> guide;
+  for (int i = 0; i <= 40; ++i) guide.emplace_back(0.25 * i, 0.15 * std::min(1.0, 0.25 * i), 0.0);
+  StrandOptions o;
+  o.points = 20;
+  o.root_radius = 0.3;
+  o.tip_radius = 0.6;
+  Random r(8, RandomStage::test, 0);
+  int crossed_before = 0;
+  for (int k = 0; k < 40; ++k) {
+    const Vec3 pore(0.0, 0.0, r.uniform(-0.3, 0.3));
+    const double length = r.uniform(7.0, 12.0);
+    const std::vector<Vec3> loose = make_fibre(guide, pore, length, 0.3, o, blind);
+    const std::vector<Vec3> kept = make_fibre(guide, pore, length, 0.3, o, exit);
+    crossed_before += crossings(loose) > 0;
+    CHECK(kept[0] == pore);
+    CHECK(crossings(kept) == 0);
+    CHECK(std::fabs(polyline_length(kept) - length) <= 1e-6 * length);
+    if (crossings(loose) == 0) CHECK(kept == loose);
+  }
+  CHECK(crossed_before > 20);  // the case exercises the lift
 }

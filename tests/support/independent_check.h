@@ -10,30 +10,20 @@
 
 #include "core/curves.h"
 #include "core/fast_winding.h"
+#include "core/segment_triangle.h"
 #include "field/hair_region.h"
 
 namespace hairfit::testing {
 
-// Whether segment pq crosses triangle abc (Möller–Trumbore, the segment's open interior).
+// Whether segment pq crosses triangle abc (the segment's open interior).
 inline bool segment_crosses_triangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Vec3 d = q - p, e1 = b - a, e2 = c - a, h = d.cross(e2);
-  const double det = e1.dot(h);
-  if (std::abs(det) < 1e-300) return false;
-  const Vec3 s = p - a;
-  const double u = s.dot(h) / det;
-  if (u < 0 || u > 1) return false;
-  const Vec3 w = s.cross(e1);
-  const double v = d.dot(w) / det;
-  if (v < 0 || u + v > 1) return false;
-  const double t = e2.dot(w) / det;
-  return t > 1e-9 && t < 1 - 1e-9;
+  return segment_triangle_parameter(p, q, a, b, c) >= 0.0;
 }
 
 struct IndependentCheck {
   double inside = 0.0;      // share of fibre points after the root inside the region (direct sums)
   long long crossings = 0;  // fibre segments that cross the scalp
   long long segments = 0;
-  std::vector<int> crossing_segment;  // per crossing: the segment's place along its fibre (1 = the first)
   bool finite = true;
 };
 
@@ -88,7 +78,6 @@ inline IndependentCheck independent_check(const Mesh& volume, bool volume_closed
         crossing = crossing || segment_crosses_triangle(q, p, scalp.positions[f[0]], scalp.positions[f[1]], scalp.positions[f[2]]);
       }
       r.crossings += crossing;
-      if (crossing) r.crossing_segment.push_back(static_cast<int>(k - fibres.offsets[c]));
     }
   r.inside = points ? double(inside) / points : 0.0;
   return r;

@@ -1,0 +1,69 @@
+#include "pipeline/scalp_exit.h"
+
+#include <limits>
+
+#include "core/parallel.h"
+
+namespace hairfit {
+
+namespace {
+
+// The repair's test counts chords that pass within this much (barycentric) of a triangle as
+// crossing it, so that a chord it leaves is clear of the scalp's rim by more than round-off: the
+// exact count then finds it clear too, also after the length solve shortens its last chord.
+constexpr double kChordSlack = 1e-6;
+
+}  // namespace
+
+// The clearance (0.5 mm) is the sagitta of a 2 cm chord over a head of 10 cm radius: a fibre
+// lying along the scalp has its points that far out, so the straight segments between them
+// seldom dip under it. Most points are well in front of the scalp, which the field's side() tells
+// without interpolating (reported as +infinity).
+HeadExit scalp_exit(const DistanceField& scalp, const TriangleGrid* scalp_triangles, int outward) {
+  HeadExit exit = [&scalp](const Vec3& p, double& value_at_p) {
+    if (scalp.side(p) > 0) {
+      value_at_p = std::numeric_limits<double>::infinity();
+      return p;
+    }
+    value_at_p = scalp.value(p);  // = value_and_gradient(p).value; the gradient only when it is near
+    if (!(value_at_p < kHeadExitClearance)) return p;
+    Vec3 q = p;
+    for (int step = 0; step < 4; ++step) {
+      const FieldValueGradient vg = scalp.value_and_gradient(q);
+      const double g2 = vg.gradient.squaredNorm();
+      if (vg.value >= 0.9 * kHeadExitClearance || !(g2 > 1e-12)) break;
+      q -= (vg.value - kHeadExitClearance) / g2 * vg.gradient;
+    }
+    return q;
+  };
+  if (scalp_triangles) {
+    exit.clearance = [&scalp](const Vec3& p) { return scalp.distance_lower_bound(p); };
+    exit.chord_crossing = [scalp_triangles, outward](const Vec3& a, const Vec3& b, ChordCrossing& first) {
+      const SegmentHit hit = scalp_triangles->first_crossing(a, b, kChordSlack);
+      if (hit.t < 0.0) return false;
+      first.t = hit.t;
+      first.point = a + hit.t * (b - a);
+      first.normal = outward * triangle_normal(scalp_triangles->mesh(), hit.triangle);
+      return true;
+    };
+  }
+  return exit;
+}
+
+long long scalp_crossings(const Curves& fibres, const DistanceField& scalp, const TriangleGrid& scalp_triangles, int threads) {
+  std::vector<int> per_fibre(fibres.count(), 0);
+  parallel_for(static_cast<int>(fibres.count()), threads, [&](int c) {
+    double before = scalp.distance_lower_bound(fibres.points[fibres.offsets[c]]);
+    for (std::size_t k = fibres.offsets[c] + 1; k < fibres.offsets[c + 1]; ++k) {
+      const Vec3 &a = fibres.points[k - 1], &b = fibres.points[k];
+      const double here = scalp.distance_lower_bound(b);
+      per_fibre[c] += before + here <= (b - a).norm() && scalp_triangles.first_crossing(a, b).t >= 0.0;
+      before = here;
+    }
+  });
+  long long total = 0;
+  for (int n : per_fibre) total += n;
+  return total;
+}
+
+}  // namespace hairfit

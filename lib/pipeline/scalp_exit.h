@@ -1,0 +1,22 @@
+// How the strands stage keeps fibres out of the head: points moved out along the scalp field's
+// gradient, and chords tested exactly against the scalp's triangles.
+#pragma once
+#include "core/triangle_grid.h"
+#include "field/distance_field.h"
+#include "strands/strands.h"
+
+namespace hairfit {
+
+// A point behind the scalp (or within kHeadExitClearance of it) moves along the field's gradient
+// to kHeadExitClearance in front of it (up to four Newton steps on the interpolated field).
+// With `scalp_triangles` (the scalp the field closes under its floor; `outward` turns its
+// triangles' normals out of the head, ScalpChart::outward), chords are tested exactly wherever
+// the field's lower bound on the distance at their ends does not rule a crossing out. Both must
+// outlive the result.
+HeadExit scalp_exit(const DistanceField& scalp, const TriangleGrid* scalp_triangles = nullptr, int outward = 1);
+
+// Fibre segments (consecutive points of one curve) that cross the scalp's triangles, by the same
+// exact test and the same ruling out by `scalp`'s lower bound.
+long long scalp_crossings(const Curves& fibres, const DistanceField& scalp, const TriangleGrid& scalp_triangles, int threads);
+
+}  // namespace hairfit
