@@ -55,6 +55,9 @@ Diagnostic Scene::at(const std::string& key, const std::string& message) const {
 
 namespace {
 
+// strands.contain for hair from the shell (cm): an excursion deeper than this is left to cutting.
+constexpr double kShellContain = 1.0;
+
 std::size_t edit_distance(const std::string& a, const std::string& b) {
   std::vector<std::size_t> row(b.size() + 1);
   for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
@@ -195,6 +198,9 @@ class SceneParser {
                                      {"preguides.immersion", "layer"},
                                      {"guides.boundary", "layer"}})
       if (!scene_.locations.count(key)) find_key(key)->store(scene_, {}, {value});
+    // Fibres spread about their guides wider than a thin layer is thick: those that skim out of
+    // it (most by under 1 mm) are held in.
+    if (!scene_.locations.count("strands.contain")) find_key("strands.contain")->store(scene_, {kShellContain}, {});
     // The guides start from pre-guides that already lie in the layer: a looser stop loses nothing
     // there (MakeHuman short04: 0.979 of the nodes inside at 1e-6 and 1e-5, 35.9 and 29.0
     // evaluations a guide). An accuracy preset's own tolerance wins.

@@ -507,8 +507,9 @@ class Runner {
     o.progress = loop_progress();
     FibrePointSides known;  // looked up on the way: the counts need not ask again
     const TriangleGrid scalp_triangles(v.chart->mesh);
-    Strands s = make_strands(v.guides->curves(), pores(), o, volume_distance,
-                             scalp_exit(*v.scalp_field, &scalp_triangles, v.chart->outward), &known, volume_quick,
+    HeadExit exit = scalp_exit(*v.scalp_field, &scalp_triangles, v.chart->outward);
+    if (scene_.strands.contain > 0.0) exit.into_volume = into_volume(*v.volume_field, scene_.strands.contain);
+    Strands s = make_strands(v.guides->curves(), pores(), o, volume_distance, exit, &known, volume_quick,
                              deposited_fibres_.empty() ? nullptr : &deposited_fibres_);
     add_widths(s.fibres, scene_.hair.cross_section, options_.threads);
     v.strands = std::make_shared<const Strands>(std::move(s));

@@ -13,7 +13,29 @@ namespace {
 // exact count then finds it clear too, also after the length solve shortens its last chord.
 constexpr double kChordSlack = 1e-6;
 
+// p moved along the field's gradient until the field reads `level` there, or within 10 % of it on
+// the side `sense` (+1: above, −1: below) points to: up to four Newton steps.
+Vec3 to_level(const DistanceField& field, const Vec3& p, double level, double sense) {
+  Vec3 q = p;
+  for (int step = 0; step < 4; ++step) {
+    const FieldValueGradient vg = field.value_and_gradient(q);
+    const double g2 = vg.gradient.squaredNorm();
+    if (sense * (vg.value - level) >= -0.1 * std::abs(level) || !(g2 > 1e-12)) break;
+    q -= (vg.value - level) / g2 * vg.gradient;
+  }
+  return q;
+}
+
 }  // namespace
+
+std::function<Vec3(const Vec3&)> into_volume(const DistanceField& volume, double reach) {
+  return [&volume, reach](const Vec3& p) {
+    if (volume.side(p) < 0) return p;
+    const double value = volume.value(p);
+    if (!(value > 0.0) || value > reach) return p;
+    return to_level(volume, p, -kVolumeClearance, -1.0);
+  };
+}
 
 // The clearance (0.5 mm) is the sagitta of a 2 cm chord over a head of 10 cm radius: a fibre
 // lying along the scalp has its points that far out, so the straight segments between them
@@ -27,14 +49,7 @@ HeadExit scalp_exit(const DistanceField& scalp, const TriangleGrid* scalp_triang
     }
     value_at_p = scalp.value(p);  // = value_and_gradient(p).value; the gradient only when it is near
     if (!(value_at_p < kHeadExitClearance)) return p;
-    Vec3 q = p;
-    for (int step = 0; step < 4; ++step) {
-      const FieldValueGradient vg = scalp.value_and_gradient(q);
-      const double g2 = vg.gradient.squaredNorm();
-      if (vg.value >= 0.9 * kHeadExitClearance || !(g2 > 1e-12)) break;
-      q -= (vg.value - kHeadExitClearance) / g2 * vg.gradient;
-    }
-    return q;
+    return to_level(scalp, p, kHeadExitClearance, 1.0);
   };
   if (scalp_triangles) {
     exit.clearance = [&scalp](const Vec3& p) { return scalp.distance_lower_bound(p); };

@@ -15,6 +15,14 @@ namespace hairfit {
 // outlive the result.
 HeadExit scalp_exit(const DistanceField& scalp, const TriangleGrid* scalp_triangles = nullptr, int outward = 1);
 
+// The clearance (cm) inside the volume that contained points move to.
+constexpr double kVolumeClearance = 0.05;
+
+// HeadExit::into_volume from the volume's distance field: a point outside it by less than `reach`
+// (cm) moves along the field's gradient to kVolumeClearance inside (up to four Newton steps on
+// the interpolated field); `volume` must outlive the result.
+std::function<Vec3(const Vec3&)> into_volume(const DistanceField& volume, double reach);
+
 // Fibre segments (consecutive points of one curve) that cross the scalp's triangles, by the same
 // exact test and the same ruling out by `scalp`'s lower bound.
 long long scalp_crossings(const Curves& fibres, const DistanceField& scalp, const TriangleGrid& scalp_triangles, int threads);

@@ -109,8 +109,10 @@ std::vector<StageDeclaration> stage_declarations(const Scene& scene) {
   StageDeclaration strands = named("strands");
   read_strands(scene, strands);
   append(strands.reads, {"hair.cross_section"});  // fibre widths
+  if (scene.strands.contain > 0.0) append(strands.reads, {"strands.contain"});  // the deposit's fibres do not
   append(strands.consumes, {"roots", "guides"});
-  if (scene.effects.cutting) strands.consumes.push_back("fields");  // cut where the fibres leave the volume
+  if (scene.effects.cutting || scene.strands.contain > 0.0)
+    strands.consumes.push_back("fields");  // cut where the fibres leave the volume, or held in it
   // Not stored: the strands (and the density of the final fibres) are hit only when nothing
   // before them changed, while every new weight or strand setting would add the largest entry of
   // all (31 MB for the spheroid's 68 000 fibres, against 15 MB for its guides); rebuilding them

@@ -321,8 +321,9 @@ std::string prepared_scene_text(const Prepared& p, const std::string& scan_name,
       "# Hair that fits the shell: 0 cm thick at the hairline, %.3g cm over the crown, and no point of it\n"
       "# farther than %.3g cm from the hairline. hair.length and hair.tilt are left to the run, which\n"
       "# derives them from the layer (about %.1f cm at %.0f°) with the thin-shell defaults: roots tilt\n"
-      "# toward the thicker layer along a growth field steered by the hull's relief, and pre-guides and\n"
-      "# guides run in the layer. Set them here to choose otherwise.\n"
+      "# toward the thicker layer along a growth field steered by the hull's relief, pre-guides and\n"
+      "# guides run in the layer, and fibres that skim out of it are held in. Set them here to choose\n"
+      "# otherwise.\n"
       "[hair]\n"
       "swirl = %.0f                   # degrees: roots turn so the hair spirals into the crown like a whorl; turned\n"
       "                             # straight to the thicker layer it would meet there from every side\n",

@@ -188,13 +188,16 @@ void lift_off_crossings(const HeadExit& out_of_head, Vec3* points, int n) {
   }
 }
 
-// Passes every point but the root through `out_of_head` (and, given the pore's triangle normal,
-// raises the first segment above the triangle's plane), then, root to tip, every segment's
+// Passes every point but the root into the volume (HeadExit::into_volume, if given) and through
+// `out_of_head` (and, given the pore's triangle normal, raises the first segment above the
+// triangle's plane), then, root to tip, every segment's
 // probes: where a chord dips into the head at the fraction t of its length (the probe lies behind
 // the scalp and the exit moves it by Δ), its far end moves out by Δ / t, which lifts the probe out
 // with it.
 void keep_out(const HeadExit& out_of_head, const Vec3* root_normal, Vec3* points, int n) {
   double unused;
+  if (out_of_head.into_volume)
+    for (int i = 1; i < n; ++i) points[i] = out_of_head.into_volume(points[i]);
   for (int i = 1; i < n; ++i) points[i] = out_of_head(points[i], unused);
   if (root_normal) raise_first_segment(*root_normal, points);
   for (int i = 1; i < n; ++i) {
@@ -307,6 +310,7 @@ void fibre_kept_out(const GuideTrack& track, const Vec3& pore, double length, do
     const double clearance = bounded ? out_of_head.clearance(points[i]) : 0.0;
     ChordCrossing unused;
     if (out_of_head(points[i], value) != points[i] || chord_dips ||
+        (out_of_head.into_volume && out_of_head.into_volume(points[i]) != points[i]) ||
         (chords && chord_crosses(out_of_head, points[i - 1], points[i], unused, clearance_before, clearance))) {
       fibre_along(track, pore, length, wisp_extent, stations, &out_of_head, root_normal, points, layout);
       if (in_head) std::fill(in_head, in_head + n, std::int8_t(-1));

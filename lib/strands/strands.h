@@ -55,8 +55,8 @@ struct ChordCrossing {
   Vec3 normal = Vec3::Zero();
 };
 
-// How make_strands keeps fibres out of the head (scalp_exit in lib/pipeline builds it from the
-// scalp's distance field and mesh).
+// How make_strands keeps fibres out of the head, and optionally in the hair volume (scalp_exit in
+// lib/pipeline builds it from the fields and the scalp's mesh).
 struct HeadExit {
   // Returns a point behind the scalp moved back out of the head, and any other point unchanged,
   // and sets `scalp` to the scalp's signed distance at the given point (negative inside the head),
@@ -71,6 +71,9 @@ struct HeadExit {
   // below, cheap to look up. Chords whose ends' bounds add up to more than their length are not
   // tested; without it every chord is.
   std::function<double(const Vec3& p)> clearance;
+  // Optional: returns a point a little outside the hair volume moved back in, any other point
+  // unchanged. Applied before move_out, so where the layer is too thin for both the head wins.
+  std::function<Vec3(const Vec3& p)> into_volume;
 
   HeadExit() = default;
   HeadExit(std::nullptr_t) {}

@@ -103,7 +103,7 @@ TEST_CASE("every sculpted bust prepares into a scene whose strands stay inside a
                  << check.crossings << " of " << check.segments << ", flow crossing "
                  << figure(r.report, "guides", "flow_crossing"));
     CHECK(check.finite);
-    CHECK(check.inside >= 0.99);
+    CHECK(check.inside >= 0.995);  // measured 0.998–0.9999 with strands.contain (0.994–0.998 without)
     // Every chord is tested against the scalp's triangles and lifted off where it crosses them.
     CHECK(check.crossings == 0);
     CHECK(figure(r.report, "strands", "scalp_crossings") == 0);

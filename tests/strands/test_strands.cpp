@@ -414,3 +414,40 @@ TEST_CASE("a chord through a narrow ridge the exit does not see is lifted off it
   }
   CHECK(crossed_before > 20);  // the case exercises the lift
 }
+
+TEST_CASE("fibres held in a thin layer: points that skim out of the volume move back in, keeping root and length") {
+  // The layer 0 ≤ y ≤ 0.4 over the scalp y = 0 (the head below): a guide along its middle and
+  // wisps 0.3–0.6 cm wide, winding, so fibres leave it on both sides. The volume's exit moves a
+  // point above the layer by less than 1 cm to 0.02 cm inside it; the head's exit comes after.
+  std::vector<Vec3> guide;
+  for (int i = 0; i <= 40; ++i) guide.emplace_back(0.25 * i, 0.2 * std::min(1.0, 0.25 * i), 0.0);
+  HeadExit exit = [](const Vec3& p, double& scalp) {
+    scalp = p.y();
+    return p.y() < 0.0 ? Vec3(p.x(), 0.0, p.z()) : p;
+  };
+  const HeadExit head_only = exit;
+  exit.into_volume = [](const Vec3& p) { return p.y() > 0.4 && p.y() < 1.4 ? Vec3(p.x(), 0.38, p.z()) : p; };
+  StrandOptions o;
+  o.points = 24;
+  o.root_radius = 0.3;
+  o.tip_radius = 0.6;
+  o.turns = 0.75;
+  Random r(9, RandomStage::test, 0);
+  int left_before = 0;
+  for (int k = 0; k < 40; ++k) {
+    const Vec3 pore(0.0, 0.0, r.uniform(-0.3, 0.3));
+    const double length = r.uniform(6.0, 12.0);
+    const std::vector<Vec3> loose = make_fibre(guide, pore, length, 0.3, o, head_only);
+    const std::vector<Vec3> held = make_fibre(guide, pore, length, 0.3, o, exit);
+    bool left = false;
+    for (const Vec3& p : loose) left = left || p.y() > 0.4;
+    left_before += left;
+    CHECK(held[0] == pore);
+    for (const Vec3& p : held) {
+      CHECK(p.y() >= 0.0);
+      CHECK(p.y() <= 0.4);
+    }
+    CHECK(std::fabs(polyline_length(held) - length) <= 1e-6 * length);
+  }
+  CHECK(left_before > 20);  // the case exercises the containment
+}
