@@ -33,6 +33,32 @@ std::vector<Vec3> bent_guide(int n = 41) {
   return g;
 }
 
+// The scalp y = 0 with the head below it, its exit the exact projection onto it.
+HeadExit plane_scalp_exit() {
+  return [](const Vec3& p, double& scalp) {
+    scalp = p.y();
+    return p.y() < 0.0 ? Vec3(p.x(), 0.0, p.z()) : p;
+  };
+}
+
+// A guide along x that rises from the scalp y = 0 to `height` within its first centimetre.
+std::vector<Vec3> rising_guide(double height) {
+  std::vector<Vec3> guide;
+  for (int i = 0; i <= 40; ++i) guide.emplace_back(0.25 * i, height * std::min(1.0, 0.25 * i), 0.0);
+  return guide;
+}
+
+// Forty fibres from pores in the guide's root disk (|z| ≤ 0.3, on the scalp), of random lengths
+// in [shortest, longest]: visit(pore, length).
+template <class Visit>
+void forty_fibres(std::uint64_t seed, double shortest, double longest, Visit visit) {
+  Random r(seed, RandomStage::test, 0);
+  for (int k = 0; k < 40; ++k) {
+    const Vec3 pore(0.0, 0.0, r.uniform(-0.3, 0.3));
+    visit(pore, r.uniform(shortest, longest));
+  }
+}
+
 }  // namespace
 
 TEST_CASE("cutting: an excursion under the threshold is kept, one over it is cut where it left") {
@@ -259,10 +285,7 @@ TEST_CASE("a fibre that would pass behind the scalp is moved out of the head, ke
   // onto it. The guide hugs the scalp, so a wisp winding about it sends its fibres below.
   std::vector<Vec3> guide;
   for (int i = 0; i <= 40; ++i) guide.emplace_back(0.25 * i, 0.05 * std::sin(M_PI * i / 40.0), 0.0);
-  const HeadExit project = [](const Vec3& p, double& scalp) {
-    scalp = p.y();
-    return p.y() < 0.0 ? Vec3(p.x(), 0.0, p.z()) : p;
-  };
+  const HeadExit project = plane_scalp_exit();
   StrandOptions o;
   o.points = 24;
   o.root_radius = 0.5;
@@ -296,10 +319,7 @@ TEST_CASE("make_strands takes over fibres grown beforehand (grow_fibre): the sam
     for (int i = 0; i <= 40; ++i) guide.emplace_back(0.25 * i, 0.05 * std::sin(M_PI * i / 40.0), 2.0 * g);
     guides.add(guide, g);
   }
-  const HeadExit project = [](const Vec3& p, double& scalp) {
-    scalp = p.y();
-    return p.y() < 0.0 ? Vec3(p.x(), 0.0, p.z()) : p;
-  };
+  const HeadExit project = plane_scalp_exit();
   const DistanceFunction slab = [](const Vec3& p) { return p.y() - 0.3; };
   Pores pores;
   Random r(7, RandomStage::test, 2);
@@ -372,10 +392,7 @@ TEST_CASE("a chord through a narrow ridge the exit does not see is lifted off it
     }
   REQUIRE(triangle_normal(scalp, 0).y() > 0);
   const TriangleGrid grid(scalp);
-  HeadExit exit = [](const Vec3& p, double& value) {
-    value = p.y();
-    return p.y() < 0.0 ? Vec3(p.x(), 0.0, p.z()) : p;
-  };
+  HeadExit exit = plane_scalp_exit();
   const HeadExit blind = exit;
   exit.chord_crossing = [&](const Vec3& a, const Vec3& b, ChordCrossing& first) {
     const SegmentHit hit = grid.first_crossing(a, b);
@@ -393,17 +410,11 @@ TEST_CASE("a chord through a narrow ridge the exit does not see is lifted off it
         }
     return n;
   };
-  std::vector<Vec3> guide;
-  for (int i = 0; i <= 40; ++i) guide.emplace_back(0.25 * i, 0.15 * std::min(1.0, 0.25 * i), 0.0);
+  const std::vector<Vec3> guide = rising_guide(0.15);
   StrandOptions o;
   o.points = 20;
-  o.root_radius = 0.3;
-  o.tip_radius = 0.6;
-  Random r(8, RandomStage::test, 0);
   int crossed_before = 0;
-  for (int k = 0; k < 40; ++k) {
-    const Vec3 pore(0.0, 0.0, r.uniform(-0.3, 0.3));
-    const double length = r.uniform(7.0, 12.0);
+  forty_fibres(8, 7.0, 12.0, [&](const Vec3& pore, double length) {
     const std::vector<Vec3> loose = make_fibre(guide, pore, length, 0.3, o, blind);
     const std::vector<Vec3> kept = make_fibre(guide, pore, length, 0.3, o, exit);
     crossed_before += crossings(loose) > 0;
@@ -411,7 +422,7 @@ TEST_CASE("a chord through a narrow ridge the exit does not see is lifted off it
     CHECK(crossings(kept) == 0);
     CHECK(std::fabs(polyline_length(kept) - length) <= 1e-6 * length);
     if (crossings(loose) == 0) CHECK(kept == loose);
-  }
+  });
   CHECK(crossed_before > 20);  // the case exercises the lift
 }
 
@@ -419,24 +430,15 @@ TEST_CASE("fibres held in a thin layer: points that skim out of the volume move 
   // The layer 0 ≤ y ≤ 0.4 over the scalp y = 0 (the head below): a guide along its middle and
   // wisps 0.3–0.6 cm wide, winding, so fibres leave it on both sides. The volume's exit moves a
   // point above the layer by less than 1 cm to 0.02 cm inside it; the head's exit comes after.
-  std::vector<Vec3> guide;
-  for (int i = 0; i <= 40; ++i) guide.emplace_back(0.25 * i, 0.2 * std::min(1.0, 0.25 * i), 0.0);
-  HeadExit exit = [](const Vec3& p, double& scalp) {
-    scalp = p.y();
-    return p.y() < 0.0 ? Vec3(p.x(), 0.0, p.z()) : p;
-  };
+  const std::vector<Vec3> guide = rising_guide(0.2);
+  HeadExit exit = plane_scalp_exit();
   const HeadExit head_only = exit;
   exit.into_volume = [](const Vec3& p) { return p.y() > 0.4 && p.y() < 1.4 ? Vec3(p.x(), 0.38, p.z()) : p; };
   StrandOptions o;
   o.points = 24;
-  o.root_radius = 0.3;
-  o.tip_radius = 0.6;
   o.turns = 0.75;
-  Random r(9, RandomStage::test, 0);
   int left_before = 0;
-  for (int k = 0; k < 40; ++k) {
-    const Vec3 pore(0.0, 0.0, r.uniform(-0.3, 0.3));
-    const double length = r.uniform(6.0, 12.0);
+  forty_fibres(9, 6.0, 12.0, [&](const Vec3& pore, double length) {
     const std::vector<Vec3> loose = make_fibre(guide, pore, length, 0.3, o, head_only);
     const std::vector<Vec3> held = make_fibre(guide, pore, length, 0.3, o, exit);
     bool left = false;
@@ -448,6 +450,6 @@ TEST_CASE("fibres held in a thin layer: points that skim out of the volume move 
       CHECK(p.y() <= 0.4);
     }
     CHECK(std::fabs(polyline_length(held) - length) <= 1e-6 * length);
-  }
+  });
   CHECK(left_before > 20);  // the case exercises the containment
 }
