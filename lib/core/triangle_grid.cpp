@@ -57,10 +57,12 @@ Vec3i TriangleGrid::cell_of(const Vec3& p) const {
   return c.cwiseMax(Vec3::Zero()).cwiseMin((dims_ - Vec3i::Ones()).cast<double>()).cast<int>();
 }
 
-SegmentHit TriangleGrid::first_crossing(const Vec3& p, const Vec3& q, double slack) const {
+SegmentHit TriangleGrid::first_crossing(const Vec3& p, const Vec3& q, double slack, double t_min, double t_max) const {
   SegmentHit hit;
   if (triangles_.empty() || !p.allFinite() || !q.allFinite()) return hit;
-  const Vec3 lo = p.cwiseMin(q), hi = p.cwiseMax(q);
+  // The segment as far as t reaches, beyond its ends with t_min < 0 or t_max > 1.
+  const Vec3 from = p + std::min(0.0, t_min) * (q - p), to = p + std::max(1.0, t_max) * (q - p);
+  const Vec3 lo = from.cwiseMin(to), hi = from.cwiseMax(to);
   const Vec3 box_hi = origin_ + dims_.cast<double>() * cell_;
   if ((lo.array() > box_hi.array()).any() || (hi.array() < origin_.array()).any()) return hit;
   const Vec3i a = cell_of(lo), b = cell_of(hi);
@@ -71,8 +73,9 @@ SegmentHit TriangleGrid::first_crossing(const Vec3& p, const Vec3& q, double sla
         for (int i = cell_begin_[k]; i < cell_begin_[k + 1]; ++i) {
           const int t = triangles_[i];
           const Vec3i& f = mesh_.triangles[t];
-          const double s = segment_triangle_parameter(p, q, mesh_.positions[f[0]], mesh_.positions[f[1]], mesh_.positions[f[2]], slack);
-          if (s >= 0.0 && (hit.t < 0.0 || s < hit.t || (s == hit.t && t < hit.triangle))) hit = {s, t};
+          const double s = segment_triangle_parameter(p, q, mesh_.positions[f[0]], mesh_.positions[f[1]], mesh_.positions[f[2]],
+                                                      slack, t_min, t_max);
+          if (!std::isnan(s) && (!hit.found() || s < hit.t || (s == hit.t && t < hit.triangle))) hit = {s, t};
         }
       }
   return hit;

@@ -9,8 +9,9 @@
 namespace hairfit {
 
 struct SegmentHit {
-  double t = -1.0;    // share of the way along the segment, in (0, 1); negative for no hit
-  int triangle = -1;  // the triangle crossed
+  double t = 0.0;     // share of the way along the segment
+  int triangle = -1;  // the triangle crossed, −1 for none
+  bool found() const { return triangle >= 0; }
 };
 
 class TriangleGrid {
@@ -23,9 +24,10 @@ class TriangleGrid {
   static constexpr double kSlackCovered = 1e-5;
 
   // The first crossing of segment pq with the mesh (the least t; of equal ones the lowest
-  // triangle index), as segment_triangle_parameter decides each with `slack` (≤ kSlackCovered):
-  // exact, and the same whatever the order of the cells.
-  SegmentHit first_crossing(const Vec3& p, const Vec3& q, double slack = 0.0) const;
+  // triangle index), as segment_triangle_parameter decides each with `slack` (≤ kSlackCovered)
+  // and t in (t_min, t_max): exact, and the same whatever the order of the cells.
+  SegmentHit first_crossing(const Vec3& p, const Vec3& q, double slack = 0.0, double t_min = 1e-9,
+                            double t_max = 1 - 1e-9) const;
 
   const Mesh& mesh() const { return mesh_; }
   double cell() const { return cell_; }

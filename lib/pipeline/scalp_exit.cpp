@@ -8,9 +8,10 @@ namespace hairfit {
 
 namespace {
 
-// The repair's test counts chords that pass within this much (barycentric) of a triangle as
-// crossing it, so that a chord it leaves is clear of the scalp's rim by more than round-off: the
-// exact count then finds it clear too, also after the length solve shortens its last chord.
+// The repair's test counts chords that pass within this much (barycentric) of a triangle, or end
+// within this share of their length of it, as crossing it, so that a chord it leaves is clear of
+// the scalp by more than round-off: the exact count then finds it clear too, also after the
+// length solve shortens its last chord.
 constexpr double kChordSlack = 1e-6;
 
 // p moved along the field's gradient until the field reads `level` there, or within 10 % of it on
@@ -53,9 +54,10 @@ HeadExit scalp_exit(const DistanceField& scalp, const TriangleGrid* scalp_triang
   };
   if (scalp_triangles) {
     exit.clearance = [&scalp](const Vec3& p) { return scalp.distance_lower_bound(p); };
-    exit.chord_crossing = [scalp_triangles, outward](const Vec3& a, const Vec3& b, ChordCrossing& first) {
-      const SegmentHit hit = scalp_triangles->first_crossing(a, b, kChordSlack);
-      if (hit.t < 0.0) return false;
+    exit.chord_crossing = [scalp_triangles, outward](const Vec3& a, const Vec3& b, bool from_root, ChordCrossing& first) {
+      const SegmentHit hit =
+          scalp_triangles->first_crossing(a, b, kChordSlack, from_root ? 1e-9 : -kChordSlack, 1 + kChordSlack);
+      if (!hit.found()) return false;
       first.t = hit.t;
       first.point = a + hit.t * (b - a);
       first.normal = outward * triangle_normal(scalp_triangles->mesh(), hit.triangle);
@@ -72,7 +74,7 @@ long long scalp_crossings(const Curves& fibres, const DistanceField& scalp, cons
     for (std::size_t k = fibres.offsets[c] + 1; k < fibres.offsets[c + 1]; ++k) {
       const Vec3 &a = fibres.points[k - 1], &b = fibres.points[k];
       const double here = scalp.distance_lower_bound(b);
-      per_fibre[c] += before + here <= (b - a).norm() && scalp_triangles.first_crossing(a, b).t >= 0.0;
+      per_fibre[c] += before + here <= (b - a).norm() && scalp_triangles.first_crossing(a, b).found();
       before = here;
     }
   });

@@ -107,17 +107,16 @@ struct Scratch {
   std::vector<Vec3> before_cut;
 };
 
-// Where along a segment keep_out looks for it dipping into the head: the midpoint, and on the
-// first segment also near the root, where a chord that leaves the pore below its tangent plane
-// enters the head at once.
+// Without an exact chord test (HeadExit::chord_crossing), where along a segment keep_out looks
+// for it dipping into the head: the midpoint, and on the first segment also near the root, where
+// a chord that leaves the pore below its tangent plane enters the head at once.
 constexpr double kFirstSegmentProbes[] = {0.25, 0.5};
 constexpr double kSegmentProbes[] = {0.5};
-// A probe closer to the scalp than this (cm) dips: less than the clearance the head exit keeps
-// points at (kHeadExitClearance), since near the root the chord of a fibre that leaves its pore
+// A probe closer to the scalp than this (cm) dips; with the exact test, the clearance a lifted
+// chord end keeps in front of the triangle it crossed. Less than the clearance the head exit
+// keeps points at (kHeadExitClearance): near the root the chord of a fibre that leaves its pore
 // at a low angle runs that close by construction, and lifting its far end by the whole shortfall
-// over t lifts it out of a thin layer. On the MakeHuman fixtures 0.03 cm keeps 0.967 / 0.9986 /
-// 0.980 of the fibre points inside (short04 / bob01 / ponytail01, direct sums) with 39 / 84 / 23
-// of ~33 000 segments crossing the scalp; 0.05 cm 0.951 / 0.9984 / 0.973 with 16 / 33 / 10.
+// over t lifts it out of a thin layer (bench/results/scalp_crossings.md).
 constexpr double kProbeClearance = 0.03;
 
 // Whether the segment a→b dips into the head at one of its probes: a probe within kProbeClearance
@@ -149,14 +148,14 @@ void raise_first_segment(const Vec3& n, Vec3* points) {
   points[1] = points[0] + length * (std::sqrt(1.0 - kRootRise * kRootRise) * tangent + kRootRise * n);
 }
 
-// Whether chord a→b crosses the scalp (HeadExit::chord_crossing), where the clearances at its
-// ends leave room for it to.
-bool chord_crosses(const HeadExit& out_of_head, const Vec3& a, const Vec3& b, ChordCrossing& first,
+// Whether chord a→b crosses or touches the scalp (HeadExit::chord_crossing; a is a root when
+// `from_root`), where the clearances at its ends leave room for it to.
+bool chord_crosses(const HeadExit& out_of_head, const Vec3& a, const Vec3& b, bool from_root, ChordCrossing& first,
                    double clearance_a = std::numeric_limits<double>::quiet_NaN(),
                    double clearance_b = std::numeric_limits<double>::quiet_NaN()) {
   if (std::isnan(clearance_a)) clearance_a = out_of_head.clearance ? out_of_head.clearance(a) : 0.0;
   if (std::isnan(clearance_b)) clearance_b = out_of_head.clearance ? out_of_head.clearance(b) : 0.0;
-  return clearance_a + clearance_b <= (b - a).norm() && out_of_head.chord_crossing(a, b, first);
+  return clearance_a + clearance_b <= (b - a).norm() && out_of_head.chord_crossing(a, b, from_root, first);
 }
 
 // Lifts of one segment's end off the plane of the triangle its chord crosses, and passes over the
@@ -176,7 +175,7 @@ void lift_off_crossings(const HeadExit& out_of_head, Vec3* points, int n) {
     for (int i = 1; i < n; ++i)
       for (int lift = 0; lift < kLiftsPerSegment; ++lift) {
         ChordCrossing hit;
-        if (!chord_crosses(out_of_head, points[i - 1], points[i], hit)) break;
+        if (!chord_crosses(out_of_head, points[i - 1], points[i], i == 1, hit)) break;
         const double near = hit.normal.dot(points[i - 1] - hit.point), far = hit.normal.dot(points[i] - hit.point);
         Vec3& end = far <= near ? points[i] : points[i - 1];
         if (&end == points) break;
@@ -211,6 +210,7 @@ void keep_out(const HeadExit& out_of_head, const Vec3* root_normal, Vec3* points
         points[i] = out_of_head(points[i] + share * (moved - q) / t, unused);
       }
     };
+    if (out_of_head.chord_crossing) continue;  // the exact test below supersedes the probes
     if (i == 1)
       for (double t : kFirstSegmentProbes) lift(t);
     else
@@ -304,14 +304,14 @@ void fibre_kept_out(const GuideTrack& track, const Vec3& pore, double length, do
   double clearance_before = bounded ? out_of_head.clearance(points[0]) : 0.0;
   for (int i = 1; i < n; ++i) {
     double value = std::numeric_limits<double>::quiet_NaN();
-    const bool chord_dips = i == 1 ? dips(out_of_head, points[0], points[1], kFirstSegmentProbes) ||
+    const bool chord_dips = i == 1 ? (!chords && dips(out_of_head, points[0], points[1], kFirstSegmentProbes)) ||
                                          (root_normal && first_segment_low(*root_normal, points))
-                                   : dips(out_of_head, points[i - 1], points[i], kSegmentProbes);
+                                   : !chords && dips(out_of_head, points[i - 1], points[i], kSegmentProbes);
     const double clearance = bounded ? out_of_head.clearance(points[i]) : 0.0;
     ChordCrossing unused;
     if (out_of_head(points[i], value) != points[i] || chord_dips ||
         (out_of_head.into_volume && out_of_head.into_volume(points[i]) != points[i]) ||
-        (chords && chord_crosses(out_of_head, points[i - 1], points[i], unused, clearance_before, clearance))) {
+        (chords && chord_crosses(out_of_head, points[i - 1], points[i], i == 1, unused, clearance_before, clearance))) {
       fibre_along(track, pore, length, wisp_extent, stations, &out_of_head, root_normal, points, layout);
       if (in_head) std::fill(in_head, in_head + n, std::int8_t(-1));
       return;

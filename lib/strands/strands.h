@@ -63,10 +63,13 @@ struct HeadExit {
   // or to +infinity where the point is certainly in front of the scalp; make_strands hands it on
   // (only its sign matters).
   std::function<Vec3(const Vec3& p, double& scalp)> move_out;
-  // Optional, exact: whether the chord a→b crosses the scalp's triangles, and where first. With
-  // it, no fibre segment the repair can lift off the scalp is left crossing it (the probes of
-  // move_out see only the interpolated field, which rounds the scalp's folds and its rim).
-  std::function<bool(const Vec3& a, const Vec3& b, ChordCrossing& first)> chord_crossing;
+  // Optional, exact: whether the chord a→b crosses the scalp's triangles or touches them (at an
+  // end, or a hair beside a rim: the test errs toward crossing, so that a chord it passes is clear
+  // whichever way round-off falls), and where first; `from_root`: a is a root, on the scalp by
+  // construction, whose touch does not count. With it, no fibre segment the repair can lift off
+  // the scalp is left crossing it (move_out sees only the interpolated field, which rounds the
+  // scalp's folds and its rim), and the probes along the chords are not needed.
+  std::function<bool(const Vec3& a, const Vec3& b, bool from_root, ChordCrossing& first)> chord_crossing;
   // Optional, with chord_crossing: a distance (cm) the distance from p to the scalp is never
   // below, cheap to look up. Chords whose ends' bounds add up to more than their length are not
   // tested; without it every chord is.

@@ -15,11 +15,15 @@ TEST_CASE("segment_triangle_parameter: the exact share of the way, and no crossi
   const Vec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);
   CHECK(segment_triangle_parameter(Vec3(0.25, 0.25, -1), Vec3(0.25, 0.25, 3), a, b, c) == doctest::Approx(0.25).epsilon(1e-15));
   CHECK(segment_triangle_parameter(Vec3(0.25, 0.25, 3), Vec3(0.25, 0.25, -1), a, b, c) == doctest::Approx(0.75).epsilon(1e-15));
-  CHECK(segment_triangle_parameter(Vec3(0.6, 0.6, -1), Vec3(0.6, 0.6, 1), a, b, c) < 0);    // beside the hypotenuse
-  CHECK(segment_triangle_parameter(Vec3(0.2, 0.2, 0.5), Vec3(0.2, 0.2, 2), a, b, c) < 0);   // stops short of it
-  CHECK(segment_triangle_parameter(Vec3(-1, 0.2, 0), Vec3(2, 0.2, 0), a, b, c) < 0);        // in its plane
-  CHECK(segment_triangle_parameter(Vec3(0.2, 0.2, 0), Vec3(0.2, 0.2, 1), a, b, c) < 0);     // starts on it
-  CHECK(segment_triangle_parameter(Vec3(0.2, 0.2, -1), Vec3(0.2, 0.2, 1), a, a, c) < 0);    // degenerate
+  CHECK(std::isnan(segment_triangle_parameter(Vec3(0.6, 0.6, -1), Vec3(0.6, 0.6, 1), a, b, c)));    // beside the hypotenuse
+  CHECK(std::isnan(segment_triangle_parameter(Vec3(0.2, 0.2, 0.5), Vec3(0.2, 0.2, 2), a, b, c)));   // stops short of it
+  CHECK(std::isnan(segment_triangle_parameter(Vec3(-1, 0.2, 0), Vec3(2, 0.2, 0), a, b, c)));        // in its plane
+  CHECK(std::isnan(segment_triangle_parameter(Vec3(0.2, 0.2, 0), Vec3(0.2, 0.2, 1), a, b, c)));     // starts on it
+  CHECK(std::isnan(segment_triangle_parameter(Vec3(0.2, 0.2, -1), Vec3(0.2, 0.2, 1), a, a, c)));    // degenerate
+  // With slack: a segment a hair beside an edge, and one that starts on the triangle.
+  CHECK(std::isnan(segment_triangle_parameter(Vec3(-1e-8, 0.5, -1), Vec3(-1e-8, 0.5, 1), a, b, c)));
+  CHECK(segment_triangle_parameter(Vec3(-1e-8, 0.5, -1), Vec3(-1e-8, 0.5, 1), a, b, c, 1e-6) == doctest::Approx(0.5));
+  CHECK(segment_triangle_parameter(Vec3(0.2, 0.2, 0), Vec3(0.2, 0.2, 1), a, b, c, 1e-6, -1e-6, 1 + 1e-6) == 0.0);
 }
 
 TEST_CASE("TriangleGrid: the first crossing is the brute-force scan's, for segments of every length") {
@@ -35,15 +39,15 @@ TEST_CASE("TriangleGrid: the first crossing is the brute-force scan's, for segme
     for (int t = 0; t < static_cast<int>(sphere.triangles.size()); ++t) {
       const Vec3i& f = sphere.triangles[t];
       const double s = segment_triangle_parameter(p, q, sphere.positions[f[0]], sphere.positions[f[1]], sphere.positions[f[2]]);
-      if (s >= 0 && (brute.t < 0 || s < brute.t)) brute = {s, t};
+      if (!std::isnan(s) && (!brute.found() || s < brute.t)) brute = {s, t};
     }
     const SegmentHit hit = grid.first_crossing(p, q);
-    CHECK(hit.t == brute.t);
     CHECK(hit.triangle == brute.triangle);
-    crossing += hit.t >= 0;
+    if (hit.found()) CHECK(hit.t == brute.t);
+    crossing += hit.found();
   }
   CHECK(crossing > 200);
-  CHECK(grid.first_crossing(Vec3(10, 10, 10), Vec3(11, 10, 10)).t < 0);  // beyond the grid
+  CHECK(!grid.first_crossing(Vec3(10, 10, 10), Vec3(11, 10, 10)).found());  // beyond the grid
   const Mesh empty;
-  CHECK(TriangleGrid(empty).first_crossing(Vec3(0, 0, 0), Vec3(1, 0, 0)).t < 0);
+  CHECK(!TriangleGrid(empty).first_crossing(Vec3(0, 0, 0), Vec3(1, 0, 0)).found());
 }

@@ -394,9 +394,9 @@ TEST_CASE("a chord through a narrow ridge the exit does not see is lifted off it
   const TriangleGrid grid(scalp);
   HeadExit exit = plane_scalp_exit();
   const HeadExit blind = exit;
-  exit.chord_crossing = [&](const Vec3& a, const Vec3& b, ChordCrossing& first) {
+  exit.chord_crossing = [&](const Vec3& a, const Vec3& b, bool, ChordCrossing& first) {
     const SegmentHit hit = grid.first_crossing(a, b);
-    if (hit.t < 0) return false;
+    if (!hit.found()) return false;
     first = {hit.t, a + hit.t * (b - a), triangle_normal(scalp, hit.triangle)};
     return true;
   };
@@ -404,7 +404,8 @@ TEST_CASE("a chord through a narrow ridge the exit does not see is lifted off it
     int n = 0;
     for (std::size_t i = 1; i < fibre.size(); ++i)
       for (const Vec3i& f : scalp.triangles)
-        if (segment_triangle_parameter(fibre[i - 1], fibre[i], scalp.positions[f[0]], scalp.positions[f[1]], scalp.positions[f[2]]) >= 0) {
+        if (!std::isnan(segment_triangle_parameter(fibre[i - 1], fibre[i], scalp.positions[f[0]], scalp.positions[f[1]],
+                                                   scalp.positions[f[2]]))) {
           ++n;
           break;
         }

@@ -17,7 +17,7 @@ namespace hairfit::testing {
 
 // Whether segment pq crosses triangle abc (the segment's open interior).
 inline bool segment_crosses_triangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c) {
-  return segment_triangle_parameter(p, q, a, b, c) >= 0.0;
+  return !std::isnan(segment_triangle_parameter(p, q, a, b, c));
 }
 
 struct IndependentCheck {
