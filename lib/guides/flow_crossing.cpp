@@ -8,6 +8,7 @@
 
 #include "core/parallel.h"
 #include "core/point_grid.h"
+#include "core/random.h"
 
 namespace hairfit {
 
@@ -92,13 +93,13 @@ FlowCrossing flow_crossing(const Curves& curves, const FlowCrossingOptions& o) {
   const AngleBins bin_of;
 
   // Exact: each pair is counted once, within a cell and between a cell and each neighbouring cell
-  // that comes after it. Sampled: every pair of a query point (every stride-th point, in curve
-  // order) is counted from it. Histograms per block of cells, summed in block order (integers:
+  // that comes after it. Sampled: every pair of a query point (one in `stride`, by a hash of its
+  // index: an even sample would follow the curves' node pattern) is counted from it. Histograms per block of cells, summed in block order (integers:
   // the totals do not depend on the thread count).
   const int stride = o.max_points > 0 && count > o.max_points ? (count + o.max_points - 1) / o.max_points : 1;
   std::vector<char> query(count, 1);
   if (stride > 1)
-    for (int k = 0; k < count; ++k) query[k] = grid.order()[k] % stride == 0;
+    for (int k = 0; k < count; ++k) query[k] = mix64(static_cast<std::uint64_t>(grid.order()[k])) % stride == 0;
   const int cells = grid.cell_count();
   constexpr int kBlock = 64;
   const int blocks = (cells + kBlock - 1) / kBlock;
@@ -153,8 +154,11 @@ FlowCrossing flow_crossing(const Curves& curves, const FlowCrossingOptions& o) {
   std::int64_t counted = 0;
   for (std::int64_t n : total) counted += n;
   result.sampled_points = stride > 1 ? static_cast<int>(std::count(query.begin(), query.end(), 1)) : 0;
-  // Sampled, each pair is seen from each of its ends that is a query point: about 2 / stride times.
-  result.pairs = stride > 1 ? static_cast<std::int64_t>(std::llround(0.5 * static_cast<double>(counted) * stride)) : counted;
+  // Sampled, each pair is seen from each of its ends that is a query point: 2·sampled / count
+  // times on average.
+  result.pairs = stride > 1 && result.sampled_points > 0
+                     ? static_cast<std::int64_t>(std::llround(0.5 * static_cast<double>(counted) * count / result.sampled_points))
+                     : counted;
   if (counted == 0) return result;
   result.crossing_share = static_cast<double>(crossings) / static_cast<double>(counted);
   // The median: the bin holding the middle pair, read at its centre.

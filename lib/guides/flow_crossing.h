@@ -2,9 +2,9 @@
 // curves lying between `near` and `far` apart, the share whose unit tangents differ by more than
 // `angle` degrees, and the median angle. Tangents are directed (root to tip), by central
 // differences of the polyline (one-sided at the ends). Above `max_points` points the figures are
-// estimated from the pairs of an evenly spread sample of them (every k-th point in curve order,
-// with all its neighbours): the paper-scale guides hold 195 000 points and 1.1e8 pairs. Deterministic
-// for any thread count.
+// estimated from the pairs of a sample of about that many (each point in with chance 1/k by a
+// hash of its index, with all its neighbours): the paper-scale guides hold 195 000 points and
+// 1.1e8 pairs. Deterministic for any thread count.
 #pragma once
 #include <cstdint>
 
@@ -23,7 +23,7 @@ struct FlowCrossingOptions {
   double near = 0.3;    // cm
   double far = 1.5;     // cm
   double angle = 45.0;  // degrees
-  int max_points = 20000;  // points counted exactly, all pairs; beyond, a sample of about this many (0: always all)
+  int max_points = 10000;  // points counted exactly, all pairs; beyond, a sample of about this many (0: always all)
   int threads = 1;
 };
 

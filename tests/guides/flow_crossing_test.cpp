@@ -101,7 +101,7 @@ TEST_CASE("above max_points the figures are estimated from a sample, close to th
   sample.max_points = 2000;
   const FlowCrossing some = flow_crossing(c, sample);
   CHECK(all.sampled_points == 0);
-  CHECK(some.sampled_points == 2000);
+  CHECK(std::abs(some.sampled_points - 2000) < 200);  // one point in six, by a hash of its index
   MESSAGE("crossing share " << all.crossing_share << " exact, " << some.crossing_share << " sampled; median "
                             << all.median_degrees << "°, " << some.median_degrees << "°");
   CHECK(all.crossing_share > 0.05);  // the case has crossings to estimate
