@@ -546,7 +546,7 @@ class Runner {
     if (scene_.effects.cutting) stage.add("cut_share", static_cast<double>(v.strands->cut_count) / std::max<std::size_t>(1, fibres.count()));
     // Segments whose chord crosses the scalp's triangles (exact tests): those the lift could not
     // clear, a first segment whose root lies behind a neighbouring triangle's plane.
-    stage.add("scalp_crossings", static_cast<std::int64_t>(scalp_crossings(fibres, *v.scalp_field, scalp_triangles, options_.threads)));
+    stage.add("scalp_crossings", static_cast<std::int64_t>(v.strands->scalp_crossings));
     CoverageOptions cover;
     cover.threads = options_.threads;
     const Coverage coverage = strand_coverage(

@@ -2,7 +2,6 @@
 
 #include <limits>
 
-#include "core/parallel.h"
 
 namespace hairfit {
 
@@ -65,22 +64,6 @@ HeadExit scalp_exit(const DistanceField& scalp, const TriangleGrid* scalp_triang
     };
   }
   return exit;
-}
-
-long long scalp_crossings(const Curves& fibres, const DistanceField& scalp, const TriangleGrid& scalp_triangles, int threads) {
-  std::vector<int> per_fibre(fibres.count(), 0);
-  parallel_for(static_cast<int>(fibres.count()), threads, [&](int c) {
-    double before = scalp.distance_lower_bound(fibres.points[fibres.offsets[c]]);
-    for (std::size_t k = fibres.offsets[c] + 1; k < fibres.offsets[c + 1]; ++k) {
-      const Vec3 &a = fibres.points[k - 1], &b = fibres.points[k];
-      const double here = scalp.distance_lower_bound(b);
-      per_fibre[c] += before + here <= (b - a).norm() && scalp_triangles.first_crossing(a, b).found();
-      before = here;
-    }
-  });
-  long long total = 0;
-  for (int n : per_fibre) total += n;
-  return total;
 }
 
 }  // namespace hairfit

@@ -23,8 +23,4 @@ constexpr double kVolumeClearance = 0.05;
 // the interpolated field); `volume` must outlive the result.
 std::function<Vec3(const Vec3&)> into_volume(const DistanceField& volume, double reach);
 
-// Fibre segments (consecutive points of one curve) that cross the scalp's triangles, by the same
-// exact test and the same ruling out by `scalp`'s lower bound.
-long long scalp_crossings(const Curves& fibres, const DistanceField& scalp, const TriangleGrid& scalp_triangles, int threads);
-
 }  // namespace hairfit

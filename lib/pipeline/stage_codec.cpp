@@ -12,7 +12,7 @@ static_assert(sizeof(Clusters) == 288, "Clusters changed: update stage_codec.cpp
 static_assert(sizeof(PreguideRoots) == 176, "PreguideRoots changed: update stage_codec.cpp");
 static_assert(sizeof(PreGuide) == 240, "PreGuide changed: update stage_codec.cpp");
 static_assert(sizeof(Guide) == 400, "Guide changed: update stage_codec.cpp");
-static_assert(sizeof(Strands) == 128, "Strands changed: update stage_codec.cpp");
+static_assert(sizeof(Strands) == 136, "Strands changed: update stage_codec.cpp");
 static_assert(sizeof(Curves) == 96, "Curves changed: update stage_codec.cpp");
 
 // The private parts of the two values that only their builders may assemble.
@@ -235,6 +235,7 @@ void members(IO& io, Strands& s) {
   members(io, s.fibres);
   io(s.cut);
   io(s.cut_count);
+  io(s.scalp_crossings);
 }
 
 // The encoders only read the value; the member lists take it by non-const reference to serve both.

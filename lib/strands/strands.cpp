@@ -292,11 +292,13 @@ void fibre_along(const GuideTrack& track, const Vec3& pore, double length, doubl
 // fibres never enter the head; only those that do pay for field lookups inside the length solve.
 // `in_head` (if given) receives FibrePointSides::in_head of each point of the result (−1 at the
 // root and throughout a moved fibre). `grown`: `points` already hold fibre_along's result.
-void fibre_kept_out(const GuideTrack& track, const Vec3& pore, double length, double wisp_extent,
-                    const std::vector<Station>& stations, const HeadExit& out_of_head, const Vec3* root_normal,
-                    Vec3* points, SweepPoint* layout, std::int8_t* in_head = nullptr, bool grown = false) {
+// Returns how many of the result's chords still cross the scalp by HeadExit::chord_crossing (0
+// without it): none on the fast path, whose every chord that test passed.
+int fibre_kept_out(const GuideTrack& track, const Vec3& pore, double length, double wisp_extent,
+                   const std::vector<Station>& stations, const HeadExit& out_of_head, const Vec3* root_normal,
+                   Vec3* points, SweepPoint* layout, std::int8_t* in_head = nullptr, bool grown = false) {
   if (!grown) fibre_along(track, pore, length, wisp_extent, stations, nullptr, nullptr, points, layout);
-  if (!out_of_head) return;
+  if (!out_of_head) return 0;
   const int n = static_cast<int>(stations.size());
   if (in_head) in_head[0] = -1;
   const bool chords = static_cast<bool>(out_of_head.chord_crossing);
@@ -314,11 +316,15 @@ void fibre_kept_out(const GuideTrack& track, const Vec3& pore, double length, do
         (chords && chord_crosses(out_of_head, points[i - 1], points[i], i == 1, unused, clearance_before, clearance))) {
       fibre_along(track, pore, length, wisp_extent, stations, &out_of_head, root_normal, points, layout);
       if (in_head) std::fill(in_head, in_head + n, std::int8_t(-1));
-      return;
+      int left = 0;
+      ChordCrossing hit;
+      for (int j = 1; chords && j < n; ++j) left += chord_crosses(out_of_head, points[j - 1], points[j], j == 1, hit);
+      return left;
     }
     if (in_head) in_head[i] = std::isnan(value) ? -1 : value < 0.0;
     clearance_before = clearance;
   }
+  return 0;
 }
 
 }  // namespace
@@ -393,6 +399,7 @@ Strands make_strands(const Curves& guides, const Pores& pores, const StrandOptio
   }
   std::vector<std::uint32_t> kept(count, static_cast<std::uint32_t>(n));
   std::vector<char> cut(count, 0);
+  std::vector<int> crossing(count, 0);
   ProgressCounter progress(options.progress);
   parallel_for(count, options.threads, [&](int i) {
     thread_local Scratch scratch;
@@ -400,8 +407,8 @@ Strands make_strands(const Curves& guides, const Pores& pores, const StrandOptio
     Vec3* points = out.points.data() + n * i;
     std::int8_t* head = in_head ? in_head->data() + n * i : nullptr;
     const Vec3* root_normal = pores.normals.empty() ? nullptr : &pores.normals[i];
-    fibre_kept_out(tracks[pores.guide[i]], pores.positions[i], pores.lengths[i], extent[pores.guide[i]], stations,
-                   out_of_head, root_normal, points, scratch.layout.data(), head, grown != nullptr);
+    crossing[i] = fibre_kept_out(tracks[pores.guide[i]], pores.positions[i], pores.lengths[i], extent[pores.guide[i]],
+                                 stations, out_of_head, root_normal, points, scratch.layout.data(), head, grown != nullptr);
     if (cutting) {
       scratch.distances.resize(n);
       if (head) scratch.before_cut.assign(points, points + n);
@@ -435,7 +442,7 @@ Strands make_strands(const Curves& guides, const Pores& pores, const StrandOptio
       if (v) v->resize(out.offsets[count]);
   }
   out.guide.assign(pores.guide.begin(), pores.guide.end());
-  for (int i = 0; i < count; ++i) strands.cut_count += cut[i];
+  for (int i = 0; i < count; ++i) strands.cut_count += cut[i], strands.scalp_crossings += crossing[i];
   strands.cut = std::move(cut);
   return strands;
 }

@@ -45,6 +45,9 @@ struct Strands {
   Curves fibres;            // one per pore, in pore order; fibres.guide = the pore's guide
   std::vector<char> cut;    // per fibre: was it cut
   int cut_count = 0;
+  // With HeadExit::chord_crossing: the fibre segments left crossing or touching the scalp by it
+  // (a cut end is part of a chord already tested, so cutting adds none).
+  long long scalp_crossings = 0;
 };
 
 // Where a fibre's chord first crosses the scalp: the share t of the way along it, a point of the
