@@ -94,8 +94,9 @@ FlowCrossing flow_crossing(const Curves& curves, const FlowCrossingOptions& o) {
 
   // Exact: each pair is counted once, within a cell and between a cell and each neighbouring cell
   // that comes after it. Sampled: every pair of a query point (one in `stride`, by a hash of its
-  // index: an even sample would follow the curves' node pattern) is counted from it. Histograms per block of cells, summed in block order (integers:
-  // the totals do not depend on the thread count).
+  // index: an even sample would follow the curves' node pattern) is counted from it. Histograms
+  // per block of cells, summed in block order (integers: the totals do not depend on the thread
+  // count).
   const int stride = o.max_points > 0 && count > o.max_points ? (count + o.max_points - 1) / o.max_points : 1;
   std::vector<char> query(count, 1);
   if (stride > 1)
