@@ -138,10 +138,10 @@ void compare_builds(const std::string& hairfit, const std::string& other, const 
   auto row = [](const std::string& name, double x, double y) {  // 0: not reported (an older build)
     if (x > 0 && y > 0) std::printf("| %s | %.3f | %.3f | %.3f |\n", name.c_str(), x, y, y / x);
     else {
-      char a[32] = "–", b[32] = "–";
-      if (x > 0) std::snprintf(a, sizeof a, "%.3f", x);
-      if (y > 0) std::snprintf(b, sizeof b, "%.3f", y);
-      std::printf("| %s | %s | %s | – |\n", name.c_str(), a, b);
+      char left[32] = "–", right[32] = "–";
+      if (x > 0) std::snprintf(left, sizeof left, "%.3f", x);
+      if (y > 0) std::snprintf(right, sizeof right, "%.3f", y);
+      std::printf("| %s | %s | %s | – |\n", name.c_str(), left, right);
     }
   };
   row("process wall", ma.wall, mb.wall);

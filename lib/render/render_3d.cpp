@@ -438,11 +438,11 @@ Image render_3d(const Drawing3D& drawing, const Camera& camera, const RenderOpti
       const Color dc{cb.r - ca.r, cb.g - ca.g, cb.b - ca.b};
       raster::line_coverage(static_cast<float>(a.x()), static_cast<float>(a.y()), static_cast<float>(b.x()),
                             static_cast<float>(b.y()), static_cast<float>(layer.width), out.width, row0, row1,
-                            [&](int x, int y, float coverage, float t) {
+                            [&](int x, int y, float share, float t) {
                               const std::size_t i = out.at(x, y);
                               const float z = za + t * dz;
                               if (z > out.depth[i] + depth_bias) return;
-                              const float cover = coverage * layer.opacity;
+                              const float cover = share * layer.opacity;
                               out.blend(i, {ca.r + t * dc.r, ca.g + t * dc.g, ca.b + t * dc.b}, cover);
                               // Only a mostly covered pixel occludes what comes later; fringes stay
                               // see-through.

@@ -227,15 +227,15 @@ TEST_CASE("the optimiser's merged residuals have the full residuals' cost, gradi
   CHECK(full.size() == 9 * (2 * 3 * 3 + 2));
   CHECK(merged.residuals.size() == 9 * (2 * 3 + 2));
   CHECK(merged.constant > 0.0);
-  auto normal_equations = [](const std::vector<double>& r, const std::vector<double>& j, double constant) {
+  auto normal_equations = [](const std::vector<double>& res, const std::vector<double>& j, double constant) {
     Eigen::Matrix<double, 6, 6> jtj = Eigen::Matrix<double, 6, 6>::Zero();
     Eigen::Matrix<double, 6, 1> jtr = Eigen::Matrix<double, 6, 1>::Zero();
     double cost = constant;
-    for (std::size_t i = 0; i < r.size(); ++i) {
+    for (std::size_t i = 0; i < res.size(); ++i) {
       const Eigen::Map<const Eigen::Matrix<double, 6, 1>> row(&j[6 * i]);
       jtj += row * row.transpose();
-      jtr += r[i] * row;
-      cost += r[i] * r[i];
+      jtr += res[i] * row;
+      cost += res[i] * res[i];
     }
     return std::make_tuple(cost, jtr, jtj);
   };

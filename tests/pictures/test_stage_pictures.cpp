@@ -21,7 +21,7 @@ struct Smoke {
 };
 
 const Smoke& smoke() {
-  static const Smoke s = [] {
+  static const Smoke once = [] {
     Smoke s;
     s.scene = parse_scene(source_path("fixtures/smoke/scene.toml"));
     s.inputs = load_inputs(s.scene);
@@ -31,7 +31,7 @@ const Smoke& smoke() {
     s.result = run_pipeline(s.scene, s.inputs, options);
     return s;
   }();
-  return s;
+  return once;
 }
 
 }  // namespace
