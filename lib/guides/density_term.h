@@ -76,8 +76,8 @@ double density_ceiling(const DensityGrid& grid, const DensityTermOptions& term, 
 // density_ceiling over a sequence of grids of one geometry that change in places, as the batches'
 // deposits change it: each call equals density_ceiling of its grid exactly, but (CDM) recomputes
 // only the rows of cell centres whose central differences read a changed cell. On the paper-scale
-// scene a batch's fibres change a fraction of the rows, and the full scan per batch was 5 % of the
-// guide stage's instructions.
+// scene a batch's fibres change a fraction of the rows, and a full scan per batch would take 5 % of
+// the guide stage's instructions.
 class DensityCeiling {
  public:
   explicit DensityCeiling(const DensityTermOptions& term) : term_(term) {}

@@ -171,8 +171,8 @@ class GuideCost {
   bool operator()(const T* eta, T* residuals) const {
     const int n = t_.rod.segments + 1;
     // Every evaluation rewrites the sample nodes of the trace, the only ones the residuals read,
-    // so each thread keeps one buffer: fresh vectors of jets were zero-filled and freed at every
-    // evaluation (2.6 % of the guide solve).
+    // so each thread keeps one buffer: fresh vectors of jets would be zero-filled and freed at
+    // every evaluation (2.6 % of the guide solve).
     thread_local std::vector<T> trace;
     trace.resize(15 * static_cast<std::size_t>(n));
     T* nodes = trace.data();
@@ -564,7 +564,7 @@ class StallCallback : public ceres::IterationCallback {
 ceres::Solver::Options solver_options(int max_iterations, double tolerance, bool dogleg) {
   ceres::Solver::Options options;
   // Six parameters against a few hundred residuals: the 6×6 normal equations cost a fraction of a
-  // QR of the whole Jacobian (the QR was 22 % of the guide solve's instructions, callgrind), and
+  // QR of the whole Jacobian (which takes 22 % of the guide solve's instructions, callgrind), and
   // the reparameterised loads keep them well conditioned; LM's damping adds to their diagonal.
   options.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
   if (dogleg) options.trust_region_strategy_type = ceres::DOGLEG;

@@ -199,8 +199,8 @@ RodEnd rod_end(const RodModel& model, const RodDiscretisation& rod, const Shooti
 // else, from c alone, c's m(0) plus the moment of the added tip force about the root with c's
 // shape held (m(0) = m(1) + ∫ d3 × n ds, n the tip force: the chord × the force), which is m(0)'s
 // derivative in the load up to the shape's own response. Quadratic prediction starts Newton
-// nearer its root than the line did; the first step from the unloaded rod, predicted as m(0)
-// unchanged, was rejected twice (Newton landed beyond 0.1 of it) before 1/16 was taken.
+// nearer its root than the line does; the first step from the unloaded rod, predicted as m(0)
+// unchanged, is rejected twice (Newton lands beyond 0.1 of it) before 1/16 is taken.
 Vec3 extrapolated(const MarchState& a, const MarchState& b, const MarchState& c, double load, const Vec3& bend) {
   if (c.load > b.load && b.load > a.load) {
     const double wa = ((load - b.load) * (load - c.load)) / ((a.load - b.load) * (a.load - c.load));

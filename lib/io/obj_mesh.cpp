@@ -52,8 +52,8 @@ bool is_face_token(std::string_view s) {
 }
 
 // Line-level checks tinyobjloader does not make: it reads "nan" as a number silently and has no
-// line numbers in its messages. Returns the vertex count. (A scan of the text in place: the
-// string streams and the regular expression it used took 9 000 instructions a line.)
+// line numbers in its messages. Returns the vertex count. (A scan of the text in place: string
+// streams and a regular expression take 9 000 instructions a line.)
 int check_obj_text(const std::filesystem::path& path, const std::string& text, int& faces) {
   const std::string file = path.string();
   const std::size_t probe = std::min<std::size_t>(text.size(), 4096);

@@ -20,7 +20,7 @@ constexpr double kSettle = 0.2;
 
 // What point i of every fibre shares (it depends on i and the options alone): t_i = i/(n−1) along
 // the reach, the settle blend, the wisp radius and the winding's cos/sin. Computed once, not per
-// fibre (the winding's cos/sin used to be a fibre's largest setup cost).
+// fibre: per fibre, the winding's cos/sin would be its largest setup cost.
 struct Station {
   double t, w, radius, ca, sa;
 };
