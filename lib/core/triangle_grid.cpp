@@ -29,7 +29,6 @@ TriangleGrid::TriangleGrid(const Mesh& mesh) : mesh_(mesh) {
   while ((size / cell_).array().floor().prod() + 1.0 > 8.0 * n + 64.0) cell_ *= 1.25;
   origin_ = box_lo;
   dims_ = ((size / cell_).array().floor().cast<int>() + 1).matrix();
-  auto index = [&](const Vec3i& c) { return c.x() + dims_.x() * (c.y() + dims_.y() * c.z()); };
   // Two passes over the same boxes: count, then place (triangles in index order within a cell).
   cell_begin_.assign(static_cast<std::size_t>(dims_.prod()) + 1, 0);
   for (int pass = 0; pass < 2; ++pass) {
@@ -44,7 +43,7 @@ TriangleGrid::TriangleGrid(const Mesh& mesh) : mesh_(mesh) {
       for (int z = a.z(); z <= b.z(); ++z)
         for (int y = a.y(); y <= b.y(); ++y)
           for (int x = a.x(); x <= b.x(); ++x) {
-            const int k = index(Vec3i(x, y, z));
+            const int k = cell_index(x, y, z);
             if (pass == 0) ++cell_begin_[k + 1];
             else triangles_[next[k]++] = t;
           }
@@ -69,7 +68,7 @@ SegmentHit TriangleGrid::first_crossing(const Vec3& p, const Vec3& q, double sla
   for (int z = a.z(); z <= b.z(); ++z)
     for (int y = a.y(); y <= b.y(); ++y)
       for (int x = a.x(); x <= b.x(); ++x) {
-        const int k = x + dims_.x() * (y + dims_.y() * z);
+        const int k = cell_index(x, y, z);
         for (int i = cell_begin_[k]; i < cell_begin_[k + 1]; ++i) {
           const int t = triangles_[i];
           const Vec3i& f = mesh_.triangles[t];

@@ -34,6 +34,7 @@ class TriangleGrid {
 
  private:
   Vec3i cell_of(const Vec3& p) const;
+  int cell_index(int x, int y, int z) const { return x + dims_.x() * (y + dims_.y() * z); }
 
   const Mesh& mesh_;
   Vec3 origin_ = Vec3::Zero();

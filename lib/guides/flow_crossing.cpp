@@ -80,7 +80,7 @@ FlowCrossing flow_crossing(const Curves& curves, const FlowCrossingOptions& o) {
         curve_of.push_back(static_cast<int>(c));
       }
   if (points.empty()) return result;
-  const PointGrid grid(points, o.far);
+  const PointGrid grid(points, o.far, /*keep_points=*/false);  // the points in its order are `at` below
   const int count = static_cast<int>(points.size());
   std::vector<Vec3> at(count), along(count);
   std::vector<int> curve(count);

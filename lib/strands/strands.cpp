@@ -189,16 +189,20 @@ void lift_off_crossings(const HeadExit& out_of_head, Vec3* points, int n) {
 
 // Passes every point but the root into the volume (HeadExit::into_volume, if given) and through
 // `out_of_head` (and, given the pore's triangle normal, raises the first segment above the
-// triangle's plane), then, root to tip, every segment's
-// probes: where a chord dips into the head at the fraction t of its length (the probe lies behind
-// the scalp and the exit moves it by Δ), its far end moves out by Δ / t, which lifts the probe out
-// with it.
+// triangle's plane). Then, with the exact chord test, lifts the chords off the scalp
+// (lift_off_crossings); without it, root to tip, probes every segment: where a chord dips into the
+// head at the fraction t of its length (the probe lies behind the scalp and the exit moves it by
+// Δ), its far end moves out by Δ / t, which lifts the probe out with it.
 void keep_out(const HeadExit& out_of_head, const Vec3* root_normal, Vec3* points, int n) {
   double unused;
   if (out_of_head.into_volume)
     for (int i = 1; i < n; ++i) points[i] = out_of_head.into_volume(points[i]);
   for (int i = 1; i < n; ++i) points[i] = out_of_head(points[i], unused);
   if (root_normal) raise_first_segment(*root_normal, points);
+  if (out_of_head.chord_crossing) {
+    lift_off_crossings(out_of_head, points, n);
+    return;
+  }
   for (int i = 1; i < n; ++i) {
     auto lift = [&](double t) {
       const Vec3 q = points[i - 1] + t * (points[i] - points[i - 1]);
@@ -210,13 +214,11 @@ void keep_out(const HeadExit& out_of_head, const Vec3* root_normal, Vec3* points
         points[i] = out_of_head(points[i] + share * (moved - q) / t, unused);
       }
     };
-    if (out_of_head.chord_crossing) continue;  // the exact test below supersedes the probes
     if (i == 1)
       for (double t : kFirstSegmentProbes) lift(t);
     else
       for (double t : kSegmentProbes) lift(t);
   }
-  if (out_of_head.chord_crossing) lift_off_crossings(out_of_head, points, n);
 }
 
 // The fibre of exactly `length` along the track, into points[0..n) (n = stations.size()); with
