@@ -1,4 +1,5 @@
 #include <cstdio>
+#include <filesystem>
 
 #include "args.h"
 #include "commands.h"
@@ -9,6 +10,18 @@
 
 namespace hairfit::cli {
 
+namespace {
+
+// Where the picture goes: --out as given, or `name` in the folder --out names, or `name` here.
+std::string picture_path(const Args& args, const std::string& name) {
+  const std::optional<std::string> out = args.text("out");
+  if (!out) return name;
+  std::error_code ec;
+  return std::filesystem::is_directory(*out, ec) ? (std::filesystem::path(*out) / name).string() : *out;
+}
+
+}  // namespace
+
 int command_render(const Arguments& argv) {
   const Args args(argv, {"stage", "view", "size", "out", "threads"}, {});
   if (args.positionals().size() != 1) throw UsageError{"expected exactly one SCENE file"};
@@ -18,7 +31,7 @@ int command_render(const Arguments& argv) {
   const auto [width, height] = parse_size(args.text("size").value_or("800x800"));
   const int threads = resolve_thread_count(args.integer("threads", 0));
   if (stage == "cut") {  // what `hairfit prepare` cut from the scan: no pipeline stage needed
-    const std::string out = args.text("out").value_or("cut-" + view_name(view) + ".png");
+    const std::string out = picture_path(args, "cut-" + view_name(view) + ".png");
     const Image image = render_cut(args.positionals()[0], view, width, height, threads);
     write_png(out, image);
     std::printf("wrote %s (%d×%d)\n", out.c_str(), image.width, image.height);
@@ -33,7 +46,7 @@ int command_render(const Arguments& argv) {
   options.write_outputs = false;
   const PipelineResult result = run_pipeline(scene, inputs, options);
   const Image image = render_stage(stage, scene, inputs, result.values, view, width, height, threads);
-  const std::string out = args.text("out").value_or(stage + "-" + view_name(view) + ".png");
+  const std::string out = picture_path(args, stage + "-" + view_name(view) + ".png");
   write_png(out, image);
   std::printf("wrote %s (%d×%d)\n", out.c_str(), width, height);
   return 0;

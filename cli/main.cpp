@@ -25,7 +25,7 @@ const Command kCommands[] = {
      hairfit::cli::command_run},
     {"check", "check SCENE [--golden DIR] [--update] [--threads N] [--quiet]   compare every stage with golden results (exit 1 if one differs)",
      hairfit::cli::command_check},
-    {"render", "render SCENE [--stage STAGE] [--view VIEW] [--size WxH] [--out PNG] [--threads N]   picture of a stage",
+    {"render", "render SCENE [--stage STAGE] [--view VIEW] [--size WxH] [--out PNG|DIR] [--threads N]   picture of a stage",
      hairfit::cli::command_render},
     {"scene-keys", "scene-keys [--presets]    print the table of scene keys, or of accuracy presets (spec/reference.md embeds both)",
      hairfit::cli::command_scene_keys},

@@ -5,6 +5,7 @@
 #include <system_error>
 #include <unistd.h>
 
+#include "core/error.h"
 #include "core/interrupt.h"
 
 namespace hairfit {
@@ -12,6 +13,9 @@ namespace hairfit {
 void write_file_atomically(const std::filesystem::path& path,
                            const std::function<void(std::ostream&)>& write) {
   namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::is_directory(path, ec))
+    throw InputError(path.string(), "is a folder; name the file to write (e.g. " + (path / "out.png").string() + ")");
   if (path.has_parent_path()) fs::create_directories(path.parent_path());
   fs::path temporary = path;
   temporary += ".tmp-" + std::to_string(::getpid());

@@ -163,6 +163,8 @@ Image density_picture(const Scene& scene, const StageValues& v, int width, int h
 
 }  // namespace
 
+constexpr int kLegibleTile = 480;  // px: the smallest picture whose plot labels do not collide
+
 Image render_stage(const std::string& stage, const Scene& scene, const Inputs& inputs, const StageValues& values,
                    ViewName view, int width, int height, int threads) {
   check_picture_stage(stage);
@@ -171,9 +173,12 @@ Image render_stage(const std::string& stage, const Scene& scene, const Inputs& i
     std::vector<Image> tiles;
     std::vector<std::string> captions;
     const int tile = std::max(200, std::min(width, height) / 2);
+    // The labels have one size: a tile smaller than kLegibleTile is drawn at a whole multiple of
+    // its size and averaged down, so its plots keep their full-size layout instead of overlapping.
+    const int factor = (kLegibleTile + tile - 1) / tile;
     for (const std::string& s : picture_stages()) {
       if (s == "all" || (s == "density" && !values.fibre_density)) continue;
-      tiles.push_back(render_stage(s, scene, inputs, values, view, tile, tile, threads));
+      tiles.push_back(averaged_down(render_stage(s, scene, inputs, values, view, factor * tile, factor * tile, threads), factor));
       captions.push_back(s);
     }
     return contact_sheet(tiles, captions, 4);

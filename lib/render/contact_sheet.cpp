@@ -35,6 +35,25 @@ Image contact_sheet(const std::vector<Image>& images, const std::vector<std::str
   return canvas.image();
 }
 
+Image averaged_down(const Image& image, int factor) {
+  if (factor < 1) throw std::invalid_argument("averaged_down: factor must be at least 1");
+  if (factor == 1) return image;
+  Image out;
+  out.width = image.width / factor;
+  out.height = image.height / factor;
+  out.rgba.resize(static_cast<std::size_t>(out.width) * out.height * 4);
+  const int area = factor * factor;
+  for (int y = 0; y < out.height; ++y)
+    for (int x = 0; x < out.width; ++x)
+      for (int c = 0; c < 4; ++c) {
+        int sum = 0;
+        for (int dy = 0; dy < factor; ++dy)
+          for (int dx = 0; dx < factor; ++dx) sum += image.pixel(x * factor + dx, y * factor + dy)[c];
+        out.rgba[(static_cast<std::size_t>(y) * out.width + x) * 4 + c] = static_cast<std::uint8_t>((sum + area / 2) / area);
+      }
+  return out;
+}
+
 Image side_by_side(const std::vector<Image>& images) {
   return contact_sheet(images, {}, static_cast<int>(images.size()), {1.0f, 1.0f, 1.0f});
 }

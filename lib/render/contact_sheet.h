@@ -14,6 +14,10 @@ namespace hairfit {
 Image contact_sheet(const std::vector<Image>& images, const std::vector<std::string>& captions = {}, int columns = 0,
                     const Color& background = {0.09f, 0.09f, 0.11f});
 
+// The image averaged over factor × factor blocks (each channel, rounded): ⌊width / factor⌋ by
+// ⌊height / factor⌋ pixels. Throws std::invalid_argument unless factor ≥ 1.
+Image averaged_down(const Image& image, int factor);
+
 // The images in one row, without captions, on white (plot panels).
 Image side_by_side(const std::vector<Image>& images);
 

@@ -168,6 +168,15 @@ TEST_CASE("atomic writes leave the old file intact when writing fails") {
     CHECK(entry.path().filename().string().find(".tmp-") == std::string::npos);
 }
 
+TEST_CASE("an atomic write to a folder's path is refused by name and leaves the folder as it was") {
+  const fs::path dir = temp_dir() / "a-folder";
+  fs::create_directories(dir);
+  CHECK_THROWS_WITH_AS(write_text_file_atomically(dir, "text"), doctest::Contains("is a folder; name the file"), InputError);
+  CHECK(fs::is_directory(dir));
+  for (const auto& entry : fs::directory_iterator(temp_dir()))
+    CHECK(entry.path().filename().string().find(".tmp-") == std::string::npos);
+}
+
 TEST_CASE("OBJ: a face entry is refused exactly when it is not v, v/vt, v//vn or v/vt/vn with integers") {
   // The reader's scan against the regular expression it replaced, on random short entries.
   const std::regex face_token("-?[0-9]+(/(-?[0-9]+)?(/-?[0-9]+)?)?");

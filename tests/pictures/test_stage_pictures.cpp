@@ -3,6 +3,7 @@
 #include <doctest/doctest.h>
 
 #include <cstring>
+#include <filesystem>
 
 #include "../support/run_hairfit.h"
 #include "core/error.h"
@@ -105,4 +106,15 @@ TEST_CASE("an unknown stage or view is refused with the valid names") {
   const auto q = hairfit::testing::run_hairfit("render " + source_path("fixtures/smoke/scene.toml") + " --stage hairdo");
   CHECK(q.exit_code == 2);
   CHECK(q.err.find("valid stages:") != std::string::npos);
+}
+
+TEST_CASE("render --out FOLDER writes the picture into the folder under its default name") {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "hairfit-render-into-folder";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const auto r = hairfit::testing::run_hairfit("render " + source_path("fixtures/smoke/scene.toml") +
+                                               " --stage chart --size 64x64 --out " + dir.string());
+  CHECK(r.exit_code == 0);
+  CHECK(std::filesystem::is_regular_file(dir / "chart-front.png"));
+  std::filesystem::remove_all(dir);
 }
