@@ -5,6 +5,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "core/parallel.h"
+
 // The far field. With F(y) = y/|y|³, a triangle's solid angle seen from p is ∫ n·F(x − p) dA.
 // Expanding F about a centre c, with r = c − p and d = x − c, to first order,
 //   n·F(r + d) ≈ n·r/|r|³ + nᵀ (I/|r|³ − 3 r rᵀ/|r|⁵) d,
@@ -103,7 +105,8 @@ struct FastWindingNumber::Summary {
   Extent extent;
 };
 
-FastWindingNumber::FastWindingNumber(const Mesh& mesh, double beta) : beta_(beta), size_(mesh.triangles.size()) {
+FastWindingNumber::FastWindingNumber(const Mesh& mesh, double beta, int threads)
+    : beta_(beta), size_(mesh.triangles.size()) {
   if (!(beta > 1.0)) throw std::invalid_argument("FastWindingNumber: beta must exceed 1");
   const double kappa = std::sqrt(2.0) * std::pow(2.0 - 2.0 / (beta * beta), 1.5);
   far_roundoff_ = 8.0 + 256.0 / kappa;
@@ -130,11 +133,31 @@ FastWindingNumber::FastWindingNumber(const Mesh& mesh, double beta) : beta_(beta
 
   std::vector<int> order(all.size());
   for (int i = 0; i < static_cast<int>(order.size()); ++i) order[i] = i;
-  const std::size_t node_count = 2 * (order.size() / kLeafSize + 1);
-  nodes_.reserve(node_count);
-  node_terms_.reserve(node_count);
-  node_extents_.reserve(node_count);
-  build(all, order, 0, static_cast<int>(order.size()));
+  const int node_count = subtree_size(static_cast<int>(order.size()));
+  nodes_.resize(node_count);
+  node_terms_.resize(node_count);
+  node_extents_.resize(node_count);
+  // The top levels one by one, down to subtrees of at most 1/16 of the triangles, which are then
+  // built side by side: every node's place follows from the sizes alone.
+  struct Range {
+    int lo, hi, index;
+  };
+  std::vector<Range> pending{{0, static_cast<int>(order.size()), 0}}, subtrees;
+  const int small = std::max(kLeafSize, static_cast<int>(order.size()) / 16);
+  while (!pending.empty()) {
+    const Range r = pending.back();
+    pending.pop_back();
+    if (r.hi - r.lo <= small) {
+      subtrees.push_back(r);
+      continue;
+    }
+    const int mid = build_node(all, order, r.lo, r.hi, r.index);
+    pending.push_back({mid, r.hi, r.index + 1 + subtree_size(mid - r.lo)});
+    pending.push_back({r.lo, mid, r.index + 1});
+  }
+  parallel_for(static_cast<int>(subtrees.size()), resolve_thread_count(threads), [&](int k) {
+    build_subtree(all, order, subtrees[k].lo, subtrees[k].hi, subtrees[k].index);
+  });
   for (int i : order) {
     triangles_.push_back(all[i].triangle);
     triangle_extents_.push_back(all[i].extent);
@@ -142,11 +165,9 @@ FastWindingNumber::FastWindingNumber(const Mesh& mesh, double beta) : beta_(beta
   }
 }
 
-int FastWindingNumber::build(const std::vector<Summary>& all, std::vector<int>& order, int lo, int hi) {
-  const int index = static_cast<int>(nodes_.size());
-  nodes_.emplace_back();
-  node_terms_.emplace_back();
-  node_extents_.emplace_back();
+int FastWindingNumber::subtree_size(int n) { return n <= kLeafSize ? 1 : 1 + subtree_size(n / 2) + subtree_size(n - n / 2); }
+
+int FastWindingNumber::build_node(const std::vector<Summary>& all, std::vector<int>& order, int lo, int hi, int index) {
   Node node;
   Terms terms;
   Extent extent;
@@ -174,6 +195,7 @@ int FastWindingNumber::build(const std::vector<Summary>& all, std::vector<int>& 
   terms.trace = terms.moment.trace();
   node.ball = {centre, extent.radius * extent.radius};
 
+  int mid = -1;
   if (hi - lo <= kLeafSize) {
     std::sort(order.begin() + lo, order.begin() + hi);  // a leaf keeps the mesh's order
   } else {
@@ -186,18 +208,25 @@ int FastWindingNumber::build(const std::vector<Summary>& all, std::vector<int>& 
     }
     int axis = 0;
     (high - low).maxCoeff(&axis);
-    const int mid = lo + (hi - lo) / 2;
+    mid = lo + (hi - lo) / 2;
     std::nth_element(order.begin() + lo, order.begin() + mid, order.begin() + hi, [&](int x, int y) {
       const double cx = all[x].triangle.ball.centre[axis], cy = all[y].triangle.ball.centre[axis];
       return cx < cy || (cx == cy && x < y);
     });
-    build(all, order, lo, mid);  // the next node
-    node.right = build(all, order, mid, hi);
+    node.right = index + 1 + subtree_size(mid - lo);
   }
   nodes_[index] = node;
   node_terms_[index] = terms;
   node_extents_[index] = extent;
-  return index;
+  return mid;
+}
+
+void FastWindingNumber::build_subtree(const std::vector<Summary>& all, std::vector<int>& order, int lo, int hi,
+                                      int index) {
+  const int mid = build_node(all, order, lo, hi, index);
+  if (mid < 0) return;
+  build_subtree(all, order, lo, mid, index + 1);
+  build_subtree(all, order, mid, hi, nodes_[index].right);
 }
 
 template <bool kBound>

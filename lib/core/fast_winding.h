@@ -25,7 +25,8 @@ class FastWindingNumber {
   // the query is farther than beta × the node's radius from the node's centre; larger is more
   // accurate and slower. Any soup is accepted (open, non-manifold, duplicated, flipped); an empty
   // mesh has winding number 0 everywhere. Positions must be finite and indices in range.
-  explicit FastWindingNumber(const Mesh& mesh, double beta = 2.0);
+  // `threads` (0 = all) builds the tree's subtrees side by side; the tree is the same for any count.
+  explicit FastWindingNumber(const Mesh& mesh, double beta = 2.0, int threads = 1);
 
   double operator()(const Vec3& p) const;  // estimate(p).value, bit for bit, without the bound
   // The hierarchical value with another accuracy parameter (> 1) than the constructor's.
@@ -84,9 +85,14 @@ class FastWindingNumber {
   Sums<kBound> traverse(const Vec3& p, double beta2) const;
 
   struct Summary;  // a triangle while building
-  // Builds the node over order[lo, hi) (indices into `all`, in mesh order) and its subtree,
-  // permuting that range; returns the node's index.
-  int build(const std::vector<Summary>& all, std::vector<int>& order, int lo, int hi);
+  // Node `index` over order[lo, hi) (indices into `all`, in mesh order), permuting that range:
+  // its terms, and for an inner node the split, returned (−1 for a leaf). Its children are nodes
+  // index + 1 (over [lo, mid)) and index + 1 + subtree_size(mid − lo) (over [mid, hi)).
+  int build_node(const std::vector<Summary>& all, std::vector<int>& order, int lo, int hi, int index);
+  // The node over [lo, hi) and its whole subtree, depth-first from `index`.
+  void build_subtree(const std::vector<Summary>& all, std::vector<int>& order, int lo, int hi, int index);
+  // Nodes in the subtree over n triangles (median splits to kLeafSize).
+  static int subtree_size(int n);
   // The estimate with beta² = beta2 (above() tightens it when undecided).
   WindingEstimate evaluate(const Vec3& p, double beta2) const;
 

@@ -5,10 +5,12 @@
 #include <cstdio>
 #include <limits>
 #include <optional>
+#include <stdexcept>
 #include <string>
 
 #include "core/error.h"
 #include "core/parallel.h"
+#include "core/triangle_closest.h"
 #include "field/band_scan.h"
 #include "field/band_sign.h"
 #include "field/cell_corners.h"
@@ -116,9 +118,27 @@ void sign_by_test(std::vector<double>& values, const field::GridGeometry& grid, 
   });
 }
 
+// The value carried from the vertices to p, whose closest feature is `key` (band_scan.h's keys).
+double carried_value(const field::MeshFeatures& f, const std::vector<double>& at_vertex, int key, const Vec3& p) {
+  const int nf = static_cast<int>(f.faces.size()), ne = static_cast<int>(f.edges.size());
+  if (key < nf) {
+    const Vec3i& t = f.faces[key];
+    const Vec3 w = closest_barycentric(p, f.vertices[t[0]], f.vertices[t[1]], f.vertices[t[2]]);
+    return w[0] * at_vertex[t[0]] + w[1] * at_vertex[t[1]] + w[2] * at_vertex[t[2]];
+  }
+  if (key < nf + ne) {
+    const auto [a, b] = f.edges[key - nf];
+    const Vec3 d = f.vertices[b] - f.vertices[a];
+    const double t = std::clamp((p - f.vertices[a]).dot(d) / d.squaredNorm(), 0.0, 1.0);
+    return (1.0 - t) * at_vertex[a] + t * at_vertex[b];
+  }
+  return at_vertex[key - nf - ne];
+}
+
 }  // namespace
 
-DistanceField make_distance_field(const Mesh& mesh, const FieldSpec& spec, int threads, const InsideTest& inside) {
+DistanceField DistanceField::build(const Mesh& mesh, const FieldSpec& spec, int threads, const InsideTest& inside,
+                                   const std::vector<double>* vertex_values, std::vector<double>* carried) {
   require_field_fits(mesh, spec);
   const FieldGridPlan plan = plan_field_grid(mesh, spec);
   threads = resolve_thread_count(threads);
@@ -136,6 +156,21 @@ DistanceField make_distance_field(const Mesh& mesh, const FieldSpec& spec, int t
   }
   std::vector<std::uint8_t> in_band(band.value.size());
   for (std::size_t n = 0; n < in_band.size(); ++n) in_band[n] = band.key[n] >= 0;
+  if (vertex_values) {
+    std::vector<double> at_vertex(features.vertices.size(), std::numeric_limits<double>::infinity());
+    for (std::size_t v = 0; v < features.vertex_of_input.size(); ++v)
+      if (features.vertex_of_input[v] >= 0)
+        at_vertex[features.vertex_of_input[v]] = std::min(at_vertex[features.vertex_of_input[v]], (*vertex_values)[v]);
+    carried->assign(band.value.size(), std::numeric_limits<double>::quiet_NaN());
+    const int nx = grid.dims.x(), ny = grid.dims.y();
+    parallel_for(grid.dims.z(), threads, [&](int k) {
+      for (int j = 0; j < ny; ++j)
+        for (int i = 0; i < nx; ++i) {
+          const int64_t n = grid.index(i, j, k);
+          if (band.key[n] >= 0) (*carried)[n] = carried_value(features, at_vertex, band.key[n], grid.node(i, j, k));
+        }
+    });
+  }
   std::vector<int32_t>().swap(band.key);
   field::fill_beyond_band(features, grid, far, plan.coarse_factor, r, signs ? &*signs : nullptr, in_band, band.value,
                           threads);
@@ -150,15 +185,18 @@ DistanceField make_distance_field(const Mesh& mesh, const FieldSpec& spec, int t
   return out;
 }
 
-namespace {
+DistanceField make_distance_field(const Mesh& mesh, const FieldSpec& spec, int threads, const InsideTest& inside) {
+  return DistanceField::build(mesh, spec, threads, inside, nullptr, nullptr);
+}
 
-
-}  // namespace
-
-namespace {
-
-
-}  // namespace
+CarriedField make_distance_field_carrying(const Mesh& mesh, const std::vector<double>& vertex_values,
+                                          const FieldSpec& spec, int threads, const InsideTest& inside) {
+  if (vertex_values.size() != mesh.positions.size())
+    throw std::invalid_argument("make_distance_field_carrying: one value per vertex of the mesh");
+  std::vector<double> carried;
+  DistanceField field = DistanceField::build(mesh, spec, threads, inside, &vertex_values, &carried);
+  return CarriedField{std::move(field), std::move(carried)};
+}
 
 void DistanceField::finish(std::vector<double> values, std::vector<std::uint8_t> in_band, int threads) {
   set_geometry();

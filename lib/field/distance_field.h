@@ -112,8 +112,13 @@ class DistanceField {
 
  private:
   friend DistanceField make_distance_field(const Mesh&, const FieldSpec&, int, const InsideTest&);
+  friend struct CarriedField make_distance_field_carrying(const Mesh&, const std::vector<double>&, const FieldSpec&,
+                                                          int, const InsideTest&);
   friend struct StageCodecAccess;  // the stage cache (lib/pipeline/stage_codec.cpp) stores and restores it
   DistanceField() = default;  // built only by make_distance_field
+  // Both builders: with `vertex_values`, the carried values go to `carried`.
+  static DistanceField build(const Mesh& mesh, const FieldSpec& spec, int threads, const InsideTest& inside,
+                             const std::vector<double>* vertex_values, std::vector<double>* carried);
   // Sets the lookup flags from the samples (every node's, band and beyond), and the geometry.
   void finish(std::vector<double> samples, std::vector<std::uint8_t> in_band, int threads);
   void set_geometry();  // upper_, last_node_ and stride_ from origin_, h_ and dims_
@@ -149,6 +154,18 @@ class DistanceField {
 // bit-identical for any count.
 DistanceField make_distance_field(const Mesh& mesh, const FieldSpec& spec, int threads = 0,
                                   const InsideTest& inside = {});
+
+// The field, and a value given at the mesh's vertices carried to every band sample: the value at
+// the sample's closest point on the mesh, interpolated linearly over the closest face or edge
+// (vertices at one position take the smallest of their values). NaN beyond the band. What a
+// caller needs who reads a quantity of the surface's nearest point at grid nodes (prepare's
+// distance from the hairline), exactly and without a search of its own.
+struct CarriedField {
+  DistanceField field;
+  std::vector<double> carried;  // per node, x fastest (DistanceField's node order)
+};
+CarriedField make_distance_field_carrying(const Mesh& mesh, const std::vector<double>& vertex_values,
+                                          const FieldSpec& spec, int threads = 0, const InsideTest& inside = {});
 
 // The grid make_distance_field would allocate, and the bytes its build needs at peak.
 struct FieldGridPlan {

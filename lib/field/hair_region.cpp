@@ -4,8 +4,8 @@
 
 namespace hairfit {
 
-HairRegion::HairRegion(const Mesh& hull, const Mesh& scalp, bool hull_closed)
-    : hull_(hull, kFirstBeta), scalp_(hull_closed ? Mesh{} : scalp, kFirstBeta), closed_(hull_closed) {}
+HairRegion::HairRegion(const Mesh& hull, const Mesh& scalp, bool hull_closed, int threads)
+    : hull_(hull, kFirstBeta, threads), scalp_(hull_closed ? Mesh{} : scalp, kFirstBeta, threads), closed_(hull_closed) {}
 
 namespace {
 

@@ -13,7 +13,8 @@ class HairRegion {
   // `hull` and `scalp` in cm, cleaned (core/mesh_repair.h), the scalp facing out of the head.
   // A closed hull (no boundary loop, no non-manifold edge) encloses its inside by itself: the
   // scalp lies within it (a volume from `hairfit prepare` closes under the scalp with a floor).
-  HairRegion(const Mesh& hull, const Mesh& scalp, bool hull_closed);
+  // `threads` (0 = all) builds the trees side by side; the region is the same for any count.
+  HairRegion(const Mesh& hull, const Mesh& scalp, bool hull_closed, int threads = 1);
 
   // H(p): w_hull(p) for a closed hull; w_hull(p) − w_scalp(p) for an open one, which is 1 in the
   // shell an open hull and the scalp close between them where they share a hairline, 0 outside,

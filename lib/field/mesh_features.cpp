@@ -55,6 +55,7 @@ MeshFeatures extract_features(const Mesh& mesh, const std::string& name) {
     welded[used[i]] = static_cast<int>(f.vertices.size()) - 1;
   }
   const int nv = static_cast<int>(f.vertices.size());
+  f.vertex_of_input = std::move(welded);
 
   // Faces: non-degenerate triangles. A triangle whose doubled area is below 1e-8 of its longest
   // edge squared is a sliver narrower than 1e-8 of its length: its points are represented, to
@@ -65,7 +66,7 @@ MeshFeatures extract_features(const Mesh& mesh, const std::string& name) {
   std::vector<EdgeUse> uses;
   uses.reserve(mesh.triangles.size() * 3);
   for (const Vec3i& t : mesh.triangles) {
-    const Vec3i w(welded[t[0]], welded[t[1]], welded[t[2]]);
+    const Vec3i w(f.vertex_of_input[t[0]], f.vertex_of_input[t[1]], f.vertex_of_input[t[2]]);
     int face = -1;
     if (w[0] != w[1] && w[1] != w[2] && w[2] != w[0]) {
       const Vec3& a = f.vertices[w[0]];

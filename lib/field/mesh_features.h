@@ -12,6 +12,7 @@ namespace hairfit::field {
 struct MeshFeatures {
   // Positions after welding exactly coincident vertices (so duplicates share edges and normals).
   std::vector<Vec3> vertices;
+  std::vector<int> vertex_of_input;  // per input vertex: its welded vertex (−1 when no triangle uses it)
   // Triangles of non-negligible area, as welded vertex ids, counter-clockwise as in the input.
   std::vector<Vec3i> faces;
   std::vector<Vec3> face_normals;  // unit

@@ -95,13 +95,13 @@ double share_inside(const HairRegion& region, const std::vector<Vec3>& probes) {
 // Orients the hull so that it encloses the scalp: a hull whose triangles face inward (every part
 // of it, or its largest) puts the scalp outside; reversed, the same hull puts it inside. Returns
 // the share of the scalp inside, and refuses a hull with the scalp entirely outside either way.
-double enclose_scalp(const Scene& scene, Inputs& in) {
+double enclose_scalp(const Scene& scene, Inputs& in, int threads) {
   const std::vector<Vec3> probes = scalp_probes(in.scalp.mesh);
   const bool closed = in.volume_report.closed();
-  const double as_given = share_inside(HairRegion(in.volume.mesh, in.scalp.mesh, closed), probes);
+  const double as_given = share_inside(HairRegion(in.volume.mesh, in.scalp.mesh, closed, threads), probes);
   if (as_given >= 0.5) return as_given;
   Mesh flipped = reversed(in.volume.mesh);
-  const double share = share_inside(HairRegion(flipped, in.scalp.mesh, closed), probes);
+  const double share = share_inside(HairRegion(flipped, in.scalp.mesh, closed, threads), probes);
   if (share > as_given) {
     in.volume.mesh = std::move(flipped);
     in.volume_reversed = true;
@@ -155,7 +155,7 @@ Inputs load_inputs(const Scene& scene, int threads) {
     require_plausible_coordinates(*in.occluder, scene.output.occluder->string(), scene.units.length);
   }
 
-  in.scalp_inside_share = enclose_scalp(scene, in);
+  in.scalp_inside_share = enclose_scalp(scene, in, threads);
   // What later stages would refuse for its size, refused now, before anything is written.
   require_field_fits(in.scalp.mesh, field_spec(scene, scalp_file));
   require_field_fits(in.volume.mesh, field_spec(scene, volume_file));

@@ -265,14 +265,14 @@ class Runner {
     // The scalp's field: the distance to the head closed under the scalp by a floor across the
     // hairline, negative inside it.
     const Mesh head = closed_head(inputs_.scalp.mesh);
-    const FastWindingNumber head_winding(head, HairRegion::kFirstBeta);
+    const FastWindingNumber head_winding(head, HairRegion::kFirstBeta, options_.threads);
     const InsideTest inside_head = [&head_winding](const Vec3& p) { return winding_above_half(head_winding, p); };
     v.scalp_field = std::make_shared<const DistanceField>(make_distance_field(
         head, field_spec(scene_, scene_.inputs.scalp.string()), options_.threads, inside_head));
     // The volume's inside is the region's (HairRegion) together with the head, so that its field
     // keeps its sign across the scalp, as a prepared volume's floor under the scalp makes it: the
     // acceptable region, inside the volume and not behind the scalp, is the region's shell.
-    const HairRegion region(inputs_.volume.mesh, inputs_.scalp.mesh, inputs_.volume_report.closed());
+    const HairRegion region(inputs_.volume.mesh, inputs_.scalp.mesh, inputs_.volume_report.closed(), options_.threads);
     const DistanceField& scalp = *v.scalp_field;
     const InsideTest inside_volume = [&region, &scalp](const Vec3& p) { return scalp.value(p) < 0.0 || region.inside_hull(p); };
     v.volume_field = std::make_shared<const DistanceField>(make_distance_field(

@@ -9,7 +9,8 @@ namespace {
 // The repair's test counts chords that pass within this much (barycentric) of a triangle, or end
 // within this share of their length of it, as crossing it, so that a chord it leaves is clear of
 // the scalp by more than round-off: the exact count then finds it clear too, also after the
-// length solve shortens its last chord.
+// length solve shortens its last chord. A chord from a root, which lies on the scalp, meets it
+// there: only what it meets beyond this share of its length from the root counts.
 constexpr double kChordSlack = 1e-6;
 
 // p moved along the field's gradient until the field reads `level` there, or within 10 % of it on
@@ -54,7 +55,7 @@ HeadExit scalp_exit(const DistanceField& scalp, const TriangleGrid* scalp_triang
     exit.clearance = [&scalp](const Vec3& p) { return scalp.distance_lower_bound(p); };
     exit.chord_crossing = [scalp_triangles, outward](const Vec3& a, const Vec3& b, bool from_root, ChordCrossing& first) {
       const SegmentHit hit =
-          scalp_triangles->first_crossing(a, b, kChordSlack, from_root ? 1e-9 : -kChordSlack, 1 + kChordSlack);
+          scalp_triangles->first_crossing(a, b, kChordSlack, from_root ? kChordSlack : -kChordSlack, 1 + kChordSlack);
       if (!hit.found()) return false;
       first.t = hit.t;
       first.point = a + hit.t * (b - a);

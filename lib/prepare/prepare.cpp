@@ -144,7 +144,7 @@ Mesh with_scalp(Mesh base, const std::vector<int>& shared, const Prepared& p, bo
   return base;
 }
 
-PrepareChecks check(const Prepared& p) {
+PrepareChecks check(const Prepared& p, int threads) {
   PrepareChecks c;
   const Mesh& hull = p.hull.mesh;
   const Mesh& scalp = p.scalp.scalp;
@@ -157,7 +157,7 @@ PrepareChecks check(const Prepared& p) {
   // hull closed by the reversed scalp.
   std::vector<int> on_hull(scalp.positions.size(), -1);
   for (std::size_t k = 0; k < p.scalp.hairline.size(); ++k) on_hull[p.scalp.hairline[k]] = p.hull.hairline[k];
-  const FastWindingNumber layer(with_scalp(hull, on_hull, p, true), HairRegion::kFirstBeta);
+  const FastWindingNumber layer(with_scalp(hull, on_hull, p, true), HairRegion::kFirstBeta, threads);
   for (int t = 0; t < static_cast<int>(scalp.triangles.size()); ++t) {
     const Vec3i& f = scalp.triangles[t];
     const Vec3 centroid = (scalp.positions[f[0]] + scalp.positions[f[1]] + scalp.positions[f[2]]) / 3.0;
@@ -244,7 +244,7 @@ Prepared prepare_scan(const Mesh& raw_scan, const std::vector<Vec3>& colors, con
                       " triangles face the head centre (it overhangs, folds or lies in tubes)";
     } else {
       p.scalp = make_scalp(p.hull, o.scalp, file);
-      p.checks = check(p);
+      p.checks = check(p, o.threads);
       radial_failed = failures(p.checks);
       if (radial_failed.empty() || o.scalp_method == "radial") p.scalp_how = "radial: the hull is star-shaped about the head centre";
     }
@@ -270,7 +270,7 @@ Prepared prepare_scan(const Mesh& raw_scan, const std::vector<Vec3>& colors, con
       std::string failed;
       try {
         p.scalp = make_level_set_scalp(p.hull, skin, grid, file, o.threads);
-        p.checks = check(p);
+        p.checks = check(p, o.threads);
         failed = failures(p.checks);
       } catch (const InputError& e) {
         failed = e.what();

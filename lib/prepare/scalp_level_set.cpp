@@ -8,8 +8,6 @@
 #include "core/error.h"
 #include "core/fast_winding.h"
 #include "core/parallel.h"
-#include "core/point_grid.h"
-#include "core/triangle_closest.h"
 #include "field/distance_field.h"
 #include "field/hair_region.h"
 #include "prepare/level_set_clip.h"
@@ -29,66 +27,14 @@ double ramp_shape(double x) { return std::sin(0.5 * M_PI * std::clamp(x, 0.0, 1.
 // T = 2 cm over 3 cm), so the strips joining both to the hairline stay well apart.
 constexpr double kFloorSteepness = 3.0;
 
+// Jacobi passes that smooth the distance from the hairline across the grid (hairline_distance_at_nodes).
+constexpr int kDistancePasses = 4;
+
 double signed_volume(const Mesh& mesh) {
   double v = 0.0;
   for (const Vec3i& t : mesh.triangles)
     v += mesh.positions[t[0]].dot(mesh.positions[t[1]].cross(mesh.positions[t[2]]));
   return v / 6.0;
-}
-
-// What the thickness is read from: the hull's and the skin's triangles with the distance from the
-// hairline at their corners (0 on the skin), sampled every half voxel so the nearest sample names
-// the nearest triangle (or one within half a voxel of it).
-struct HairlineDistance {
-  Mesh mesh;
-  std::vector<double> distance;  // per vertex, cm
-  std::vector<Vec3> samples;
-  std::vector<int> sample_triangle;
-
-  // The distance from the hairline at p's closest point on the surface, read on the triangle of
-  // the sample nearest `foot` (about that closest point, so the search stays within 2 voxels)
-  // when that triangle lies within `tolerance` of p's exact distance `to_surface`; else on the
-  // triangle of the sample nearest p (searched up to `reach`).
-  double at(const Vec3& p, double to_surface, const Vec3& foot, const PointGrid& grid, double reach, double tolerance) const {
-    int s = grid.nearest(foot, -1, 2.0 * grid.cell());
-    if (s >= 0) {
-      double value = 0.0;
-      if (closest(p, sample_triangle[s], value) <= to_surface + tolerance) return value;
-    }
-    s = grid.nearest(p, -1, reach);
-    double value = 0.0;
-    if (s >= 0) closest(p, sample_triangle[s], value);
-    return value;
-  }
-  // The distance from p to triangle t, and the hairline distance at its closest point.
-  double closest(const Vec3& p, int t, double& value) const {
-    const Vec3i& f = mesh.triangles[t];
-    const Vec3 &a = mesh.positions[f[0]], &b = mesh.positions[f[1]], &c = mesh.positions[f[2]];
-    const Vec3 w = closest_barycentric(p, a, b, c);
-    value = w[0] * distance[f[0]] + w[1] * distance[f[1]] + w[2] * distance[f[2]];
-    return (w[0] * a + w[1] * b + w[2] * c - p).norm();
-  }
-};
-
-// `scan`: the hull's vertices and triangles first, then the skin's; `hull_distance` per hull vertex.
-HairlineDistance hairline_distance(const Mesh& scan, const std::vector<double>& hull_distance, double spacing) {
-  HairlineDistance s;
-  s.mesh = scan;
-  s.distance = hull_distance;
-  s.distance.resize(scan.positions.size(), 0.0);
-  for (int t = 0; t < static_cast<int>(s.mesh.triangles.size()); ++t) {
-    const Vec3i& f = s.mesh.triangles[t];
-    const Vec3 &a = s.mesh.positions[f[0]], &b = s.mesh.positions[f[1]], &c = s.mesh.positions[f[2]];
-    const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
-    const int m = std::max(1, static_cast<int>(std::ceil(longest / spacing)));
-    for (int i = 0; i <= m; ++i)
-      for (int j = 0; i + j <= m; ++j) {
-        const double u = double(i) / m, v = double(j) / m;
-        s.samples.push_back((1.0 - u - v) * a + u * b + v * c);
-        s.sample_triangle.push_back(t);
-      }
-  }
-  return s;
 }
 
 // The largest part (by triangles, through shared vertices) of a mesh, its unused vertices dropped;
@@ -282,6 +228,51 @@ void relax(Sheet& s, const DistanceField& field, double crown, double epsilon, i
   }
 }
 
+// The distance from the hairline the layers are placed for, at every node: 0 outside the scan
+// (beyond 2 voxels), infinite deeper than `depth`, and between them the distance at the node's
+// closest point of the scan (`carried`), smoothed by kDistancePasses Jacobi passes (each node
+// halfway to its neighbours' mean) at nodes deeper than half a voxel. The closest point jumps where
+// another part of the scan becomes nearer (under a braid lying over the neck, the skin), and with
+// it the distance; unsmoothed, the scalp's and the floor's ends part there and the strip joining
+// them cuts the scalp. Nodes at the scan keep their exact value, so the hairline stays where it is.
+std::vector<double> hairline_distance_at_nodes(const SampleGrid& grid, const DistanceField& field,
+                                               const std::vector<double>& carried, double depth, int threads) {
+  const double h = grid.spacing;
+  std::vector<double> distance(grid.nodes());
+  std::vector<char> smoothed(grid.nodes(), 0);
+  parallel_for(grid.dims.z(), threads, [&](int k) {
+    for (int j = 0; j < grid.dims.y(); ++j)
+      for (int i = 0; i < grid.dims.x(); ++i) {
+        const std::int64_t n = grid.node(i, j, k);
+        const double d = -field.sample(i, j, k);
+        distance[n] = d <= -2.0 * h ? 0.0 : INFINITY;
+        if (d > -2.0 * h && d < depth && !std::isnan(carried[n])) {
+          distance[n] = carried[n];
+          smoothed[n] = d > 0.5 * h;
+        }
+      }
+  });
+  const std::int64_t step[6] = {1, -1, grid.dims.x(), -grid.dims.x(), std::int64_t(grid.dims.x()) * grid.dims.y(),
+                                -std::int64_t(grid.dims.x()) * grid.dims.y()};
+  std::vector<double> previous;
+  for (int pass = 0; pass < kDistancePasses; ++pass) {
+    previous = distance;
+    parallel_for(std::max(0, grid.dims.z() - 2), threads, [&](int k) {
+      for (int j = 1; j + 1 < grid.dims.y(); ++j)
+        for (int i = 1; i + 1 < grid.dims.x(); ++i) {
+          const std::int64_t n = grid.node(i, j, k + 1);
+          if (!smoothed[n]) continue;
+          double sum = 0.0;
+          int count = 0;
+          for (std::int64_t s : step)
+            if (std::isfinite(previous[n + s])) sum += previous[n + s], ++count;
+          if (count > 0) distance[n] = 0.5 * (previous[n] + sum / count);
+        }
+    });
+  }
+  return distance;
+}
+
 }  // namespace
 
 double level_set_voxel(const ScalpOptions& o) { return o.voxel > 0.0 ? o.voxel : std::min(0.25, o.crown_thickness / 6.0); }
@@ -313,7 +304,7 @@ ScalpResult make_level_set_scalp(const Hull& hull, const Mesh& skin, const Scalp
     for (std::size_t t = mesh.triangles.size(); t < both.triangles.size(); ++t) std::swap(both.triangles[t][1], both.triangles[t][2]);
 
   // The scan's signed distance, exact to the floor's depth 2T and a little beyond.
-  const FastWindingNumber winding(both, HairRegion::kFirstBeta);
+  const FastWindingNumber winding(both, HairRegion::kFirstBeta, threads);
   FieldSpec spec;
   spec.voxel = h;
   spec.band = std::ceil((2.0 * T + 3.0 * h) / h);
@@ -334,34 +325,25 @@ ScalpResult make_level_set_scalp(const Hull& hull, const Mesh& skin, const Scalp
     if ((low.array() <= hull_high.array() + reach_out).all() && (high.array() >= hull_low.array() - reach_out).all())
       near.triangles.push_back(f);
   }
-  const DistanceField field = make_distance_field(
-      near, spec, threads, [&winding](const Vec3& p) { return winding_above_half(winding, p); });
+  // The distance from the hairline at each node's closest point of the scan: the hull's, 0 on the skin.
+  std::vector<double> from_hairline = hull_distance;
+  from_hairline.resize(both.positions.size(), 0.0);
+  const CarriedField carried = make_distance_field_carrying(
+      near, from_hairline, spec, threads, [&winding](const Vec3& p) { return winding_above_half(winding, p); });
+  const DistanceField& field = carried.field;
 
   SampleGrid grid;
   grid.origin = field.origin();
   grid.spacing = h;
   grid.dims = field.dims();
-  const HairlineDistance source = hairline_distance(both, hull_distance, 0.5 * h);
-  const PointGrid samples(source.samples, h);
+  const std::vector<double> node_distance = hairline_distance_at_nodes(grid, field, carried.carried, 2.0 * T + 2.0 * h, threads);
   std::vector<double> thickness(grid.nodes()), scalp_value(grid.nodes()), floor_value(grid.nodes());
-  const double reach = 2.0 * T + 5.0 * h;
   parallel_for(grid.dims.z(), threads, [&](int k) {
     for (int j = 0; j < grid.dims.y(); ++j)
       for (int i = 0; i < grid.dims.x(); ++i) {
         const std::int64_t n = grid.node(i, j, k);
         const double d = -field.sample(i, j, k);
-        // Away from the layers the sign alone matters: outside, both values are positive; deep
-        // inside, both negative.
-        double distance = d <= -2.0 * h ? 0.0 : INFINITY;
-        if (d > -2.0 * h && d < 2.0 * T + 2.0 * h) {
-          // The closest point of the scan is about x + δ·∇δ; the sample nearest to it names the
-          // triangle (searched close by first, since that is where it lies).
-          const Vec3 x = grid.position(i, j, k);
-          const FieldValueGradient f = field.value_and_gradient(x);
-          const double length = f.gradient.norm();
-          const Vec3 foot = length > 0.5 ? Vec3(x - f.value * f.gradient / length) : x;
-          distance = source.at(x, std::abs(f.value), foot, samples, reach, 0.25 * h);
-        }
+        const double distance = node_distance[n];
         const double t = T * ramp_shape(distance / r.ramp_length);
         thickness[n] = t;
         scalp_value[n] = t - d;

@@ -434,3 +434,18 @@ TEST_CASE("deterministic: the same bits in any order, on any thread; operator() 
               !same_bits(forward[i], fast.estimate(points[i]).value);
   CHECK(differ == 0);
 }
+
+TEST_CASE("a tree built on several threads is the tree built on one: the same bits everywhere") {
+  // Large enough that the top levels hand whole subtrees to the threads (1/16 of the triangles).
+  const Mesh mesh = torus(1.0, 0.4, 160, 60);
+  const FastWindingNumber one(mesh, 2.0, 1), four(mesh, 2.0, 4);
+  Random r(23, RandomStage::test, 0);
+  int differ = 0;
+  for (int i = 0; i < 3000; ++i) {
+    const Vec3 p = random_in_box(r, Vec3::Constant(-1.6), Vec3::Constant(1.6));
+    const WindingEstimate a = one.estimate(p), b = four.estimate(p);
+    differ += !same_bits(a.value, b.value) || !same_bits(a.error_bound, b.error_bound) ||
+              !same_bits(one.direct(p), four.direct(p));
+  }
+  CHECK(differ == 0);
+}

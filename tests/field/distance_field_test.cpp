@@ -9,6 +9,7 @@
 
 #include "core/error.h"
 #include "core/random.h"
+#include "core/triangle_closest.h"
 #include "field/distance_field.h"
 #include "field/field_nrrd.h"
 #include "test_meshes.h"
@@ -148,6 +149,63 @@ TEST_CASE("raw mesh with a hole, duplicates, zero-area triangles and a flipped p
       }
   CHECK(checked > 500);
   CHECK(wrong == 0);
+}
+
+TEST_CASE("carried values: a vertex value read at each band sample's closest point, as brute force reads it") {
+  // A linear function of the position is reproduced exactly by the interpolation over any face or
+  // edge, so the carried value at a sample is that function at its closest point. The brute force
+  // finds the closest point over every triangle and reads the function there; where two triangles
+  // are nearly as close with different closest points (a medial surface), either answer is right.
+  const Mesh mesh = test::messy_sphere(2, 1.0);
+  const Vec3 slope(0.3, -1.7, 0.9);
+  std::vector<double> values;
+  for (const Vec3& p : mesh.positions) values.push_back(slope.dot(p) + 2.0);
+  const CarriedField c = make_distance_field_carrying(mesh, values, spec_for(0.07, 3, 0.4), 2);
+  CHECK(c.carried.size() == static_cast<std::size_t>(c.field.dims().prod()));
+  int checked = 0, wrong = 0, ties = 0, beyond = 0;
+  for (int k = 0; k < c.field.dims().z(); ++k)
+    for (int j = 0; j < c.field.dims().y(); ++j)
+      for (int i = 0; i < c.field.dims().x(); ++i) {
+        const double carried = c.carried[i + c.field.dims().x() * (j + c.field.dims().y() * std::int64_t(k))];
+        if (!c.field.in_band(i, j, k)) {
+          beyond += !std::isnan(carried);
+          continue;
+        }
+        const Vec3 p = c.field.origin() + c.field.voxel() * Vec3(i, j, k);
+        double best = INFINITY, second = INFINITY;
+        Vec3 best_point = Vec3::Zero();
+        for (const Vec3i& f : mesh.triangles) {
+          const Vec3 &a = mesh.positions[f[0]], &b = mesh.positions[f[1]], &q = mesh.positions[f[2]];
+          const Vec3 w = closest_barycentric(p, a, b, q);
+          const Vec3 x = w[0] * a + w[1] * b + w[2] * q;
+          const double d = (x - p).norm();
+          if (d < best) {
+            if ((x - best_point).norm() > 1e-9) second = best;
+            best = d, best_point = x;
+          } else if (d < second && (x - best_point).norm() > 1e-9) {
+            second = d;
+          }
+        }
+        if (second - best < 1e-9) {
+          ++ties;
+          continue;
+        }
+        ++checked;
+        wrong += !(std::abs(carried - (slope.dot(best_point) + 2.0)) <= 1e-9);
+      }
+  CHECK(checked > 1000);
+  CHECK(wrong == 0);
+  CHECK(beyond == 0);  // NaN beyond the band
+  CHECK(ties < checked / 20);
+  // The field itself is make_distance_field's, bit for bit.
+  const DistanceField plain = make_distance_field(mesh, spec_for(0.07, 3, 0.4), 2);
+  int differ = 0;
+  for (int k = 0; k < plain.dims().z(); ++k)
+    for (int j = 0; j < plain.dims().y(); ++j)
+      for (int i = 0; i < plain.dims().x(); ++i) differ += plain.sample(i, j, k) != c.field.sample(i, j, k);
+  CHECK(differ == 0);
+  CHECK_THROWS_AS(make_distance_field_carrying(mesh, std::vector<double>(3, 0.0), spec_for(0.07, 3, 0.4), 2),
+                  std::invalid_argument);
 }
 
 TEST_CASE("gradient equals central differences of the interpolant") {

@@ -109,3 +109,15 @@ TEST_CASE("every sculpted bust prepares into a scene whose strands stay inside a
     CHECK(figure(r.report, "strands", "scalp_crossings") == 0);
   }
 }
+
+TEST_CASE("the braids prepare at a finer scan too, on the first voxel tried") {
+  // Under a braid lying over the neck the nearest part of the scan changes from hair to skin, and
+  // the distance from the hairline jumps with it; smoothed across the grid it no longer parts the
+  // floor's end from the scalp's (without the smoothing: intersections at every voxel tried).
+  const BustScan scan = make_sculpted_bust(BustStyle::braids, 0.3);
+  const Prepared p = prepare_scan(scan.mesh, scan.colors, mask_options(), "braids.obj");
+  CHECK(p.scalp.method == "level set");
+  CHECK(p.checks.intersections == 0);
+  CHECK(p.checks.scalp_inward_triangles == 0);
+  CHECK(p.scalp_how.find(" after ") == std::string::npos);  // no second voxel was needed
+}
