@@ -24,12 +24,14 @@ MeshTopology analyse_topology(const Mesh& mesh) {
   const int n = static_cast<int>(mesh.positions.size());
   topo.faces = static_cast<int>(mesh.triangles.size());
 
-  // Directed half-edges (a→b) per undirected edge; an edge is boundary when used once.
-  struct EdgeUse {
-    int count = 0;
-    int forward = 0;  // uses as min→max
+  // Directed half-edges (a→b) per undirected edge, sorted by edge; an edge is boundary when used once.
+  struct HalfEdge {
+    int low, high;
+    bool forward;  // runs low → high
+    bool operator<(const HalfEdge& o) const { return low != o.low ? low < o.low : high < o.high; }
   };
-  std::map<std::pair<int, int>, EdgeUse> edges;
+  std::vector<HalfEdge> half_edges;
+  half_edges.reserve(3 * mesh.triangles.size());
   std::vector<char> used(n, 0);
   std::vector<int> parent(n);
   std::iota(parent.begin(), parent.end(), 0);
@@ -37,11 +39,22 @@ MeshTopology analyse_topology(const Mesh& mesh) {
     for (int k = 0; k < 3; ++k) {
       const int a = t[k], b = t[(k + 1) % 3];
       used[a] = 1;
-      EdgeUse& e = edges[{std::min(a, b), std::max(a, b)}];
-      ++e.count;
-      if (a < b) ++e.forward;
+      half_edges.push_back({std::min(a, b), std::max(a, b), a < b});
       parent[find_root(parent, a)] = find_root(parent, b);
     }
+  }
+  std::sort(half_edges.begin(), half_edges.end());
+  struct EdgeUse {
+    int low, high;
+    int count = 0;
+    int forward = 0;  // uses as low → high
+  };
+  std::vector<EdgeUse> edges;
+  for (std::size_t i = 0; i < half_edges.size(); ++i) {
+    const HalfEdge& h = half_edges[i];
+    if (i == 0 || h.low != half_edges[i - 1].low || h.high != half_edges[i - 1].high) edges.push_back({h.low, h.high});
+    ++edges.back().count;
+    edges.back().forward += h.forward;
   }
   topo.vertices = static_cast<int>(std::count(used.begin(), used.end(), 1));
   topo.edges = static_cast<int>(edges.size());
@@ -52,17 +65,17 @@ MeshTopology analyse_topology(const Mesh& mesh) {
   // Boundary half-edges keep the triangle's direction, so loops come out consistently oriented.
   std::multimap<int, int> next;  // boundary half-edge a→b
   std::vector<int> nonmanifold;
-  for (const auto& [key, use] : edges) {
+  for (const EdgeUse& use : edges) {
     if (use.count > 2) {
-      nonmanifold.push_back(key.first);
-      nonmanifold.push_back(key.second);
+      nonmanifold.push_back(use.low);
+      nonmanifold.push_back(use.high);
     }
     if (use.count == 2 && use.forward != 1) topo.orientation_consistent = false;
     if (use.count == 1) {
       if (use.forward == 1)
-        next.emplace(key.first, key.second);
+        next.emplace(use.low, use.high);
       else
-        next.emplace(key.second, key.first);
+        next.emplace(use.high, use.low);
     }
   }
   std::sort(nonmanifold.begin(), nonmanifold.end());
@@ -137,6 +150,11 @@ Vec3 triangle_normal(const Mesh& mesh, int triangle) {
   const Vec3 n = (mesh.positions[t[1]] - a).cross(mesh.positions[t[2]] - a);
   const double len = n.norm();
   return len > 0.0 ? Vec3(n / len) : Vec3::Zero();
+}
+
+Vec3 triangle_centroid(const Mesh& mesh, int triangle) {
+  const Vec3i& t = mesh.triangles[triangle];
+  return (mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) / 3.0;
 }
 
 std::pair<Vec3, Vec3> bounding_box(const Mesh& mesh) {

@@ -51,6 +51,8 @@ double triangle_area(const Mesh& mesh, int triangle);
 double surface_area(const Mesh& mesh);
 // Unit normal of a triangle (zero vector for a degenerate one).
 Vec3 triangle_normal(const Mesh& mesh, int triangle);
+// The mean of a triangle's corners, (a + b + c) / 3.
+Vec3 triangle_centroid(const Mesh& mesh, int triangle);
 // Axis-aligned bounds of the used positions: {min, max}.
 std::pair<Vec3, Vec3> bounding_box(const Mesh& mesh);
 

@@ -9,6 +9,7 @@
 #include "io/atomic_file.h"
 #include "io/obj_mesh.h"
 #include "core/fast_winding.h"
+#include "core/parallel.h"
 #include "field/hair_region.h"
 #include "prepare/scalp_level_set.h"
 #include "prepare/surface_checks.h"
@@ -158,16 +159,17 @@ PrepareChecks check(const Prepared& p, int threads) {
   std::vector<int> on_hull(scalp.positions.size(), -1);
   for (std::size_t k = 0; k < p.scalp.hairline.size(); ++k) on_hull[p.scalp.hairline[k]] = p.hull.hairline[k];
   const FastWindingNumber layer(with_scalp(hull, on_hull, p, true), HairRegion::kFirstBeta, threads);
-  for (int t = 0; t < static_cast<int>(scalp.triangles.size()); ++t) {
-    const Vec3i& f = scalp.triangles[t];
-    const Vec3 centroid = (scalp.positions[f[0]] + scalp.positions[f[1]] + scalp.positions[f[2]]) / 3.0;
-    if (winding_above_half(layer, centroid + 1e-3 * triangle_normal(scalp, t))) continue;
-    if (c.scalp_inward_triangles++ == 0) c.first_inward = centroid;
-  }
+  const int faces = static_cast<int>(scalp.triangles.size());
+  std::vector<char> inward(faces, 0);
+  parallel_for(faces, threads, [&](int t) {
+    inward[t] = !winding_above_half(layer, triangle_centroid(scalp, t) + 1e-3 * triangle_normal(scalp, t));
+  });
+  for (int t = 0; t < faces; ++t)
+    if (inward[t] && c.scalp_inward_triangles++ == 0) c.first_inward = triangle_centroid(scalp, t);
   // One mesh of hull, floor and scalp sharing the hairline: any crossing among them shows up as a
   // self-intersection.
   const Mesh all = with_scalp(p.scalp.volume, p.scalp.volume_vertex, p, false);
-  const auto pairs = self_intersections(all);
+  const auto pairs = self_intersections(all, 16, threads);
   c.intersections = static_cast<int>(pairs.size());
   if (!pairs.empty()) {
     const Vec3i& t = all.triangles[pairs[0].first];

@@ -3,7 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <unordered_map>
+
+#include "core/parallel.h"
 
 namespace hairfit {
 
@@ -87,7 +88,7 @@ bool triangles_intersect(const Vec3& a0, const Vec3& a1, const Vec3& a2, const V
   return a_lo <= b_hi && b_lo <= a_hi;
 }
 
-std::vector<std::pair<int, int>> self_intersections(const Mesh& mesh, int max_pairs) {
+std::vector<std::pair<int, int>> self_intersections(const Mesh& mesh, int max_pairs, int threads) {
   const int n = static_cast<int>(mesh.triangles.size());
   std::vector<std::pair<int, int>> found;
   if (n < 2) return found;
@@ -101,45 +102,57 @@ std::vector<std::pair<int, int>> self_intersections(const Mesh& mesh, int max_pa
   }
   const double cell = std::max(1e-12, 2.0 * edge_sum / n);
   auto cell_index = [cell](double x) { return static_cast<long long>(std::floor(x / cell)); };
-  struct Hash {
-    std::size_t operator()(const std::array<long long, 3>& c) const {
-      return static_cast<std::size_t>(c[0] * 73856093LL ^ c[1] * 19349663LL ^ c[2] * 83492791LL);
-    }
+  // Every (cell, triangle) a triangle's box covers, sorted: each cell's triangles form one run,
+  // ascending, and the runs come in the cells' order.
+  struct Entry {
+    std::array<long long, 3> cell;
+    int triangle;
+    bool operator<(const Entry& o) const { return cell != o.cell ? cell < o.cell : triangle < o.triangle; }
   };
-  std::unordered_map<std::array<long long, 3>, std::vector<int>, Hash> grid;
+  std::vector<Entry> entries;
   for (int t = 0; t < n; ++t)
     for (long long i = cell_index(lo[t].x()); i <= cell_index(hi[t].x()); ++i)
       for (long long j = cell_index(lo[t].y()); j <= cell_index(hi[t].y()); ++j)
-        for (long long k = cell_index(lo[t].z()); k <= cell_index(hi[t].z()); ++k) grid[{i, j, k}].push_back(t);
-  std::vector<std::array<long long, 3>> keys;
-  for (const auto& entry : grid) keys.push_back(entry.first);
-  std::sort(keys.begin(), keys.end());
-  for (const auto& key : keys) {
-    const std::vector<int>& in = grid[key];
-    for (std::size_t x = 0; x < in.size(); ++x)
-      for (std::size_t y = x + 1; y < in.size(); ++y) {
-        const int s = std::min(in[x], in[y]), t = std::max(in[x], in[y]);
-        const Vec3 overlap_lo = lo[s].cwiseMax(lo[t]), overlap_hi = hi[s].cwiseMin(hi[t]);
-        if ((overlap_lo.array() > overlap_hi.array()).any()) continue;
-        if (cell_index(overlap_lo.x()) != key[0] || cell_index(overlap_lo.y()) != key[1] ||
-            cell_index(overlap_lo.z()) != key[2])
-          continue;  // tested in another cell
-        const Vec3i& f = mesh.triangles[s];
-        const Vec3i& g = mesh.triangles[t];
-        bool shared = false;
-        for (int i = 0; i < 3; ++i)
-          for (int j = 0; j < 3; ++j) shared |= f[i] == g[j];
-        if (shared) continue;
-        const auto& p = mesh.positions;
-        if (triangles_intersect(p[f[0]], p[f[1]], p[f[2]], p[g[0]], p[g[1]], p[g[2]])) {
-          found.emplace_back(s, t);
-          if (static_cast<int>(found.size()) >= max_pairs) {
-            std::sort(found.begin(), found.end());
-            return found;
+        for (long long k = cell_index(lo[t].z()); k <= cell_index(hi[t].z()); ++k) entries.push_back({{i, j, k}, t});
+  std::sort(entries.begin(), entries.end());
+  std::vector<std::size_t> runs{0};
+  for (std::size_t e = 1; e <= entries.size(); ++e)
+    if (e == entries.size() || entries[e].cell != entries[e - 1].cell) runs.push_back(e);
+  // The cells in chunks side by side, each keeping its first max_pairs in cell order; joined in
+  // chunk order, the first max_pairs are the ones one pass in cell order would find.
+  const int cells = static_cast<int>(runs.size()) - 1;
+  constexpr int kChunk = 4096;
+  const int chunks = (cells + kChunk - 1) / kChunk;
+  std::vector<std::vector<std::pair<int, int>>> found_in(chunks);
+  parallel_for(chunks, resolve_thread_count(threads), [&](int chunk) {
+    std::vector<std::pair<int, int>>& out = found_in[chunk];
+    for (int c = chunk * kChunk; c < std::min(cells, (chunk + 1) * kChunk); ++c) {
+      const std::array<long long, 3>& key = entries[runs[c]].cell;
+      for (std::size_t x = runs[c]; x < runs[c + 1]; ++x)
+        for (std::size_t y = x + 1; y < runs[c + 1]; ++y) {
+          const int s = entries[x].triangle, t = entries[y].triangle;
+          const Vec3 overlap_lo = lo[s].cwiseMax(lo[t]), overlap_hi = hi[s].cwiseMin(hi[t]);
+          if ((overlap_lo.array() > overlap_hi.array()).any()) continue;
+          if (cell_index(overlap_lo.x()) != key[0] || cell_index(overlap_lo.y()) != key[1] ||
+              cell_index(overlap_lo.z()) != key[2])
+            continue;  // tested in another cell
+          const Vec3i& f = mesh.triangles[s];
+          const Vec3i& g = mesh.triangles[t];
+          bool shared = false;
+          for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) shared |= f[i] == g[j];
+          if (shared) continue;
+          const auto& p = mesh.positions;
+          if (triangles_intersect(p[f[0]], p[f[1]], p[f[2]], p[g[0]], p[g[1]], p[g[2]])) {
+            out.emplace_back(s, t);
+            if (static_cast<int>(out.size()) >= max_pairs) return;
           }
         }
-      }
-  }
+    }
+  });
+  for (const auto& chunk : found_in)
+    for (const auto& pair : chunk)
+      if (static_cast<int>(found.size()) < max_pairs) found.push_back(pair);
   std::sort(found.begin(), found.end());
   return found;
 }

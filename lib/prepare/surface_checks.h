@@ -14,8 +14,9 @@ bool triangles_intersect(const Vec3& a0, const Vec3& a1, const Vec3& a2, const V
 // Pairs (i < j) of triangles of `mesh` that share no vertex and yet intersect: the
 // self-intersections. Stops after `max_pairs`. A uniform grid over the triangles' bounding boxes
 // finds the candidates; each pair is tested once, in the cell holding the low corner of the
-// overlap of their boxes, so the answer is exact and deterministic.
-std::vector<std::pair<int, int>> self_intersections(const Mesh& mesh, int max_pairs = 16);
+// overlap of their boxes, so the answer is exact and deterministic; `threads` (0 = all) tests
+// cells side by side and finds the same pairs.
+std::vector<std::pair<int, int>> self_intersections(const Mesh& mesh, int max_pairs = 16, int threads = 1);
 
 // Mean curvature |H| (1/cm) at each vertex from the cotangent Laplacian over the barycentric
 // area: |Σⱼ (cot αᵢⱼ + cot βᵢⱼ)(xᵢ − xⱼ)| / (4 Aᵢ). Boundary vertices get 0 (undefined there).

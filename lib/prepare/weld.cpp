@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <array>
-#include <set>
+#include <vector>
 
 #include "core/weld.h"
 
@@ -23,16 +23,28 @@ Welded weld_vertices(const Mesh& mesh, double tolerance) {
     w.new_to_old.push_back(i);
     w.mesh.positions.push_back(mesh.positions[i]);
   }
-  std::set<std::array<int, 3>> seen;
-  for (const Vec3i& t : mesh.triangles) {
-    const Vec3i m(w.old_to_new[t[0]], w.old_to_new[t[1]], w.old_to_new[t[2]]);
-    std::array<int, 3> key{m[0], m[1], m[2]};
-    std::sort(key.begin(), key.end());
-    if (m[0] == m[1] || m[1] == m[2] || m[0] == m[2] || !seen.insert(key).second) {
+  // A triangle repeating an earlier one's corners (in any order) is dropped: sorted by corners,
+  // then by index, the first of each run is the one kept.
+  const int m = static_cast<int>(mesh.triangles.size());
+  std::vector<std::array<int, 4>> keys(m);
+  for (int t = 0; t < m; ++t) {
+    const Vec3i& f = mesh.triangles[t];
+    std::array<int, 3> c{w.old_to_new[f[0]], w.old_to_new[f[1]], w.old_to_new[f[2]]};
+    std::sort(c.begin(), c.end());
+    keys[t] = {c[0], c[1], c[2], t};
+  }
+  std::sort(keys.begin(), keys.end());
+  std::vector<char> repeated(m, 0);
+  for (int k = 1; k < m; ++k)
+    repeated[keys[k][3]] = keys[k][0] == keys[k - 1][0] && keys[k][1] == keys[k - 1][1] && keys[k][2] == keys[k - 1][2];
+  for (int t = 0; t < m; ++t) {
+    const Vec3i& f = mesh.triangles[t];
+    const Vec3i v(w.old_to_new[f[0]], w.old_to_new[f[1]], w.old_to_new[f[2]]);
+    if (v[0] == v[1] || v[1] == v[2] || v[0] == v[2] || repeated[t]) {
       ++w.dropped_triangles;
       continue;
     }
-    w.mesh.triangles.push_back(m);
+    w.mesh.triangles.push_back(v);
   }
   return w;
 }
