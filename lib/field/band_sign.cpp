@@ -55,15 +55,45 @@ std::vector<char> near_rims(const MeshFeatures& f, double reach) {
 
 }  // namespace
 
-SettledSigns::SettledSigns(const MeshFeatures& f, double r, const InsideTest& inside, int threads)
+namespace {
+
+// Per face and side, how many of the band's samples could take that side's settled answer.
+std::vector<std::array<int, 2>> samples_per_side(const MeshFeatures& f, const BandScan& band) {
+  const int nf = static_cast<int>(f.faces.size()), ne = static_cast<int>(f.edges.size());
+  std::vector<std::array<int, 2>> count(f.faces.size(), {0, 0});
+  auto edge = [&](int e, int side) {
+    for (int i = f.edge_face_offsets[e]; i < f.edge_face_offsets[e + 1]; ++i) ++count[f.edge_faces[i]][side];
+  };
+  for (std::size_t n = 0; n < band.key.size(); ++n) {
+    const int key = band.key[n];
+    if (key < 0) continue;
+    const int side = band.value[n] < 0 ? 1 : 0;
+    if (key < nf) {
+      ++count[key][side];
+    } else if (key < nf + ne) {
+      edge(key - nf, side);
+    } else {
+      const int v = key - nf - ne;
+      for (int i = f.vertex_edge_offsets[v]; i < f.vertex_edge_offsets[v + 1]; ++i) edge(f.vertex_edges[i], side);
+    }
+  }
+  return count;
+}
+
+}  // namespace
+
+SettledSigns::SettledSigns(const MeshFeatures& f, double r, const InsideTest& inside, int threads,
+                           const BandScan* band)
     : features_(f), inside_(inside), faces_(f.faces.size(), {-1, -1}) {
   const std::vector<char> near = near_rims(f, 2 * r);
+  const std::vector<std::array<int, 2>> samples = band ? samples_per_side(f, *band) : std::vector<std::array<int, 2>>{};
   parallel_for(static_cast<int>(f.faces.size()), threads, [&](int t) {
     if (near[t]) return;
     const Vec3i& v = f.faces[t];
     const Vec3 c = (f.vertices[v[0]] + f.vertices[v[1]] + f.vertices[v[2]]) / 3.0;
     const Vec3& n = f.face_normals[t];
     for (int side = 0; side < 2; ++side) {
+      if (band && samples[t][side] < kWorthProbing) continue;
       const double s = side == 0 ? 1.0 : -1.0;
       // Two probes: one just off the face (a hundredth of the band's width), one a band width out.
       const bool close = inside(c + s * 0.01 * r * n);

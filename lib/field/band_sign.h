@@ -20,7 +20,12 @@ namespace hairfit::field {
 // The faces' settled answers, and the test for everything else.
 class SettledSigns {
  public:
-  SettledSigns(const MeshFeatures& features, double r, const InsideTest& inside, int threads);
+  // `band` (its keys and pseudo-normal-signed values): a face side is probed only where at least
+  // kWorthProbing of the band's samples could take its answer (keyed to the face, or to an edge or
+  // vertex of it, on that side); elsewhere asking the samples themselves costs fewer tests.
+  SettledSigns(const MeshFeatures& features, double r, const InsideTest& inside, int threads,
+               const BandScan* band = nullptr);
+  static constexpr int kWorthProbing = 3;  // a side's two probes against the samples they answer
   // The test's answer at p, whose closest feature is `key` (band_scan.h's keys; −1 for none) and
   // which lies in front of it (side 0) or behind it (side 1): the settled answer where there is
   // one, the test's own elsewhere.

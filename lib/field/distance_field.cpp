@@ -149,7 +149,7 @@ DistanceField DistanceField::build(const Mesh& mesh, const FieldSpec& spec, int 
   field::FarField far = field::make_far_field(features, grid, band, r, plan.coarse_factor, threads);
   std::optional<field::SettledSigns> signs;
   if (inside) {
-    signs.emplace(features, r, inside, threads);
+    signs.emplace(features, r, inside, threads, &band);
     field::sign_band(*signs, grid, band, threads);
     const field::GridGeometry coarse{plan.origin, plan.coarse_factor * spec.voxel, far.dims};
     sign_by_test(far.values, coarse, plan.coarse_factor, inside, threads);
