@@ -1,12 +1,58 @@
 #include "scalp/flow_lookup.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace hairfit {
 
+namespace {
+
+constexpr double kCellsPerRadius = 4.0;
+
+}  // namespace
+
+// Per occupied cell radius / kCellsPerRadius wide (in the order of their indices) the mean position
+// of its vertices and the sums of their directions and normals.
+FlowLookup::Gathered FlowLookup::gather(const Mesh& scalp, const std::vector<Vec3>& normals, const DirectionField& field, double radius) {
+  const double cell = radius / kCellsPerRadius;
+  struct Entry {
+    std::array<long long, 3> cell;
+    int vertex;
+    bool operator<(const Entry& o) const { return cell != o.cell ? cell < o.cell : vertex < o.vertex; }
+  };
+  std::vector<Entry> entries(scalp.positions.size());
+  for (std::size_t v = 0; v < entries.size(); ++v) {
+    const Vec3& p = scalp.positions[v];
+    entries[v] = {{static_cast<long long>(std::floor(p.x() / cell)), static_cast<long long>(std::floor(p.y() / cell)),
+                   static_cast<long long>(std::floor(p.z() / cell))},
+                  static_cast<int>(v)};
+  }
+  std::sort(entries.begin(), entries.end());
+  Gathered g;
+  for (std::size_t e = 0; e < entries.size();) {
+    std::size_t end = e;
+    Vec3 position = Vec3::Zero(), direction = Vec3::Zero(), normal = Vec3::Zero();
+    for (; end < entries.size() && entries[end].cell == entries[e].cell; ++end) {
+      const int v = entries[end].vertex;
+      position += scalp.positions[v];
+      direction += field.directions[v];
+      normal += normals[v];
+    }
+    g.positions.push_back(position / static_cast<double>(end - e));
+    g.directions.push_back(direction);
+    g.normals.push_back(normal);
+    e = end;
+  }
+  return g;
+}
+
 FlowLookup::FlowLookup(const Mesh& scalp, const std::vector<Vec3>& normals, const DirectionField& field, double radius)
-    : positions_(scalp.positions), normals_(normals), directions_(field.directions), grid_(scalp.positions, radius),
-      radius_(radius) {}
+    : FlowLookup(gather(scalp, normals, field, radius), radius) {}
+
+FlowLookup::FlowLookup(Gathered g, double radius)
+    : positions_(std::move(g.positions)), normals_(std::move(g.normals)), directions_(std::move(g.directions)),
+      grid_(positions_, radius), radius_(radius) {}
 
 Vec3 FlowLookup::at(const Vec3& p, Vec3* normal) const {
   Vec3 direction = Vec3::Zero(), n = Vec3::Zero();
