@@ -27,7 +27,8 @@ struct Region {
 };
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
-constexpr int kSlab = 8;  // z-layers per parallel work item (fixed: results must not depend on threads)
+constexpr int kSlab = 16;  // z-layers per parallel work item (fixed: results must not depend on threads); a region
+                           // rebuilds its planes in every slab it meets, so thicker slabs cost fewer rebuilds
 
 // Largest dir·u over u in the cone {g_j·u ≤ 0} (within the plane ⊥ axis when axis ≠ 0) and the
 // unit ball. The maximiser is dir itself, its projection onto one facet, an extreme ray, or 0.
