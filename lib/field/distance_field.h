@@ -65,6 +65,8 @@ struct FieldSmooth {
   Mat3 hessian = Mat3::Zero();   // 1/cm
 };
 
+struct CarriedField;
+
 class DistanceField {
  public:
   // Grid geometry: sample (i,j,k) sits at origin + h·(i,j,k), 0 ≤ i < dims.x() etc.
@@ -112,8 +114,8 @@ class DistanceField {
 
  private:
   friend DistanceField make_distance_field(const Mesh&, const FieldSpec&, int, const InsideTest&);
-  friend struct CarriedField make_distance_field_carrying(const Mesh&, const std::vector<double>&, const FieldSpec&,
-                                                          int, const InsideTest&);
+  friend CarriedField make_distance_field_carrying(const Mesh&, const std::vector<double>&, const FieldSpec&, int,
+                                                  const InsideTest&);
   friend struct StageCodecAccess;  // the stage cache (lib/pipeline/stage_codec.cpp) stores and restores it
   DistanceField() = default;  // built only by make_distance_field
   // Both builders: with `vertex_values`, the carried values go to `carried`.
