@@ -78,11 +78,7 @@ std::vector<Vec3> scalp_probes(const Mesh& scalp) {
   const int count = static_cast<int>(scalp.triangles.size());
   const int step = std::max(1, count / 400);
   std::vector<Vec3> probes;
-  for (int t = 0; t < count; t += step) {
-    const Vec3i& f = scalp.triangles[t];
-    const Vec3 centroid = (scalp.positions[f[0]] + scalp.positions[f[1]] + scalp.positions[f[2]]) / 3.0;
-    probes.push_back(centroid + offset * triangle_normal(scalp, t));
-  }
+  for (int t = 0; t < count; t += step) probes.push_back(triangle_centroid(scalp, t) + offset * triangle_normal(scalp, t));
   return probes;
 }
 

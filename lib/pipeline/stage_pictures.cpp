@@ -161,9 +161,9 @@ Image density_picture(const Scene& scene, const StageValues& v, int width, int h
                 [&](int w, int h) { return render_heat_map(map, w, h); }, width, height, 1000);
 }
 
-}  // namespace
-
 constexpr int kLegibleTile = 480;  // px: the smallest picture whose plot labels do not collide
+
+}  // namespace
 
 Image render_stage(const std::string& stage, const Scene& scene, const Inputs& inputs, const StageValues& values,
                    ViewName view, int width, int height, int threads) {

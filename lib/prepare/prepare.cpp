@@ -171,10 +171,7 @@ PrepareChecks check(const Prepared& p, int threads) {
   const Mesh all = with_scalp(p.scalp.volume, p.scalp.volume_vertex, p, false);
   const auto pairs = self_intersections(all, 16, threads);
   c.intersections = static_cast<int>(pairs.size());
-  if (!pairs.empty()) {
-    const Vec3i& t = all.triangles[pairs[0].first];
-    c.first_intersection = (all.positions[t[0]] + all.positions[t[1]] + all.positions[t[2]]) / 3.0;
-  }
+  if (!pairs.empty()) c.first_intersection = triangle_centroid(all, pairs[0].first);
   const std::vector<double> curvature = mean_curvature(scalp);
   std::vector<double> under;
   for (std::size_t v = 0; v < curvature.size(); ++v)

@@ -55,8 +55,7 @@ ScalpResult make_scalp(const Hull& hull, const ScalpOptions& o, const std::strin
   const Vec3 c = hull.centre;
   const std::vector<int> facing = inward_triangles(mesh, c);
   if (!facing.empty()) {
-    const Vec3i& t = mesh.triangles[facing.front()];
-    const Vec3 p = (mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) / 3.0;
+    const Vec3 p = triangle_centroid(mesh, facing.front());
     char text[512];
     std::snprintf(text, sizeof text,
                   "the hair hull is not star-shaped about the head centre (%.4g, %.4g, %.4g): %zu of its %zu "
