@@ -1,7 +1,5 @@
 #include "scalp/flow_lookup.h"
 
-#include <algorithm>
-#include <array>
 #include <cmath>
 
 namespace hairfit {
@@ -12,37 +10,22 @@ constexpr double kCellsPerRadius = 4.0;
 
 }  // namespace
 
-// Per occupied cell radius / kCellsPerRadius wide (in the order of their indices) the mean position
-// of its vertices and the sums of their directions and normals.
+// Per occupied cell of a PointGrid radius / kCellsPerRadius wide (in its cell order) the mean
+// position of its vertices and the sums of their directions and normals.
 FlowLookup::Gathered FlowLookup::gather(const Mesh& scalp, const std::vector<Vec3>& normals, const DirectionField& field, double radius) {
-  const double cell = radius / kCellsPerRadius;
-  struct Entry {
-    std::array<long long, 3> cell;
-    int vertex;
-    bool operator<(const Entry& o) const { return cell != o.cell ? cell < o.cell : vertex < o.vertex; }
-  };
-  std::vector<Entry> entries(scalp.positions.size());
-  for (std::size_t v = 0; v < entries.size(); ++v) {
-    const Vec3& p = scalp.positions[v];
-    entries[v] = {{static_cast<long long>(std::floor(p.x() / cell)), static_cast<long long>(std::floor(p.y() / cell)),
-                   static_cast<long long>(std::floor(p.z() / cell))},
-                  static_cast<int>(v)};
-  }
-  std::sort(entries.begin(), entries.end());
+  const PointGrid cells(scalp.positions, radius / kCellsPerRadius, false);
   Gathered g;
-  for (std::size_t e = 0; e < entries.size();) {
-    std::size_t end = e;
+  for (int k = 0; k < cells.cell_count(); ++k) {
     Vec3 position = Vec3::Zero(), direction = Vec3::Zero(), normal = Vec3::Zero();
-    for (; end < entries.size() && entries[end].cell == entries[e].cell; ++end) {
-      const int v = entries[end].vertex;
+    for (int i = cells.cell_begin(k); i < cells.cell_begin(k + 1); ++i) {
+      const int v = cells.order()[i];
       position += scalp.positions[v];
       direction += field.directions[v];
       normal += normals[v];
     }
-    g.positions.push_back(position / static_cast<double>(end - e));
+    g.positions.push_back(position / static_cast<double>(cells.cell_begin(k + 1) - cells.cell_begin(k)));
     g.directions.push_back(direction);
     g.normals.push_back(normal);
-    e = end;
   }
   return g;
 }
