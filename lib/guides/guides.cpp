@@ -114,11 +114,21 @@ GuideTargets make_targets(const RootSet& bases, int b, const PreGuides& preguide
   return t;
 }
 
+// The targets as a solve's rod carries its weight: a copy whose model carries only the share of
+// the weight the solve reached (GuideSolve::weight_share), for a rod that could not carry all.
+GuideTargets carrying(const GuideTargets& t, const GuideSolve& s) {
+  GuideTargets c = t;
+  c.model.force_per_length = s.weight_share * t.model.force_per_length;
+  return c;
+}
+
 // A solved guide's shape and terminal torque m(1): traced piece by piece for a heavy rod (one
 // integration from m(0) would diverge), else one integration from (f_L, m(0)).
+// A rod whose weight could be followed only in part is traced under that share of it.
 FibreShape solved_shape(const GuideTargets& t, const GuideSolve& s, Vec3& terminal_torque) {
   if (s.heavy) {
     terminal_torque = s.solution.terminal_torque;
+    if (s.weight_share < 1.0) return fibre_shape(carrying(t, s).model, t.root, t.length, t.rod, s.solution);
     return fibre_shape(t.model, t.root, t.length, t.rod, s.solution);
   }
   return fibre_shape(t.model, t.root, t.length, t.rod, Vec3(s.eta[0], s.eta[1], s.eta[2]), Vec3(s.eta[3], s.eta[4], s.eta[5]),
@@ -197,7 +207,9 @@ Guide solve_guide(const RootSet& bases, int b, const PreGuides& preguides, const
   }
   if (use == GuideUse::start) return g;
   const GuideTerms terms =
-      solve.heavy ? evaluate_guide_terms(targets, solve.solution) : evaluate_guide_terms(targets, solve.eta);
+      !solve.heavy                ? evaluate_guide_terms(targets, solve.eta)
+      : solve.weight_share < 1.0 ? evaluate_guide_terms(carrying(targets, solve), solve.solution)
+                                 : evaluate_guide_terms(targets, solve.solution);
   g.cost = terms.total;
   g.f1 = terms.f1;
   g.f2 = terms.f2;

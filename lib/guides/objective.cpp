@@ -614,11 +614,13 @@ GuideSolve optimise_heavy_guide(const GuideTargets& targets, const double start[
   ShootingResult at = shoot_root_moment(targets.model, Vec3(x[0], x[1], x[2]), Vec3::Zero(), Vec3::Zero(), first);
   if (!at.converged) {
     std::fill(x, x + 6, 0.0);
-    at = shoot_root_moment(targets.model, Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), first);
+    const HangingRod hanging = hang_under_weight(targets.model, targets.rod);
+    at = hanging.solution;
+    result.weight_share = hanging.weight_share;
   }
   result.solution = at;
   result.evaluations = 1;
-  if (!at.converged) {  // not even the hanging rod: keep the best iterate, flagged
+  if (result.weight_share < 1.0) {  // not even the hanging rod: keep it at the share reached, flagged
     result.termination = "NO_START";
   } else {
     auto* cost = new HeavyGuideCost(targets, at);

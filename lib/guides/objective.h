@@ -79,6 +79,9 @@ struct GuideSolve {
   // reproduce it), and solution.terminal_torque is t_L.
   bool heavy = false;
   ShootingResult solution;
+  // 1, or less for a heavy rod whose weight could not be followed to the full weight (a fold, see
+  // hang_under_weight): then `solution` is the hanging rod at this share, termination "NO_START".
+  double weight_share = 1.0;
   int iterations = 0;
   int evaluations = 0;
   bool converged = false;

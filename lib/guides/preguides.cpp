@@ -88,6 +88,11 @@ RodEnd end_of(const RodState<T>& state) {
 // Jacobian from jets, from a predictor. Several equilibria exist at the same load (curled rods),
 // so the loads are reached by continuation from the unloaded rod (march_load below), which keeps
 // the path on the branch connected to it.
+// Newton steps a heavy rod's solve from rest may take: its load continuation follows hair that
+// grows up as it falls over onto the head in small steps (about 260 for 22–26 cm crown hair on
+// the straight fixture).
+constexpr int kRestBudget = 1000;
+
 class Cantilever {
  public:
   Cantilever(const Vec3& bend, const RodDiscretisation& rod) : bend_(bend), rod_(rod) {}
@@ -108,7 +113,7 @@ class Cantilever {
       // A solve from nothing (the rod under its weight alone) continues from the unloaded rod; a
       // failed warm start returns at once, and the caller shortens its load step.
       options.restart_from_rest = at.breaks.empty() && at.root_moment.isZero();
-      options.max_iterations = options.restart_from_rest ? 200 : 10;
+      options.max_iterations = options.restart_from_rest ? kRestBudget : 10;
       const ShootingResult r = shoot_root_moment(model, force, Vec3::Zero(), at, options);
       solves += std::max(1, r.iterations);
       if (r.converged) at = r;
@@ -177,6 +182,68 @@ ShootingResult predicted(const ShootingResult& at, const Vec3& root_moment) {
   return guess;
 }
 
+// The rod under its own weight alone (no terminal load), by continuation in the weight from the
+// straight rod: a heavy hair (ρAgL³/EI is ~10³ for 30 cm of hair) has many equilibria, and only
+// this path finds the drooping one. Beyond kHeavyRod each level starts from the pieces of the one
+// before. A heavy rod or one on the scalp is first solved from rest under the full weight, whose
+// load continuation (rod_shooting.h) follows the branch of the unloaded rod, falling over where
+// hair that grows up buckles. Where that continuation stalls (crown hair that stands nearly
+// upright), the weight is followed in shares as for a light rod, each level warm-started from
+// the last and its step held to a tip turn of kMaxTipTurn.
+struct WeightedRod {
+  ShootingResult solution;   // at `share` of the weight
+  std::optional<RodEnd> end;  // its rod's end when the solve traced it
+  double share = 0.0;         // 1, or the share reached before a fold or the budget
+};
+
+WeightedRod carry_weight(const Cantilever& cantilever, const RodModel& model, const RodDiscretisation& rod,
+                         const Vec3& direction, int& solves) {
+  WeightedRod w;
+  RodModel scaled = model;
+  double share_step = model.force_per_length.norm() > 0.0 ? 0.05 : 1.0;
+  const bool from_rest = model.support || model.force_per_length.norm() > kHeavyRod;
+  if (from_rest) {
+    std::optional<RodEnd> end;
+    ShootingResult trial;
+    if (cantilever.solve(model, 0.0, trial, solves, end)) {
+      w.solution = trial;
+      w.end = end;
+      w.share = 1.0;
+    }
+  }
+  Vec3 m_prev = Vec3::Zero(), tip_prev = direction;
+  double share_prev = 0.0;
+  const int budget = solves + (from_rest ? kRestBudget : kNewtonBudget);
+  while (w.share < 1.0 && share_step > 1e-5 && solves < budget) {
+    const double next = std::min(1.0, w.share + share_step);
+    scaled.force_per_length = next * model.force_per_length;
+    const Vec3& m0 = w.solution.root_moment;
+    const Vec3 predictor =
+        w.share > share_prev ? Vec3(m0 + (m0 - m_prev) * ((next - w.share) / (w.share - share_prev))) : m0;
+    ShootingResult trial = predicted(w.solution, predictor);
+    std::optional<RodEnd> end;
+    bool accepted = cantilever.solve(scaled, 0.0, trial, solves, end) &&
+                    (trial.root_moment - predictor).norm() <= 0.1 * (1.0 + m0.norm());
+    Vec3 tip = tip_prev;
+    if (accepted) {
+      tip = end ? end->tangent : fibre_shape(scaled, Vec3::Zero(), 1.0, rod, trial).tangents.back();
+      accepted = std::acos(std::clamp(tip.dot(tip_prev), -1.0, 1.0)) <= kMaxTipTurn;
+    }
+    if (!accepted) {
+      share_step *= 0.5;
+      continue;
+    }
+    m_prev = m0;
+    share_prev = w.share;
+    w.solution = trial;
+    w.end = end;  // traced under the full weight once the share reaches 1
+    tip_prev = tip;
+    w.share = next;
+    share_step = std::min(share_step * 1.5, 0.25);
+  }
+  return w;
+}
+
 // A solved state of the cantilever at one load, with its rod's free end (rod units: the root at
 // the origin, lengths in L, the model's axes).
 struct MarchState {
@@ -219,11 +286,11 @@ Vec3 extrapolated(const MarchState& a, const MarchState& b, const MarchState& c,
 // turns by at most kMaxTipTurn, toward the pull, never back; else the step is halved.
 template <class Visit>
 void march_load(const Cantilever& cantilever, const RodModel& model, const RodDiscretisation& rod, const Vec3& bend,
-                const MarchState& start, double max_load, int& solves, Visit&& visit) {
+                const MarchState& start, double max_load, int budget, int& solves, Visit&& visit) {
   if (!visit(start)) return;
   MarchState earliest = start, previous = start, current = start;  // the last three accepted
   double step = 0.25;
-  while (current.load < max_load && step > 1e-4 * (1.0 + current.load) && solves < kNewtonBudget) {
+  while (current.load < max_load && step > 1e-4 * (1.0 + current.load) && solves < budget) {
     MarchState next;
     next.load = std::min(max_load, current.load + step);
     const Vec3 predictor = extrapolated(earliest, previous, current, next.load, bend);
@@ -279,7 +346,7 @@ PreguideMarch shared_march(const Vec3& compliance, const PreguideOptions& o) {
   std::optional<RodEnd> traced;
   cantilever.solve(model, 0.0, start.solution, m.solves, traced);
   start.end = rod_end(model, o.rod, start.solution, traced);
-  march_load(cantilever, model, o.rod, bend, start, o.max_load, m.solves, [&](const MarchState& s) {
+  march_load(cantilever, model, o.rod, bend, start, o.max_load, kNewtonBudget, m.solves, [&](const MarchState& s) {
     m.states.push_back(s);
     return true;
   });
@@ -305,6 +372,7 @@ PreGuide solve_preguide(const RootSet& roots, int i, const Boundary& boundary, c
   std::optional<Visited> best, previous;
   Visited above, below;
   bool bracketed = false;
+  int rest_solves = 0;  // Newton steps a heavy rod's weight took, on top of the budgets below
   auto visit = [&](const MarchState& s) {
     const Visited v = visited(s);
     if (!best || std::fabs(v.miss) < std::fabs(best->miss)) best = v;
@@ -335,61 +403,26 @@ PreGuide solve_preguide(const RootSet& roots, int i, const Boundary& boundary, c
       if (!visit(w)) break;
     }
   } else {
-    // The rod under its own weight first, by continuation in the weight from the straight rod: a
-    // heavy hair (ρAgL³/EI is ~10³ for 30 cm of hair) has many equilibria, and only this path
-    // finds the drooping one. Beyond kHeavyRod each level starts from the pieces of the one before.
+    // The rod under its own weight first, then the bending load's march from there.
+    const WeightedRod weighted = carry_weight(cantilever, model, o.rod, g.direction, g.solves);
+    if (model.support || model.force_per_length.norm() > kHeavyRod) rest_solves = g.solves;
+    if (weighted.share < 1.0) {
+      // The weight could be followed to this share of itself only: a fold, beyond which the rod
+      // snaps through to an equilibrium no continuation from here reaches. The pre-guide keeps the
+      // last equilibrium it reached, unbent by any terminal force, and is flagged.
+      RodModel partial = model;
+      partial.force_per_length = weighted.share * model.force_per_length;
+      g.weight_share = weighted.share;
+      g.root_moment = weighted.solution.root_moment;
+      g.shape = fibre_shape(partial, g.root, g.length, o.rod, weighted.solution);
+      g.depth = -boundary.volume->value(g.shape.nodes.back());
+      return g;
+    }
     MarchState start;
-    std::optional<RodEnd> start_traced;
-    RodModel scaled = model;
-    double share = 0.0, share_step = model.force_per_length.norm() > 0.0 ? 0.05 : 1.0;
-    // A heavy rod or one on the scalp: one solve from rest under the full weight, whose load
-    // continuation (rod_shooting.h) follows the branch of the unloaded rod, falling over where
-    // hair that grows up buckles.
-    const bool from_rest = model.support || model.force_per_length.norm() > kHeavyRod;
-    if (from_rest) {
-      std::optional<RodEnd> end;
-      ShootingResult trial;
-      if (cantilever.solve(model, 0.0, trial, g.solves, end)) {
-        start.solution = trial;
-        start_traced = end;
-        share = 1.0;
-      }
-    }
-    Vec3 m_prev = Vec3::Zero(), tip_prev = g.direction;
-    double share_prev = 0.0;
-    while (!from_rest && share < 1.0 && share_step > 1e-5 && g.solves < kNewtonBudget) {
-      const double next = std::min(1.0, share + share_step);
-      scaled.force_per_length = next * model.force_per_length;
-      const Vec3 predictor = share > share_prev ? Vec3(start.m0() + (start.m0() - m_prev) * ((next - share) / (share - share_prev)))
-                                                : start.m0();
-      ShootingResult trial = predicted(start.solution, predictor);
-      std::optional<RodEnd> end;
-      bool accepted = cantilever.solve(scaled, 0.0, trial, g.solves, end) &&
-                      (trial.root_moment - predictor).norm() <= 0.1 * (1.0 + start.m0().norm());
-      Vec3 tip = tip_prev;
-      if (accepted) {
-        tip = end ? end->tangent : fibre_shape(scaled, g.root, g.length, o.rod, trial).tangents.back();
-        accepted = std::acos(std::clamp(tip.dot(tip_prev), -1.0, 1.0)) <= kMaxTipTurn;
-      }
-      if (!accepted) {
-        share_step *= 0.5;
-        continue;
-      }
-      m_prev = start.m0();
-      share_prev = share;
-      start.solution = trial;
-      start_traced = end;  // traced under the full weight once share reaches 1
-      tip_prev = tip;
-      share = next;
-      share_step = std::min(share_step * 1.5, 0.25);
-    }
-    if (share < 1.0) {  // could not follow the weight: flagged below by the miss
-      start.solution = ShootingResult{};
-      start_traced.reset();
-    }
+    start.solution = weighted.solution;
     start.solution.force_per_length = model.force_per_length;
-    start.end = rod_end(model, o.rod, start.solution, start_traced);
-    march_load(cantilever, model, o.rod, bend, start, o.max_load, g.solves, visit);
+    start.end = rod_end(model, o.rod, start.solution, weighted.end);
+    march_load(cantilever, model, o.rod, bend, start, o.max_load, kNewtonBudget + rest_solves, g.solves, visit);
   }
 
   const double tolerance = 1e-3 * std::max(g.thickness, 1e-2);
@@ -400,7 +433,7 @@ PreGuide solve_preguide(const RootSet& roots, int i, const Boundary& boundary, c
   double above_miss = above.miss, below_miss = below.miss;  // the ends' misses as the secant weighs them
   int kept = 0;  // the end kept by the last step: +1 above, −1 below
   for (int k = 0; bracketed && k < 60 && std::fabs(best->miss) > tolerance && below.state.load > above.state.load &&
-                  g.solves < 2 * kNewtonBudget;
+                  g.solves < 2 * kNewtonBudget + rest_solves;
        ++k) {
     const double t = std::clamp(above_miss / (above_miss - below_miss), 0.0, 1.0);
     MarchState mid;
@@ -435,6 +468,15 @@ PreGuide solve_preguide(const RootSet& roots, int i, const Boundary& boundary, c
 }
 
 }  // namespace
+
+HangingRod hang_under_weight(const RodModel& model, const RodDiscretisation& rod) {
+  const Cantilever cantilever(Vec3::UnitX(), rod);  // no terminal load: the bend is never used
+  HangingRod h;
+  const WeightedRod w = carry_weight(cantilever, model, rod, model.root_frame.col(2), h.solves);
+  h.solution = w.solution;
+  h.weight_share = w.share;
+  return h;
+}
 
 double immersion_share(const PreguideOptions& o, double height) {
   return o.depth_range[1] + (o.depth_range[0] - o.depth_range[1]) * std::clamp(height, 0.0, 1.0);

@@ -65,6 +65,9 @@ struct PreGuide {
   bool reached = false;       // the tip met its target depth (tip: within 1e-3 of the thickness;
                               // layer: its layer coordinate within 0.1 of the target)
   int solves = 0;             // forward integrations with jets (Newton steps) spent
+  // The share of its weight the pre-guide carries: 1, or less where the weight continuation met a
+  // fold before the full weight (then the shape is that equilibrium's, and `reached` is false).
+  double weight_share = 1.0;
 };
 
 struct PreGuides {
@@ -83,6 +86,18 @@ double immersion_share(const PreguideOptions& options, double height);
 // A pre-guide as it starts, from root i of the set: root, normal, direction, length, height, the
 // layer's thickness at the root and the depth its tip is to reach (immersion_share of it).
 PreGuide preguide_start(const RootSet& roots, int i, const Boundary& boundary, const PreguideOptions& options);
+
+// A rod under its own weight alone, with no terminal load, on the branch that falls over and hangs
+// (as every pre-guide under gravity starts): the continuation in the weight, first from rest
+// under the full weight, then, where that stalls, in shares held to a tip turn of 15°. Where a
+// fold ends the branch short of the full weight, `solution` is the last equilibrium reached, at
+// `weight_share` of the weight (its force_per_length says which).
+struct HangingRod {
+  ShootingResult solution;
+  double weight_share = 0.0;
+  int solves = 0;  // Newton steps
+};
+HangingRod hang_under_weight(const RodModel& model, const RodDiscretisation& rod);
 
 // One pre-guide per root, in root order; the same for any thread count. Rods loaded only at the
 // tip with a straight natural shape (no weight, no curl) solve one dimensionless problem in their

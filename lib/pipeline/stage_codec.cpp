@@ -10,7 +10,7 @@ static_assert(sizeof(RootSet) == 168, "RootSet changed: update stage_codec.cpp")
 static_assert(sizeof(Roots) == 192, "Roots changed: update stage_codec.cpp");
 static_assert(sizeof(Clusters) == 288, "Clusters changed: update stage_codec.cpp");
 static_assert(sizeof(PreguideRoots) == 176, "PreguideRoots changed: update stage_codec.cpp");
-static_assert(sizeof(PreGuide) == 240, "PreGuide changed: update stage_codec.cpp");
+static_assert(sizeof(PreGuide) == 248, "PreGuide changed: update stage_codec.cpp");
 static_assert(sizeof(Guide) == 400, "Guide changed: update stage_codec.cpp");
 static_assert(sizeof(Strands) == 136, "Strands changed: update stage_codec.cpp");
 static_assert(sizeof(Curves) == 96, "Curves changed: update stage_codec.cpp");
@@ -189,6 +189,7 @@ void members(IO& io, PreGuide& g) {
   io(g.depth);
   io(g.reached);
   io(g.solves);
+  io(g.weight_share);
 }
 
 template <class IO>

@@ -17,7 +17,7 @@
 namespace hairfit {
 
 // Bump when any layout below changes (old cache entries then simply miss).
-inline constexpr int kStageCodecVersion = 5;
+inline constexpr int kStageCodecVersion = 6;
 
 void encode(ByteWriter& out, const DistanceField& field);
 void encode(ByteWriter& out, const ScalpChart& chart);
