@@ -449,7 +449,7 @@ GuideFigures guide_figures(const Guides& guides, const PreGuides& preguides, con
                            const GuideOptions& options, double voxel) {
   GuideFigures f;
   f.guides = guides.size();
-  long long nodes = 0, inside = 0, in_head = 0, out_volume = 0;
+  long long nodes = 0, inside = 0, in_head = 0, out_volume = 0, out_tip = 0;
   double mismatch = 0.0, mismatch_weight = 0.0;
   const double segments = options.rod.segments;
   // How far each pre-guide node is followed (follow_trust), for the mismatch where guides follow.
@@ -470,13 +470,20 @@ GuideFigures guide_figures(const Guides& guides, const PreGuides& preguides, con
     f.mean_iterations += g.iterations;
     f.max_iterations = std::max(f.max_iterations, g.iterations);
     f.mean_evaluations += g.evaluations;
-    for (const Vec3& p : g.shape.nodes) {
+    bool tail = true;  // on the stretch outside the volume that ends at the tip, walking back
+    int tail_nodes = 0;
+    for (std::size_t i = g.shape.nodes.size(); i-- > 0;) {
+      const Vec3& p = g.shape.nodes[i];
       const bool head = boundary.beyond_scalp(p) > 0.0, out = boundary.beyond_volume(p) > 0.0;
       ++nodes;
       in_head += head;
       out_volume += out;
       inside += !head && !out;
+      tail = tail && out;
+      tail_nodes += tail;
     }
+    out_tip += tail_nodes;
+    f.guides_ending_outside += tail_nodes > 0;
     for (std::size_t j = 0; j < g.neighbours.size(); ++j) {
       const FibreShape& p = preguides.items[g.neighbours[j]].shape;
       for (std::size_t i = 0; i < g.shape.tangents.size(); ++i) {
@@ -498,6 +505,7 @@ GuideFigures guide_figures(const Guides& guides, const PreGuides& preguides, con
     f.inside_fraction = static_cast<double>(inside) / nodes;
     f.inside_head_fraction = static_cast<double>(in_head) / nodes;
     f.outside_volume_fraction = static_cast<double>(out_volume) / nodes;
+    f.outside_tip_fraction = static_cast<double>(out_tip) / nodes;
   }
   if (mismatch_weight > 0) f.mean_direction_mismatch = mismatch / mismatch_weight;
   if (followed_weight > 0) f.followed_direction_mismatch = followed / followed_weight;

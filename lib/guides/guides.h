@@ -112,6 +112,11 @@ struct GuideFigures {
   double inside_fraction = 0.0;       // share of all guide nodes in the acceptable region
   double inside_head_fraction = 0.0;  // share behind the scalp
   double outside_volume_fraction = 0.0;
+  // Of those, the nodes on a guide's last stretch outside the volume, from its last node inside to
+  // its tip: hair longer than the volume holds along its path (cutting shortens its strands), and
+  // the guides that end so.
+  double outside_tip_fraction = 0.0;
+  int guides_ending_outside = 0;
   double mean_direction_mismatch = 0.0;  // mean 1 − cos φ to the followed pre-guides
   // The same weighted by how far each pre-guide node is followed (1 inside the acceptable region,
   // 0 a boundary width beyond it): the mismatch where the guides are asked to follow at all.

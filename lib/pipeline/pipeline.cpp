@@ -473,6 +473,8 @@ class Runner {
     stage.add("inside_fraction", f.inside_fraction);
     stage.add("inside_head_fraction", f.inside_head_fraction);
     stage.add("outside_volume_fraction", f.outside_volume_fraction);
+    stage.add("outside_tip_fraction", f.outside_tip_fraction);
+    stage.add("guides_ending_outside", static_cast<std::int64_t>(f.guides_ending_outside));
     stage.add("mean_direction_mismatch", f.mean_direction_mismatch);
     stage.add("followed_direction_mismatch", f.followed_direction_mismatch);
     stage.add("max_weight", f.max_weight);
