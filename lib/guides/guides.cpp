@@ -118,7 +118,7 @@ GuideTargets make_targets(const RootSet& bases, int b, const PreGuides& preguide
 // the weight the solve reached (GuideSolve::weight_share), for a rod that could not carry all.
 GuideTargets carrying(const GuideTargets& t, const GuideSolve& s) {
   GuideTargets c = t;
-  c.model.force_per_length = s.weight_share * t.model.force_per_length;
+  c.model = carrying_share(t.model, s.weight_share);
   return c;
 }
 
@@ -147,10 +147,12 @@ double worst_excursion(const FibreShape& shape, const Boundary& boundary) {
 enum class GuideUse { result, start };
 
 // `seed_start`: the loads to start from (world axes, dimensionless); null = as options.warm_start
-// says (the followed pre-guides' loads, weighted, or straight).
+// says (the followed pre-guides' loads, weighted, or straight). For a heavy rod, `near` is a solved
+// neighbour's shooting pieces to start its first solve from, and `pieces` receives its own.
 Guide solve_guide(const RootSet& bases, int b, const PreGuides& preguides, const Boundary& boundary, const GuideOptions& o,
                   const DensityGrid* density = nullptr, const DensityTermOptions& term = {},
-                  const double* seed_start = nullptr, const StallTest& stall = {}, GuideUse use = GuideUse::result) {
+                  const double* seed_start = nullptr, const StallTest& stall = {}, GuideUse use = GuideUse::result,
+                  const ShootingResult* near = nullptr, ShootingResult* pieces = nullptr) {
   Guide g;
   g.root = bases.positions[b];
   g.normal = bases.normals[b];
@@ -166,7 +168,7 @@ Guide solve_guide(const RootSet& bases, int b, const PreGuides& preguides, const
     std::copy(seed_start, seed_start + 6, start);
   else if (o.warm_start)
     add_weighted_loads(preguides.items, g.neighbours, g.neighbour_weights, start);
-  GuideSolve solve = optimise_guide(targets, start, o.max_iterations, o.tolerance, stall);
+  GuideSolve solve = optimise_guide(targets, start, o.max_iterations, o.tolerance, stall, near);
   g.shape = solved_shape(targets, solve, g.terminal_torque);
   // The solve can stop in a local minimum that runs through the head or out of the
   // volume well past the boundary ramp: then the other start (straight ↔ the neighbours' loads)
@@ -175,7 +177,7 @@ Guide solve_guide(const RootSet& bases, int b, const PreGuides& preguides, const
     double other[6] = {0, 0, 0, 0, 0, 0};
     if (std::all_of(start, start + 6, [](double v) { return v == 0.0; }))
       add_weighted_loads(preguides.items, g.neighbours, g.neighbour_weights, other);
-    GuideSolve retry = optimise_guide(targets, other, o.max_iterations, o.tolerance, stall);
+    GuideSolve retry = optimise_guide(targets, other, o.max_iterations, o.tolerance, stall, near);
     const int iterations = solve.iterations + retry.iterations, evaluations = solve.evaluations + retry.evaluations;
     if (retry.final_cost < solve.final_cost) {
       solve = std::move(retry);
@@ -184,6 +186,7 @@ Guide solve_guide(const RootSet& bases, int b, const PreGuides& preguides, const
     solve.iterations = iterations;
     solve.evaluations = evaluations;
   }
+  if (pieces && solve.heavy) *pieces = solve.solution;
   g.force = Vec3(solve.eta[0], solve.eta[1], solve.eta[2]);
   g.root_moment = Vec3(solve.eta[3], solve.eta[4], solve.eta[5]);
   const RodScales scales = rod_scales(hair_rod(g.length, o.material));
@@ -254,7 +257,7 @@ class FirstSolves {
   FirstSolves(const RootSet& bases, const PreGuides& preguides, const Boundary& boundary, const GuideOptions& options,
               GuideUse use, std::vector<Guide>& out)
       : bases_(bases), preguides_(preguides), boundary_(boundary), options_(options), use_(use), out_(out),
-        in_round_(bases.size(), 0) {
+        in_round_(bases.size(), 0), pieces_(bases.size()) {
     out_.resize(bases.size());
     if (!warm()) return;
     auto base_at = [&](int b) { return bases.positions[b]; };
@@ -281,7 +284,8 @@ class FirstSolves {
       const std::vector<int>& round = rounds_[r];
       parallel_for(round.size(), options_.threads, [&](int i) {
         if (r == 0)
-          out_[round[i]] = solve_guide(bases_, round[i], preguides_, boundary_, options_, nullptr, {}, nullptr, {}, use_);
+          out_[round[i]] = solve_guide(bases_, round[i], preguides_, boundary_, options_, nullptr, {}, nullptr, {}, use_,
+                                       nullptr, &pieces_[round[i]]);
         else
           solve(round[i]);
         progress.item_done();
@@ -310,7 +314,9 @@ class FirstSolves {
     weights = follow_weights(weights);
     double start[6] = {0, 0, 0, 0, 0, 0};
     add_weighted_loads(out_, from, weights, start);
-    out_[b] = solve_guide(bases_, b, preguides_, boundary_, options_, nullptr, {}, start, {}, use_);
+    const ShootingResult* near = from.empty() ? nullptr : &pieces_[from[0]];
+    out_[b] = solve_guide(bases_, b, preguides_, boundary_, options_, nullptr, {}, start, {}, use_, near,
+                          in_round_[b] ? &pieces_[b] : nullptr);
   }
 
  private:
@@ -325,6 +331,9 @@ class FirstSolves {
   std::vector<char> in_round_;
   std::vector<std::vector<int>> rounds_;  // seeds, then two quarters of the others
   std::vector<int> solved_;               // the guides of the rounds solved so far, in index order
+  // A heavy rod's shooting pieces, kept for the guides of the rounds: the later guides' first
+  // solves start from their nearest solved neighbour's (empty for light rods).
+  std::vector<ShootingResult> pieces_;
 };
 
 }  // namespace

@@ -600,18 +600,32 @@ void record(const ceres::Solver::Summary& summary, bool finite, bool stalled, Gu
   result.final_cost = finite ? summary.final_cost : summary.initial_cost;
 }
 
+// Newton steps a heavy guide's first solve may take from a neighbour's pieces.
+constexpr int kNearNewtonSteps = 12;
+
 // A heavy rod: Levenberg–Marquardt over x = (f_L, t_L) from (start force, zero torque) — a
 // pre-guide's terminal torque is zero — or, when that load cannot be solved, from the rod hanging
-// under its weight alone. The first solve continues the loads from the unloaded rod.
+// under its weight alone. The first solve starts from a solved neighbour's pieces where there is
+// one, else continues the loads from the unloaded rod.
 GuideSolve optimise_heavy_guide(const GuideTargets& targets, const double start[6], int max_iterations,
-                                double tolerance, const StallTest& stall) {
+                                double tolerance, const StallTest& stall, const ShootingResult* near) {
   GuideSolve result;
   result.heavy = true;
   ShootingOptions first;
   first.integrator = targets.rod.integrator;
   first.segments = targets.rod.segments;
   double x[6] = {start[0], start[1], start[2], 0.0, 0.0, 0.0};
-  ShootingResult at = shoot_root_moment(targets.model, Vec3(x[0], x[1], x[2]), Vec3::Zero(), Vec3::Zero(), first);
+  const Vec3 start_force(x[0], x[1], x[2]);
+  ShootingResult at;
+  if (near && near->converged) {
+    // A neighbour's equilibrium is a few Newton steps from this rod's at nearby loads; the
+    // continuation from rest (hundreds of steps under the weight) only where it is not.
+    ShootingOptions warm = first;
+    warm.max_iterations = kNearNewtonSteps;
+    warm.restart_from_rest = false;
+    at = shoot_root_moment(targets.model, start_force, Vec3::Zero(), *near, warm);
+  }
+  if (!at.converged) at = shoot_root_moment(targets.model, start_force, Vec3::Zero(), Vec3::Zero(), first);
   if (!at.converged) {
     std::fill(x, x + 6, 0.0);
     const HangingRod hanging = hang_under_weight(targets.model, targets.rod);
@@ -646,9 +660,9 @@ GuideSolve optimise_heavy_guide(const GuideTargets& targets, const double start[
 }  // namespace
 
 GuideSolve optimise_guide(const GuideTargets& targets, const double start[6], int max_iterations, double tolerance,
-                          const StallTest& stall) {
+                          const StallTest& stall, const ShootingResult* near) {
   if (targets.model.support || targets.model.force_per_length.norm() > kHeavyRod)
-    return optimise_heavy_guide(targets, start, max_iterations, tolerance, stall);
+    return optimise_heavy_guide(targets, start, max_iterations, tolerance, stall, near);
   GuideSolve result;
   std::copy(start, start + 6, result.eta);
   const LoadCoordinates coordinates(targets.model, targets.rod, start);

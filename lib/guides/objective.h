@@ -93,7 +93,9 @@ struct GuideSolve {
 // tolerance, the iteration cap or `stall` (then termination "STALL", converged): Levenberg–
 // Marquardt, or Powell's dogleg when targets.density is set (see solver_options in objective.cpp).
 // Never returns NaN: a failed solve keeps the best finite iterate (or the start).
+// `near`: for a heavy rod, the shooting pieces of a solved neighbour, from which the first solve
+// at the start loads is tried before the load continuation from rest (null: from rest only).
 GuideSolve optimise_guide(const GuideTargets& targets, const double start[6], int max_iterations, double tolerance,
-                          const StallTest& stall = {});
+                          const StallTest& stall = {}, const ShootingResult* near = nullptr);
 
 }  // namespace hairfit

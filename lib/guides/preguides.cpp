@@ -410,11 +410,9 @@ PreGuide solve_preguide(const RootSet& roots, int i, const Boundary& boundary, c
       // The weight could be followed to this share of itself only: a fold, beyond which the rod
       // snaps through to an equilibrium no continuation from here reaches. The pre-guide keeps the
       // last equilibrium it reached, unbent by any terminal force, and is flagged.
-      RodModel partial = model;
-      partial.force_per_length = weighted.share * model.force_per_length;
       g.weight_share = weighted.share;
       g.root_moment = weighted.solution.root_moment;
-      g.shape = fibre_shape(partial, g.root, g.length, o.rod, weighted.solution);
+      g.shape = fibre_shape(carrying_share(model, weighted.share), g.root, g.length, o.rod, weighted.solution);
       g.depth = -boundary.volume->value(g.shape.nodes.back());
       return g;
     }
@@ -476,6 +474,13 @@ HangingRod hang_under_weight(const RodModel& model, const RodDiscretisation& rod
   h.solution = w.solution;
   h.weight_share = w.share;
   return h;
+}
+
+RodModel carrying_share(const RodModel& model, double weight_share) {
+  RodModel partial = model;
+  partial.force_per_length = weight_share * model.force_per_length;
+  if (weight_share == 0.0) partial.support.reset();
+  return partial;
 }
 
 double immersion_share(const PreguideOptions& o, double height) {

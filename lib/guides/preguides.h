@@ -99,6 +99,10 @@ struct HangingRod {
 };
 HangingRod hang_under_weight(const RodModel& model, const RodDiscretisation& rod);
 
+// The model a solution at `weight_share` of the weight is traced with: the weight scaled, and at
+// share 0 (nothing carried) no support either, so that the solution is the straight unloaded rod.
+RodModel carrying_share(const RodModel& model, double weight_share);
+
 // One pre-guide per root, in root order; the same for any thread count. Rods loaded only at the
 // tip with a straight natural shape (no weight, no curl) solve one dimensionless problem in their
 // root frame, so the load march is followed once per compliance and replayed, rotated, by each.
