@@ -395,22 +395,25 @@ class Runner {
     }
     v.preguides = std::make_shared<const PreGuides>(make_preguides(v.preguide_roots->roots, boundary(), o));
     stage.digest = digest(*v.preguides).hex();
-    int reached = 0, partial_weight = 0;
+    const Boundary b = boundary();
+    int reached = 0, partial_weight = 0, tip_outside = 0;
     double solves = 0;
     for (const PreGuide& g : v.preguides->items) {
       reached += g.reached;
       solves += g.solves;
       partial_weight += g.weight_share < 1.0;
+      tip_outside += !g.reached && b.beyond_volume(g.shape.nodes.back()) > 0.0;
     }
     stage.add("preguides", static_cast<std::int64_t>(v.preguides->size()));
     stage.add("reached_depth", static_cast<std::int64_t>(reached));
     stage.add("flagged", static_cast<std::int64_t>(v.preguides->size() - reached));
+    // Of those, the ones whose tip ends beyond the volume: hair longer than the volume holds there.
+    stage.add("flagged_tip_outside", static_cast<std::int64_t>(tip_outside));
     stage.add("mean_newton_steps", v.preguides->size() ? solves / v.preguides->size() : 0.0);
     stage.add("shared_newton_steps", static_cast<std::int64_t>(v.preguides->shared_solves));
     // Under gravity: pre-guides whose weight continuation met a fold short of the full weight.
     if (!o.material.gravity.isZero(0.0)) stage.add("weight_not_followed", static_cast<std::int64_t>(partial_weight));
     // Nodes after the root in the acceptable region (the root is a point of the scalp).
-    const Boundary b = boundary();
     long long inside = 0, nodes = 0;
     for (const PreGuide& g : v.preguides->items)
       for (std::size_t k = 1; k < g.shape.nodes.size(); ++k, ++nodes) inside += b.acceptable(g.shape.nodes[k]);
