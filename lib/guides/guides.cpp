@@ -172,11 +172,13 @@ Guide solve_guide(const RootSet& bases, int b, const PreGuides& preguides, const
   g.shape = solved_shape(targets, solve, g.terminal_torque);
   // The solve can stop in a local minimum that runs through the head or out of the
   // volume well past the boundary ramp: then the other start (straight ↔ the neighbours' loads)
-  // is tried too, and the lower cost kept.
-  if (worst_excursion(g.shape, boundary) > o.boundary_width) {
-    double other[6] = {0, 0, 0, 0, 0, 0};
-    if (std::all_of(start, start + 6, [](double v) { return v == 0.0; }))
-      add_weighted_loads(preguides.items, g.neighbours, g.neighbour_weights, other);
+  // is tried too, and the lower cost kept, unless it is the same start (a heavy rod's solve reads
+  // only the start's force), which would repeat the same solve.
+  double other[6] = {0, 0, 0, 0, 0, 0};
+  if (std::all_of(start, start + 6, [](double v) { return v == 0.0; }))
+    add_weighted_loads(preguides.items, g.neighbours, g.neighbour_weights, other);
+  const bool same_start = std::equal(start, start + (solve.heavy ? 3 : 6), other);
+  if (!same_start && worst_excursion(g.shape, boundary) > o.boundary_width) {
     GuideSolve retry = optimise_guide(targets, other, o.max_iterations, o.tolerance, stall, near);
     const int iterations = solve.iterations + retry.iterations, evaluations = solve.evaluations + retry.evaluations;
     if (retry.final_cost < solve.final_cost) {
