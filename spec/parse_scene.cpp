@@ -201,6 +201,8 @@ class SceneParser {
     // Fibres spread about their guides wider than a thin layer is thick: those that skim out of
     // it (most by under 1 mm) are held in.
     if (!scene_.locations.count("strands.contain")) find_key("strands.contain")->store(scene_, {kShellContain}, {});
+    // Tips that run past the end of a thin layer (the hull's edge) are cut there.
+    if (!scene_.locations.count("strands.cut_tips")) find_key("strands.cut_tips")->store(scene_, {1.0}, {});
     // The guides start from pre-guides that already lie in the layer: a looser stop loses nothing
     // there (MakeHuman short04: 0.979 of the nodes inside at 1e-6 and 1e-5, 35.9 and 29.0
     // evaluations a guide). An accuracy preset's own tolerance wins.

@@ -138,6 +138,7 @@ struct SceneStrands {
   double tip_radius = 0.6;       // cm, radius of the wisp at the tip
   double turns = 1.0;            // windings about the guide, when effects.winding
   double cut_threshold = 1.0;    // cm outside the volume before a fibre is cut, when effects.cutting
+  bool cut_tips = false;         // with effects.cutting: a fibre ending outside is cut where it last left
   double contain = 0.0;          // cm: fibre points outside the volume by less than this move back in (0: none)
 };
 

@@ -350,6 +350,10 @@ std::vector<SceneKey> build_keys() {
                         "Turns of every fibre about its guide, root to tip, when effects.winding."));
   keys.push_back(number("strands.cut_threshold", REF(strands.cut_threshold), "cm", closed(0, 1000), "cutting",
                         "Length a fibre may run outside the volume before it is cut there, when effects.cutting."));
+  keys.push_back(boolean("strands.cut_tips", REF(strands.cut_tips), "cutting",
+                         "A fibre whose tip lies outside the volume is cut where it last left it, however short that "
+                         "last stretch, when effects.cutting (it never re-enters; strands.cut_threshold still spares "
+                         "excursions that do)."));
   keys.push_back(number("strands.contain", REF(strands.contain), "cm", closed(0, 100), "strands",
                         "Fibre points outside the volume by less than this move back in, 0.5 mm inside it (the fibre "
                         "keeps its length; the head still comes first); 0 leaves them."));

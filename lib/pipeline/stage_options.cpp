@@ -105,6 +105,7 @@ StrandOptions strand_options(const Scene& scene, int threads) {
   o.turns = scene.effects.winding ? scene.strands.turns : 0.0;
   o.cutting = scene.effects.cutting;
   o.cut_threshold = scene.strands.cut_threshold;
+  o.cut_tips = scene.strands.cut_tips;
   o.threads = threads;
   return o;
 }

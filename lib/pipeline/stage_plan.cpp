@@ -38,7 +38,7 @@ void read_rod(const Scene& scene, StageDeclaration& d) {
 void read_strands(const Scene& scene, StageDeclaration& d) {
   append(d.reads, {"strands.points", "strands.root_radius", "strands.tip_radius", "effects.winding", "effects.cutting"});
   if (scene.effects.winding) append(d.reads, {"strands.turns"});
-  if (scene.effects.cutting) append(d.reads, {"strands.cut_threshold"});
+  if (scene.effects.cutting) append(d.reads, {"strands.cut_threshold", "strands.cut_tips"});
 }
 
 }  // namespace

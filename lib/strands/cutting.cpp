@@ -5,7 +5,7 @@
 namespace hairfit {
 
 std::size_t cut_in_place(Vec3* points, std::size_t n, double* d, const DistanceFunction& distance, double threshold,
-                         const DistanceFunction& quick, bool& cut, double& outside_length) {
+                         bool cut_tips, const DistanceFunction& quick, bool& cut, double& outside_length) {
   cut = false;
   outside_length = 0.0;
   const DistanceFunction& first = quick ? quick : distance;
@@ -62,16 +62,17 @@ std::size_t cut_in_place(Vec3* points, std::size_t n, double* d, const DistanceF
     }
     if (outside && length_outside > threshold) return cut_here();
   }
+  if (cut_tips && outside) return cut_here();
   return n;
 }
 
 CutResult cut_at_exit(const std::vector<Vec3>& points, const DistanceFunction& distance, double threshold,
-                      const DistanceFunction& quick) {
+                      const DistanceFunction& quick, bool cut_tips) {
   CutResult result;
   result.points = points;
   result.distances.resize(points.size());
   const std::size_t kept = cut_in_place(result.points.data(), points.size(), result.distances.data(), distance, threshold,
-                                        quick, result.cut, result.outside_length);
+                                        cut_tips, quick, result.cut, result.outside_length);
   result.points.resize(kept);
   result.distances.resize(kept);
   return result;

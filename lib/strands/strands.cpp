@@ -417,7 +417,7 @@ Strands make_strands(const Curves& guides, const Pores& pores, const StrandOptio
       bool was_cut = false;
       double outside_length;
       kept[i] = static_cast<std::uint32_t>(cut_in_place(points, n, scratch.distances.data(), volume, options.cut_threshold,
-                                                         volume_quick, was_cut, outside_length));
+                                                         options.cut_tips, volume_quick, was_cut, outside_length));
       cut[i] = was_cut;
       if (outside_volume)
         for (std::size_t k = 0; k < kept[i]; ++k) (*outside_volume)[n * i + k] = scratch.distances[k] > 0.0;

@@ -23,6 +23,7 @@ struct StrandOptions {
   double turns = 0.0;          // windings about the guide, root to tip (0 = no winding)
   bool cutting = false;
   double cut_threshold = 1.0;  // cm outside the volume before a cut
+  bool cut_tips = false;       // a fibre ending outside is cut where it last left (cut_at_exit)
   int threads = 1;
   ProgressCallback progress;  // fibres finished so far (never changes results)
 };

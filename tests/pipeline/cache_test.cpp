@@ -83,7 +83,7 @@ TEST_CASE("every declared scene part is a key of the table, for every combinatio
 TEST_CASE("the canonical scene parts are values after defaults, exact to the last bit") {
   Scene scene = smoke_scene();
   CHECK(canonical_scene_parts(scene, {"strands"}) ==
-        "strands.points = 12\nstrands.root_radius = 0.3\nstrands.tip_radius = 0.6\nstrands.turns = 1\nstrands.cut_threshold = 1\n"
+        "strands.points = 12\nstrands.root_radius = 0.3\nstrands.tip_radius = 0.6\nstrands.turns = 1\nstrands.cut_threshold = 1\nstrands.cut_tips = false\n"
         "strands.contain = 0\n");
   scene.guides.tolerance = 1e-6 * (1 + 1e-15);  // differs from the default only in its last digits
   CHECK(canonical_scene_parts(scene, {"guides.tolerance"}) != canonical_scene_parts(smoke_scene(), {"guides.tolerance"}));

@@ -97,6 +97,28 @@ TEST_CASE("cutting: an excursion running to the tip counts to the tip; one from 
   CHECK(cut_at_exit(wavy, below_plane, 2.2).cut);
 }
 
+TEST_CASE("cutting tips: a fibre ending outside is cut where it last left, however short the stretch") {
+  // Out at z = 0 between the second and third points (3 cm outside to the tip), under a threshold
+  // of 3.5: kept without cut_tips, cut at the crossing with it.
+  const std::vector<Vec3> up{{0, 0, -1}, {0, 0, 0.5}, {0, 0, 3}};
+  CHECK_FALSE(cut_at_exit(up, below_plane, 3.5).cut);
+  const CutResult c = cut_at_exit(up, below_plane, 3.5, nullptr, true);
+  CHECK(c.cut);
+  CHECK(c.outside_length == doctest::Approx(3.0).epsilon(1e-15));
+  CHECK(c.points.back().isApprox(Vec3(0, 0, 0), 1e-15));
+  // The last of several excursions is the one cut; the earlier, under the threshold, stay.
+  const std::vector<Vec3> wavy{{0, 0, -1}, {1, 0, 1}, {2, 0, -1}, {3, 0, 1}};
+  const CutResult w = cut_at_exit(wavy, below_plane, 10.0, nullptr, true);
+  CHECK(w.cut);
+  REQUIRE(w.points.size() == 4);
+  CHECK((w.points.back() - Vec3(2.5, 0, 0)).norm() < 1e-15);
+  // A fibre that ends inside, or lies outside from its root on, is not cut.
+  const std::vector<Vec3> back_in{{0, 0, -1}, {1, 0, 1}, {2, 0, -1}};
+  CHECK_FALSE(cut_at_exit(back_in, below_plane, 10.0, nullptr, true).cut);
+  const std::vector<Vec3> from_root{{0, 0, 1}, {0, 0, 5}, {0, 0, 9}};
+  CHECK_FALSE(cut_at_exit(from_root, below_plane, 0.1, nullptr, true).cut);
+}
+
 TEST_CASE("cutting with a quick side test: the same cut, exact distances at the crossings") {
   // quick says ±infinity beyond 0.5 cm of the plane; random wiggly polylines about it.
   const DistanceFunction quick = [](const Vec3& p) {
