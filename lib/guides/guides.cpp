@@ -128,7 +128,7 @@ GuideTargets carrying(const GuideTargets& t, const GuideSolve& s) {
 FibreShape solved_shape(const GuideTargets& t, const GuideSolve& s, Vec3& terminal_torque) {
   if (s.heavy) {
     terminal_torque = s.solution.terminal_torque;
-    if (s.weight_share < 1.0) return fibre_shape(carrying(t, s).model, t.root, t.length, t.rod, s.solution);
+    if (s.weight_share < 1.0) return fibre_shape(carrying_share(t.model, s.weight_share), t.root, t.length, t.rod, s.solution);
     return fibre_shape(t.model, t.root, t.length, t.rod, s.solution);
   }
   return fibre_shape(t.model, t.root, t.length, t.rod, Vec3(s.eta[0], s.eta[1], s.eta[2]), Vec3(s.eta[3], s.eta[4], s.eta[5]),

@@ -25,6 +25,9 @@ struct RodDiscretisation {
 // optimised by multiple shooting from their terminal loads.
 constexpr double kHeavyRod = 50.0;
 
+// A rod on a support or heavier than kHeavyRod: solved, and optimised, by multiple shooting.
+inline bool heavy_rod(const RodModel& model) { return model.support || model.force_per_length.norm() > kHeavyRod; }
+
 // A fibre of the given length (cm): circular section, straight at rest, loaded by its weight
 // ρ·A·g per length when the material has gravity.
 Rod hair_rod(double length, const HairMaterial& material);

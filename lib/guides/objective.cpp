@@ -661,7 +661,7 @@ GuideSolve optimise_heavy_guide(const GuideTargets& targets, const double start[
 
 GuideSolve optimise_guide(const GuideTargets& targets, const double start[6], int max_iterations, double tolerance,
                           const StallTest& stall, const ShootingResult* near) {
-  if (targets.model.support || targets.model.force_per_length.norm() > kHeavyRod)
+  if (heavy_rod(targets.model))
     return optimise_heavy_guide(targets, start, max_iterations, tolerance, stall, near);
   GuideSolve result;
   std::copy(start, start + 6, result.eta);

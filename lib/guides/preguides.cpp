@@ -84,15 +84,15 @@ RodEnd end_of(const RodState<T>& state) {
                 Vec3(value_of(state.frame[6]), value_of(state.frame[7]), value_of(state.frame[8]))};
 }
 
-// The cantilever m(1; P·b̂, m(0)) = 0 (t_L = 0) at one load P: Newton on m(0) with the 3×3
-// Jacobian from jets, from a predictor. Several equilibria exist at the same load (curled rods),
-// so the loads are reached by continuation from the unloaded rod (march_load below), which keeps
-// the path on the branch connected to it.
 // Newton steps a heavy rod's solve from rest may take: its load continuation follows hair that
 // grows up as it falls over onto the head in small steps (about 260 for 22–26 cm crown hair on
 // the straight fixture).
 constexpr int kRestBudget = 1000;
 
+// The cantilever m(1; P·b̂, m(0)) = 0 (t_L = 0) at one load P: Newton on m(0) with the 3×3
+// Jacobian from jets, from a predictor. Several equilibria exist at the same load (curled rods),
+// so the loads are reached by continuation from the unloaded rod (march_load below), which keeps
+// the path on the branch connected to it.
 class Cantilever {
  public:
   Cantilever(const Vec3& bend, const RodDiscretisation& rod) : bend_(bend), rod_(rod) {}
@@ -106,7 +106,7 @@ class Cantilever {
   bool solve(const RodModel& model, double load, ShootingResult& at, int& solves, std::optional<RodEnd>& end) const {
     end.reset();
     const Vec3 force = load * bend_;
-    if (model.support || model.force_per_length.norm() > kHeavyRod || load > kHeavyRod) {
+    if (heavy_rod(model) || load > kHeavyRod) {
       ShootingOptions options;
       options.integrator = rod_.integrator;
       options.segments = rod_.segments;
@@ -201,7 +201,7 @@ WeightedRod carry_weight(const Cantilever& cantilever, const RodModel& model, co
   WeightedRod w;
   RodModel scaled = model;
   double share_step = model.force_per_length.norm() > 0.0 ? 0.05 : 1.0;
-  const bool from_rest = model.support || model.force_per_length.norm() > kHeavyRod;
+  const bool from_rest = heavy_rod(model);
   if (from_rest) {
     std::optional<RodEnd> end;
     ShootingResult trial;
@@ -405,7 +405,7 @@ PreGuide solve_preguide(const RootSet& roots, int i, const Boundary& boundary, c
   } else {
     // The rod under its own weight first, then the bending load's march from there.
     const WeightedRod weighted = carry_weight(cantilever, model, o.rod, g.direction, g.solves);
-    if (model.support || model.force_per_length.norm() > kHeavyRod) rest_solves = g.solves;
+    if (heavy_rod(model)) rest_solves = g.solves;
     if (weighted.share < 1.0) {
       // The weight could be followed to this share of itself only: a fold, beyond which the rod
       // snaps through to an equilibrium no continuation from here reaches. The pre-guide keeps the
@@ -469,11 +469,9 @@ PreGuide solve_preguide(const RootSet& roots, int i, const Boundary& boundary, c
 
 HangingRod hang_under_weight(const RodModel& model, const RodDiscretisation& rod) {
   const Cantilever cantilever(Vec3::UnitX(), rod);  // no terminal load: the bend is never used
-  HangingRod h;
-  const WeightedRod w = carry_weight(cantilever, model, rod, model.root_frame.col(2), h.solves);
-  h.solution = w.solution;
-  h.weight_share = w.share;
-  return h;
+  int solves = 0;
+  const WeightedRod w = carry_weight(cantilever, model, rod, model.root_frame.col(2), solves);
+  return HangingRod{w.solution, w.share};
 }
 
 RodModel carrying_share(const RodModel& model, double weight_share) {

@@ -95,7 +95,6 @@ PreGuide preguide_start(const RootSet& roots, int i, const Boundary& boundary, c
 struct HangingRod {
   ShootingResult solution;
   double weight_share = 0.0;
-  int solves = 0;  // Newton steps
 };
 HangingRod hang_under_weight(const RodModel& model, const RodDiscretisation& rod);
 
