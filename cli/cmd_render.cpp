@@ -6,7 +6,7 @@
 #include "core/interrupt.h"
 #include "core/parallel.h"
 #include "pipeline/stage_pictures.h"
-#include "prepare/cut_picture.h"
+#include "pipeline/cut_picture.h"
 
 namespace hairfit::cli {
 

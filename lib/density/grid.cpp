@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
 
 #include "core/error.h"
 
@@ -39,6 +40,14 @@ GridGeometry make_grid_geometry(const Vec3& lower, const Vec3& upper, double vox
   // Centre the whole-cell grid on the box, so the margin is the same on both sides.
   g.origin = 0.5 * (lower + upper) - 0.5 * voxel * cells;
   return g;
+}
+
+DensityGrid DensityGrid::from_values(const GridGeometry& geometry, std::vector<double> values) {
+  if (geometry.dims.minCoeff() < 0 || !(std::isfinite(geometry.voxel) && geometry.voxel > 0.0))
+    throw std::invalid_argument("a density grid needs non-negative dimensions and a finite voxel > 0");
+  if (std::int64_t(values.size()) != geometry.cell_count())
+    throw std::invalid_argument("density grid size does not match its values");
+  return DensityGrid(geometry, std::make_shared<const std::vector<double>>(std::move(values)));
 }
 
 double DensityGrid::cell(int i, int j, int k) const {

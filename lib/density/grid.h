@@ -52,6 +52,9 @@ struct DensityGradientJacobian {
 class DensityGrid {
  public:
   DensityGrid() = default;  // empty: no cells, every query returns 0
+  // The grid of these cell values (geometry's index order). Throws std::invalid_argument for
+  // negative dimensions, a voxel that is not finite and > 0, or not one value per cell.
+  static DensityGrid from_values(const GridGeometry& geometry, std::vector<double> values);
   const GridGeometry& geometry() const { return geometry_; }
   // The cell's value; 0 outside the grid.
   double cell(int i, int j, int k) const;
@@ -78,7 +81,6 @@ class DensityGrid {
   void central_gradient_at(const Vec3& p, Vec3& gradient, Mat3* jacobian) const;
 
   friend class DensityAccumulator;
-  friend struct StageCodecAccess;  // the stage cache (lib/pipeline/stage_codec.cpp) stores and restores it
   DensityGrid(const GridGeometry& g, std::shared_ptr<const std::vector<double>> v)
       : geometry_(g), values_(std::move(v)) {}
   GridGeometry geometry_;

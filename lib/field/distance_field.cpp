@@ -185,6 +185,24 @@ DistanceField DistanceField::build(const Mesh& mesh, const FieldSpec& spec, int 
   return out;
 }
 
+DistanceField DistanceField::from_parts(DistanceFieldParts parts) {
+  const Vec3i& d = parts.dims;
+  if (d.minCoeff() < 0 || !(std::isfinite(parts.voxel) && parts.voxel > 0.0))
+    throw std::invalid_argument("a distance field needs non-negative dimensions and a finite voxel > 0");
+  if (parts.samples.size() != std::size_t(d.x()) * d.y() * d.z() || parts.flags.size() != parts.samples.size())
+    throw std::invalid_argument("distance field grid sizes do not match their samples");
+  DistanceField f;
+  f.origin_ = parts.origin;
+  f.h_ = parts.voxel;
+  f.dims_ = d;
+  f.band_cm_ = parts.band_width;
+  f.band_voxels_ = parts.band_voxels;
+  f.set_geometry();
+  f.samples_ = std::make_shared<const std::vector<double>>(std::move(parts.samples));
+  f.flags_ = std::make_shared<const std::vector<std::uint8_t>>(std::move(parts.flags));
+  return f;
+}
+
 DistanceField make_distance_field(const Mesh& mesh, const FieldSpec& spec, int threads, const InsideTest& inside) {
   return DistanceField::build(mesh, spec, threads, inside, nullptr, nullptr);
 }

@@ -67,8 +67,28 @@ struct FieldSmooth {
 
 struct CarriedField;
 
+// What a field is rebuilt from (the stage cache stores a field as these): its grid, its band and
+// every node's sample and lookup flags, as DistanceField's accessors give them.
+struct DistanceFieldParts {
+  Vec3 origin = Vec3::Zero();
+  double voxel = 1.0;
+  Vec3i dims = Vec3i::Zero();
+  double band_width = 0.0;
+  int64_t band_voxels = 0;
+  std::vector<double> samples;
+  std::vector<std::uint8_t> flags;
+};
+
 class DistanceField {
  public:
+  // The field a DistanceField's parts describe. Throws std::invalid_argument where they cannot be
+  // one: negative dimensions, a voxel that is not finite and > 0, or sample and flag counts that
+  // are not one per node.
+  static DistanceField from_parts(DistanceFieldParts parts);
+  // The samples (x fastest) and their lookup flags, as from_parts takes them.
+  const std::vector<double>& samples() const { return *samples_; }
+  const std::vector<std::uint8_t>& flags() const { return *flags_; }
+
   // Grid geometry: sample (i,j,k) sits at origin + h·(i,j,k), 0 ≤ i < dims.x() etc.
   const Vec3& origin() const { return origin_; }
   double voxel() const { return h_; }
@@ -116,7 +136,6 @@ class DistanceField {
   friend DistanceField make_distance_field(const Mesh&, const FieldSpec&, int, const InsideTest&);
   friend CarriedField make_distance_field_carrying(const Mesh&, const std::vector<double>&, const FieldSpec&, int,
                                                   const InsideTest&);
-  friend struct StageCodecAccess;  // the stage cache (lib/pipeline/stage_codec.cpp) stores and restores it
   DistanceField() = default;  // built only by make_distance_field
   // Both builders: with `vertex_values`, the carried values go to `carried`.
   static DistanceField build(const Mesh& mesh, const FieldSpec& spec, int threads, const InsideTest& inside,

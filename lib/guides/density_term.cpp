@@ -5,7 +5,7 @@
 #include <cstring>
 
 #include "core/parallel.h"
-#include "strands/guide_track.h"
+#include "hair/guide_track.h"
 
 namespace hairfit {
 
@@ -84,9 +84,9 @@ void grow_guide_fibres(const std::vector<Vec3>& guide, const std::vector<int>& p
   if (pores_of_guide.empty()) return;
   const GuideTrack track(guide);
   const double extent = wisp_extent(track, options.pores.positions, pores_of_guide);
-  const std::size_t n = fibre_point_count(options.strands);
+  const std::size_t n = fibre_point_count(options.wisp);
   for (int i : pores_of_guide)
-    grow_fibre(track, options.pores.positions[i], options.pores.lengths[i], extent, options.strands, fibres + n * i);
+    grow_fibre(track, options.pores.positions[i], options.pores.lengths[i], extent, options.wisp, fibres + n * i);
 }
 
 Tube guide_tube(const std::vector<Vec3>& guide, double root_radius, double tip_radius) {

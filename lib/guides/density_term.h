@@ -7,7 +7,7 @@
 
 #include "density/grid.h"
 #include "density/voxelise.h"
-#include "strands/strands.h"
+#include "hair/wisp.h"
 
 namespace hairfit {
 
@@ -52,9 +52,9 @@ struct GuideDensityOptions {
   // What a final guide deposits. CDM: the fibres the strand stage will grow from its cluster's
   // pores (grow_guide_fibres: before cutting and before being moved out of the head); a guide with
   // no pores deposits the guide polyline once instead. BOM: a tube along the guide, radius
-  // strands.root_radius → strands.tip_radius (cm).
+  // wisp.root_radius → wisp.tip_radius (cm).
   Pores pores;
-  StrandOptions strands;
+  WispShape wisp;
 };
 
 // The density grid's cells: the box [lower, upper] (cm, e.g. the hair-volume mesh's bounding
@@ -94,7 +94,7 @@ class DensityCeiling {
 // The fibres a guide deposits (CDM): one per pore of its cluster, grown as make_strands grows them
 // before the head exit and the cut (grow_fibre, with the wisp extent make_strands measures); pore
 // i's (an index into options.pores, one of `pores_of_guide`) goes to
-// fibres[i·n, (i+1)·n), n = fibre_point_count(options.strands). A guide with no pores deposits its
+// fibres[i·n, (i+1)·n), n = fibre_point_count(options.wisp). A guide with no pores deposits its
 // own polyline instead (make_guides_with_density).
 void grow_guide_fibres(const std::vector<Vec3>& guide, const std::vector<int>& pores_of_guide,
                        const GuideDensityOptions& options, Vec3* fibres);

@@ -367,7 +367,7 @@ DensityGuides make_guides_with_density(const RootSet& bases, const PreGuides& pr
   out.guides.items.resize(count);
   // The pores of each cluster, in pore order (CDM deposits the fibres they will grow).
   std::vector<std::vector<int>> pores_of(count);
-  const std::size_t fibre_points = fibre_point_count(density.strands);
+  const std::size_t fibre_points = fibre_point_count(density.wisp);
   std::vector<Vec3> grown;  // CDM: every pore's fibre, in its place
   // CDM deposits the fibres its guides will grow, BOM tubes along the guides.
   const bool cdm = density.term.model == GuideDensityModel::continuous;
@@ -432,7 +432,7 @@ DensityGuides make_guides_with_density(const RootSet& bases, const PreGuides& pr
     } else {  // BOM: the tubes' voxelisation scales over threads
       std::vector<Tube> tubes;
       for (int g = begin; g < end; ++g)
-        tubes.push_back(guide_tube(out.guides.items[g].shape.nodes, density.strands.root_radius, density.strands.tip_radius));
+        tubes.push_back(guide_tube(out.guides.items[g].shape.nodes, density.wisp.root_radius, density.wisp.tip_radius));
       accumulator.occupy_all(tubes, options.threads);
     }
     // The fibres' deposit (CDM), the next grid and its ceiling are one thread's task, so that the

@@ -95,7 +95,7 @@ struct DensityGuides {
   DensityGrid density;
   int batches = 0;
   // CDM: the fibres deposited, every pore's as make_strands grows it for these guides before the
-  // head exit and the cut (fibre_point_count(density.strands) points per pore, pore order), which
+  // head exit and the cut (fibre_point_count(density.wisp) points per pore, pore order), which
   // make_strands can take over (its `grown`) instead of growing them again. BOM: empty.
   std::vector<Vec3> fibres;
 };

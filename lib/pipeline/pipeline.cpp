@@ -451,7 +451,7 @@ class Runner {
     Digest density_digest;
     if (density_declared(scene_)) {
       const GuideDensityOptions d =
-          guide_density_options(scene_, density_geometry(scene_, inputs_.volume.mesh), pores(), options_.threads);
+          guide_density_options(scene_, density_geometry(scene_, inputs_.volume.mesh), pores());
       DensityGuides result = make_guides_with_density(v.clusters->bases, *v.preguides, boundary(), o, d);
       v.guides = std::make_shared<const Guides>(std::move(result.guides));
       v.guide_density = std::make_shared<const DensityGrid>(std::move(result.density));

@@ -1,5 +1,7 @@
 #include "pipeline/stage_codec.h"
 
+#include <stdexcept>
+
 namespace hairfit {
 
 // A new member in one of these types must be added to its member list below (and
@@ -14,55 +16,6 @@ static_assert(sizeof(PreGuide) == 248, "PreGuide changed: update stage_codec.cpp
 static_assert(sizeof(Guide) == 400, "Guide changed: update stage_codec.cpp");
 static_assert(sizeof(Strands) == 136, "Strands changed: update stage_codec.cpp");
 static_assert(sizeof(Curves) == 96, "Curves changed: update stage_codec.cpp");
-
-// The private parts of the two values that only their builders may assemble.
-struct StageCodecAccess {
-  static void encode(ByteWriter& out, const DistanceField& f) {
-    out.put(f.origin_);
-    out.put(f.h_);
-    out.put(f.dims_);
-    out.put(f.band_cm_);
-    out.put(f.band_voxels_);
-    out.put(*f.samples_);
-    out.put(*f.flags_);
-  }
-  static DistanceField decode_field(ByteReader& in) {
-    DistanceField f;
-    in.get(f.origin_);
-    in.get(f.h_);
-    in.get(f.dims_);
-    in.get(f.band_cm_);
-    in.get(f.band_voxels_);
-    std::vector<double> samples;
-    std::vector<std::uint8_t> flags;
-    in.get(samples);
-    in.get(flags);
-    const Vec3i& d = f.dims_;
-    if (d.minCoeff() < 0 || samples.size() != std::size_t(d.x()) * d.y() * d.z() || flags.size() != samples.size())
-      throw CodecError("distance field grid sizes do not match their samples");
-    f.set_geometry();
-    f.samples_ = std::make_shared<const std::vector<double>>(std::move(samples));
-    f.flags_ = std::make_shared<const std::vector<std::uint8_t>>(std::move(flags));
-    return f;
-  }
-  static void encode(ByteWriter& out, const DensityGrid& g) {
-    out.put(g.geometry_.origin);
-    out.put(g.geometry_.voxel);
-    out.put(g.geometry_.dims);
-    out.put(*g.values_);
-  }
-  static DensityGrid decode_grid(ByteReader& in) {
-    GridGeometry geometry;
-    in.get(geometry.origin);
-    in.get(geometry.voxel);
-    in.get(geometry.dims);
-    std::vector<double> values;
-    in.get(values);
-    if (geometry.dims.minCoeff() < 0 || std::int64_t(values.size()) != geometry.cell_count())
-      throw CodecError("density grid size does not match its values");
-    return DensityGrid(geometry, std::make_shared<const std::vector<double>>(std::move(values)));
-  }
-};
 
 namespace {
 
@@ -261,10 +214,52 @@ void check_curves(const Curves& c) {
 
 }  // namespace
 
-void encode(ByteWriter& out, const DistanceField& field) { StageCodecAccess::encode(out, field); }
-DistanceField decode_distance_field(ByteReader& in) { return StageCodecAccess::decode_field(in); }
-void encode(ByteWriter& out, const DensityGrid& grid) { StageCodecAccess::encode(out, grid); }
-DensityGrid decode_density_grid(ByteReader& in) { return StageCodecAccess::decode_grid(in); }
+void encode(ByteWriter& out, const DistanceField& f) {
+  out.put(f.origin());
+  out.put(f.voxel());
+  out.put(f.dims());
+  out.put(f.band_width());
+  out.put(f.band_voxels());
+  out.put(f.samples());
+  out.put(f.flags());
+}
+
+DistanceField decode_distance_field(ByteReader& in) {
+  DistanceFieldParts parts;
+  in.get(parts.origin);
+  in.get(parts.voxel);
+  in.get(parts.dims);
+  in.get(parts.band_width);
+  in.get(parts.band_voxels);
+  in.get(parts.samples);
+  in.get(parts.flags);
+  try {
+    return DistanceField::from_parts(std::move(parts));
+  } catch (const std::invalid_argument& e) {
+    throw CodecError(e.what());
+  }
+}
+
+void encode(ByteWriter& out, const DensityGrid& grid) {
+  out.put(grid.geometry().origin);
+  out.put(grid.geometry().voxel);
+  out.put(grid.geometry().dims);
+  out.put(grid.values());
+}
+
+DensityGrid decode_density_grid(ByteReader& in) {
+  GridGeometry geometry;
+  in.get(geometry.origin);
+  in.get(geometry.voxel);
+  in.get(geometry.dims);
+  std::vector<double> values;
+  in.get(values);
+  try {
+    return DensityGrid::from_values(geometry, std::move(values));
+  } catch (const std::invalid_argument& e) {
+    throw CodecError(e.what());
+  }
+}
 
 void encode(ByteWriter& out, const ScalpChart& chart) { encode_members(out, chart); }
 void encode(ByteWriter& out, const Roots& roots) { encode_members(out, roots); }

@@ -97,12 +97,18 @@ GuideOptions guide_options(const Scene& scene, int threads) {
   return o;
 }
 
+WispShape wisp_shape(const Scene& scene) {
+  WispShape w;
+  w.points = scene.strands.points;
+  w.root_radius = scene.strands.root_radius;
+  w.tip_radius = scene.strands.tip_radius;
+  w.turns = scene.effects.winding ? scene.strands.turns : 0.0;
+  return w;
+}
+
 StrandOptions strand_options(const Scene& scene, int threads) {
   StrandOptions o;
-  o.points = scene.strands.points;
-  o.root_radius = scene.strands.root_radius;
-  o.tip_radius = scene.strands.tip_radius;
-  o.turns = scene.effects.winding ? scene.strands.turns : 0.0;
+  o.wisp = wisp_shape(scene);
   o.cutting = scene.effects.cutting;
   o.cut_threshold = scene.strands.cut_threshold;
   o.cut_tips = scene.strands.cut_tips;
@@ -117,7 +123,7 @@ GridGeometry density_geometry(const Scene& scene, const Mesh& volume) {
   return make_density_geometry(lower, upper, scene.density.voxel, 2.0 * scene.density.voxel, scene.fields.max_memory);
 }
 
-GuideDensityOptions guide_density_options(const Scene& scene, const GridGeometry& grid, Pores pores, int threads) {
+GuideDensityOptions guide_density_options(const Scene& scene, const GridGeometry& grid, Pores pores) {
   GuideDensityOptions o;
   o.term.model = scene.effects.density == DensityModel::binary ? GuideDensityModel::binary : GuideDensityModel::continuous;
   o.term.strength = scene.density.strength;
@@ -127,7 +133,7 @@ GuideDensityOptions guide_density_options(const Scene& scene, const GridGeometry
   o.batch = scene.density.batch;
   o.stall = StallTest{scene.density.stall_iterations, scene.density.stall_tolerance};
   o.pores = std::move(pores);
-  o.strands = strand_options(scene, threads);
+  o.wisp = wisp_shape(scene);
   return o;
 }
 

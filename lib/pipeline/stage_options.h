@@ -22,6 +22,8 @@ HairMaterial hair_material(const Scene& scene);
 RodDiscretisation rod_discretisation(const Scene& scene);
 PreguideOptions preguide_options(const Scene& scene, int threads);
 GuideOptions guide_options(const Scene& scene, int threads);
+// The wisp the strands stage grows and the density model deposits.
+WispShape wisp_shape(const Scene& scene);
 StrandOptions strand_options(const Scene& scene, int threads);
 
 // Whether the scene declares a density model (effects.density ≠ none).
@@ -31,6 +33,6 @@ bool density_declared(const Scene& scene);
 GridGeometry density_geometry(const Scene& scene, const Mesh& volume);
 // The batched guide optimisation's options (requires density_declared); `pores` are the fibres'
 // pores with their cluster (guide) index, what CDM deposits.
-GuideDensityOptions guide_density_options(const Scene& scene, const GridGeometry& grid, Pores pores, int threads);
+GuideDensityOptions guide_density_options(const Scene& scene, const GridGeometry& grid, Pores pores);
 
 }  // namespace hairfit

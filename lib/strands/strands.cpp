@@ -9,100 +9,17 @@
 
 #include "core/parallel.h"
 #include "core/smoothstep.h"
-#include "strands/guide_track.h"
+#include "hair/guide_track.h"
+#include "hair/wisp.h"
 
 namespace hairfit {
 
 namespace {
 
-// Share of the fibre over which it moves from its pore's own offset to its place in the wisp.
-constexpr double kSettle = 0.2;
-
-// What point i of every fibre shares (it depends on i and the options alone): t_i = i/(n−1) along
-// the reach, the settle blend, the wisp radius and the winding's cos/sin. Computed once, not per
-// fibre: per fibre, the winding's cos/sin would be its largest setup cost.
-struct Station {
-  double t, w, radius, ca, sa;
-};
-
-std::vector<Station> make_stations(const StrandOptions& o, int n) {
-  std::vector<Station> out(n);
-  for (int i = 0; i < n; ++i) {
-    const double t = static_cast<double>(i) / (n - 1);
-    const double angle = 2.0 * M_PI * o.turns * t;
-    const double ca = std::cos(angle), sa = std::sin(angle);
-    out[i] = {t, smoothstep(t / kSettle), o.root_radius + (o.tip_radius - o.root_radius) * t, ca, sa};
-  }
-  return out;
-}
-
-// The stations of grow_fibre and make_fibre, kept per thread while the options stay the same
-// (the guides' density term grows fibres one by one with the same options).
-const std::vector<Station>& stations_for(const StrandOptions& o, int n) {
-  thread_local StrandOptions key;
-  thread_local std::vector<Station> kept;
-  if (kept.size() != static_cast<std::size_t>(n) || key.root_radius != o.root_radius || key.tip_radius != o.tip_radius ||
-      key.turns != o.turns) {
-    kept = make_stations(o, n);
-    key.root_radius = o.root_radius, key.tip_radius = o.tip_radius, key.turns = o.turns;
-  }
-  return kept;
-}
-
-struct FibreLayout {
-  double a, b, c;  // pore offset from the guide root in the root frame (d1, d2, t)
-  double u1, u2;   // its place in the wisp's unit disk
-};
-
-// Where point i of a fibre sits relative to the guide: t_i along the reach, and its offsets along
-// the frame (d1, d2) and the root tangent. None of these depend on the reach, so they are computed
-// once per fibre rather than in every step of the length solve.
-struct SweepPoint {
-  double t;  // i/(n−1)
-  double along_d1, along_d2, along_root_tangent;
-};
-
-void sweep_points(const FibreLayout& f, const std::vector<Station>& stations, SweepPoint* out) {
-  for (std::size_t i = 0; i < stations.size(); ++i) {
-    const Station& q = stations[i];
-    const double x = (1.0 - q.w) * f.a + q.w * f.u1 * q.radius;
-    const double y = (1.0 - q.w) * f.b + q.w * f.u2 * q.radius;
-    out[i] = {q.t, q.ca * x - q.sa * y, q.sa * x + q.ca * y, (1.0 - q.w) * f.c};
-  }
-}
-
-// The guide's position and frame at its root (arc length 0).
-struct RootFrame {
-  Vec3 position, tangent, d1, d2;
-};
-
-// The n points of a fibre that runs along the guide up to arc length `reach`. Arc length 0 (the
-// first point, and every point of the solve's first, zero-reach sweep) takes the root frame found
-// once per fibre instead of asking the track again.
-void sweep(const GuideTrack& track, const SweepPoint* layout, int n, const RootFrame& root, double reach, Vec3* out) {
-  std::size_t segment = 0;  // arc lengths reach·t_i only grow along the fibre
-  for (int i = 0; i < n; ++i) {
-    const SweepPoint& q = layout[i];
-    const double s = reach * q.t;
-    if (s == 0.0) {
-      out[i] = root.position + q.along_d1 * root.d1 + q.along_d2 * root.d2 + q.along_root_tangent * root.tangent;
-    } else {
-      Vec3 g, tangent, d1, d2;
-      track.at(s, g, tangent, d1, d2, segment);
-      out[i] = g + q.along_d1 * d1 + q.along_d2 * d2 + q.along_root_tangent * root.tangent;
-    }
-  }
-}
-
-double polyline_length(const Vec3* p, int n) {
-  double length = 0.0;
-  for (int i = 1; i < n; ++i) length += (p[i] - p[i - 1]).norm();
-  return length;
-}
 
 // Per-thread scratch of the fibre loop (no allocation per fibre).
 struct Scratch {
-  std::vector<SweepPoint> layout;
+  std::vector<WispPoint> layout;
   std::vector<double> distances;
   std::vector<Vec3> before_cut;
 };
@@ -221,73 +138,6 @@ void keep_out(const HeadExit& out_of_head, const Vec3* root_normal, Vec3* points
   }
 }
 
-// The fibre of exactly `length` along the track, into points[0..n) (n = stations.size()); with
-// `out_of_head`, the fibre is kept out of the head (keep_out) inside the length solve, so the
-// moved fibre still has exactly its length.
-void fibre_along(const GuideTrack& track, const Vec3& pore, double length, double wisp_extent,
-                 const std::vector<Station>& stations, const HeadExit* out_of_head, const Vec3* root_normal, Vec3* points,
-                 SweepPoint* layout) {
-  const int n = static_cast<int>(stations.size());
-  RootFrame root;
-  track.at(0.0, root.position, root.tangent, root.d1, root.d2);
-  const Vec3& t0 = root.tangent;
-  const Vec3 delta = pore - root.position;
-  FibreLayout f{delta.dot(root.d1), delta.dot(root.d2), delta.dot(t0), 0.0, 0.0};
-  if (wisp_extent > 0.0) {
-    f.u1 = f.a / wisp_extent;
-    f.u2 = f.b / wisp_extent;
-  }
-  sweep_points(f, stations, layout);
-  // The polyline's length L grows with how far along the guide it reaches; find the reach r
-  // with L(r) = `length`. L is nearly proportional to r, so the first guess scales the full
-  // reach by length / L(length); secant steps follow, kept inside the bracket of reaches known
-  // too short and too long (a step that would leave it bisects instead). On the paper-scale
-  // scene this takes 4.7 sweeps a fibre where regula falsi on [0, length] (Illinois) took 6.7.
-  auto excess = [&](double reach) {
-    sweep(track, layout, n, root, reach, points);
-    if (out_of_head) keep_out(*out_of_head, root_normal, points, n);
-    return polyline_length(points, n) - length;
-  };
-  const double tolerance = 1e-12 * length;
-  double r1 = length, f1 = excess(r1);  // the latest reach, and the one before (r0) for the secant
-  if (std::fabs(f1) > tolerance) {
-    // Reaches known too short and too long. Reach 0 (the wisp offsets alone) is taken to be too
-    // short until a step would leave the bracket there; then it is measured, and if it is not,
-    // the fibre is too short for its own offsets: a straight fibre along the root tangent.
-    double lo = 0.0, hi = std::numeric_limits<double>::infinity();
-    bool zero_measured = false;
-    (f1 < 0.0 ? lo : hi) = r1;
-    double r0 = r1, f0 = f1;
-    double next = r1 * length / (f1 + length);  // L(r) ≈ L(length)·r/length
-    for (int iteration = 0; iteration < 100; ++iteration) {
-      if (!(next > lo && next < hi)) {
-        if (lo == 0.0 && !zero_measured) {
-          zero_measured = true;
-          if (excess(0.0) >= 0.0) {
-            for (int i = 0; i < n; ++i) points[i] = pore + length * static_cast<double>(i) / static_cast<double>(n - 1) * t0;
-            return;
-          }
-        }
-        next = std::isfinite(hi) ? 0.5 * (lo + hi) : 2.0 * lo;
-      }
-      r0 = r1, f0 = f1;
-      r1 = next, f1 = excess(r1);
-      if (std::fabs(f1) <= tolerance) break;
-      (f1 < 0.0 ? lo : hi) = r1;
-      if (hi - lo <= 1e-15 * length) break;
-      next = f1 != f0 ? r1 - f1 * (r1 - r0) / (f1 - f0) : std::numeric_limits<double>::quiet_NaN();
-    }
-    // A lift off the scalp can make the length jump with the reach, so that no reach gives it
-    // exactly: the fibre at the shortest reach known too long then ends short of its last point
-    // by the excess, along its last chord (a part of a chord that crosses nothing crosses nothing).
-    if (std::fabs(f1) > tolerance && std::isfinite(hi)) {
-      const double too_long = r1 == hi ? f1 : excess(hi);
-      const double last = (points[n - 1] - points[n - 2]).norm();
-      if (too_long > 0.0 && too_long < last) points[n - 1] = points[n - 2] + (1.0 - too_long / last) * (points[n - 1] - points[n - 2]);
-    }
-  }
-  points[0] = pore;  // exactly, not up to round-off
-}
 
 // fibre_along, with the points behind the scalp (or segments dipping into it) moved out when
 // `out_of_head` is given. Most
@@ -297,9 +147,9 @@ void fibre_along(const GuideTrack& track, const Vec3& pore, double length, doubl
 // Returns how many of the result's chords still cross the scalp by HeadExit::chord_crossing (0
 // without it): none on the fast path, whose every chord that test passed.
 int fibre_kept_out(const GuideTrack& track, const Vec3& pore, double length, double wisp_extent,
-                   const std::vector<Station>& stations, const HeadExit& out_of_head, const Vec3* root_normal,
-                   Vec3* points, SweepPoint* layout, std::int8_t* in_head = nullptr, bool grown = false) {
-  if (!grown) fibre_along(track, pore, length, wisp_extent, stations, nullptr, nullptr, points, layout);
+                   const std::vector<WispStation>& stations, const HeadExit& out_of_head, const Vec3* root_normal,
+                   Vec3* points, WispPoint* layout, std::int8_t* in_head = nullptr, bool grown = false) {
+  if (!grown) fibre_along(track, pore, length, wisp_extent, stations, nullptr, points, layout);
   if (!out_of_head) return 0;
   const int n = static_cast<int>(stations.size());
   if (in_head) in_head[0] = -1;
@@ -316,7 +166,8 @@ int fibre_kept_out(const GuideTrack& track, const Vec3& pore, double length, dou
     if (out_of_head(points[i], value) != points[i] || chord_dips ||
         (out_of_head.into_volume && out_of_head.into_volume(points[i]) != points[i]) ||
         (chords && chord_crosses(out_of_head, points[i - 1], points[i], i == 1, unused, clearance_before, clearance))) {
-      fibre_along(track, pore, length, wisp_extent, stations, &out_of_head, root_normal, points, layout);
+      const FibreAdjust keep = [&](Vec3* fibre, int m) { keep_out(out_of_head, root_normal, fibre, m); };
+      fibre_along(track, pore, length, wisp_extent, stations, &keep, points, layout);
       if (in_head) std::fill(in_head, in_head + n, std::int8_t(-1));
       int left = 0;
       ChordCrossing hit;
@@ -331,32 +182,12 @@ int fibre_kept_out(const GuideTrack& track, const Vec3& pore, double length, dou
 
 }  // namespace
 
-int fibre_point_count(const StrandOptions& options) { return std::max(2, options.points); }
-
-double wisp_extent(const GuideTrack& guide, const std::vector<Vec3>& positions, const std::vector<int>& pores) {
-  RootFrame root;
-  guide.at(0.0, root.position, root.tangent, root.d1, root.d2);
-  double extent = 0.0;
-  for (int i : pores) {
-    const Vec3 delta = positions[i] - root.position;
-    extent = std::max(extent, std::hypot(delta.dot(root.d1), delta.dot(root.d2)));
-  }
-  return extent;
-}
-
-void grow_fibre(const GuideTrack& guide, const Vec3& pore, double length, double wisp_extent,
-                const StrandOptions& options, Vec3* points) {
-  const std::vector<Station>& stations = stations_for(options, fibre_point_count(options));
-  thread_local std::vector<SweepPoint> layout;
-  layout.resize(stations.size());
-  fibre_along(guide, pore, length, wisp_extent, stations, nullptr, nullptr, points, layout.data());
-}
 
 std::vector<Vec3> make_fibre(const std::vector<Vec3>& guide, const Vec3& pore, double length, double wisp_extent,
                              const StrandOptions& options, const HeadExit& out_of_head) {
-  const std::vector<Station>& stations = stations_for(options, fibre_point_count(options));
+  const std::vector<WispStation>& stations = kept_wisp_stations(options.wisp);
   std::vector<Vec3> points(stations.size());
-  std::vector<SweepPoint> layout(stations.size());
+  std::vector<WispPoint> layout(stations.size());
   fibre_kept_out(GuideTrack(guide), pore, length, wisp_extent, stations, out_of_head, nullptr, points.data(), layout.data());
   return points;
 }
@@ -379,7 +210,7 @@ Strands make_strands(const Curves& guides, const Pores& pores, const StrandOptio
   // cut fibres are closed up afterwards.
   const int count = static_cast<int>(pores.positions.size());
   const bool cutting = options.cutting && volume;
-  const std::vector<Station> stations = make_stations(options, fibre_point_count(options));
+  const std::vector<WispStation> stations = wisp_stations(options.wisp);
   const std::size_t n = stations.size(), slots = n * count;
   Strands strands;
   Curves& out = strands.fibres;

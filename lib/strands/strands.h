@@ -10,33 +10,18 @@
 
 #include "core/curves.h"
 #include "core/progress.h"
+#include "hair/wisp.h"
 #include "strands/cutting.h"
 
 namespace hairfit {
 
-class GuideTrack;  // strands/guide_track.h
-
 struct StrandOptions {
-  int points = 16;             // points per fibre (before cutting)
-  double root_radius = 0.3;    // cm: wisp radius at the root
-  double tip_radius = 0.6;     // cm: wisp radius at the tip
-  double turns = 0.0;          // windings about the guide, root to tip (0 = no winding)
+  WispShape wisp;
   bool cutting = false;
   double cut_threshold = 1.0;  // cm outside the volume before a cut
   bool cut_tips = false;       // a fibre ending outside is cut where it last left (cut_at_exit)
   int threads = 1;
   ProgressCallback progress;  // fibres finished so far (never changes results)
-};
-
-// The pores to grow fibres from: position on the scalp (cm), own length (cm), guide index.
-struct Pores {
-  std::vector<Vec3> positions;
-  std::vector<double> lengths;
-  std::vector<int> guide;
-  // Per pore, the unit normal of the scalp triangle it lies on, or empty. Given with a head exit,
-  // every fibre's first segment leaves its pore at least kRootRise above that triangle's plane, so
-  // its chord cannot start into the head (the probes along it see only the interpolated field).
-  std::vector<Vec3> normals;
 };
 
 // sin of the least angle a fibre's first segment rises above its pore's triangle (2°).
@@ -102,18 +87,6 @@ struct FibrePointSides {
                                      // (roots, moved points, cut ends); else empty
 };
 
-// Points per fibre before cutting: options.points, at least 2.
-int fibre_point_count(const StrandOptions& options);
-
-// A wisp's extent, as make_strands measures it: the largest distance of its pores (indices into
-// `positions`) from the guide's root in the plane of the root frame's (d1, d2).
-double wisp_extent(const GuideTrack& guide, const std::vector<Vec3>& positions, const std::vector<int>& pores);
-
-// The fibre of `pore` along `guide`, as make_strands grows it before moving it out of the head and
-// cutting it, into points[0, fibre_point_count(options)); `wisp_extent` as wisp_extent() gives it.
-void grow_fibre(const GuideTrack& guide, const Vec3& pore, double length, double wisp_extent,
-                const StrandOptions& options, Vec3* points);
-
 // `guides` holds one polyline per guide (index = guide id), root first; `volume` is the signed
 // distance to the hair-volume boundary (needed only when options.cutting). Each fibre starts
 // exactly at its pore and, unless cut, has exactly its length; a fibre longer than its guide
@@ -124,7 +97,7 @@ void grow_fibre(const GuideTrack& guide, const Vec3& pore, double length, double
 // `volume_quick` (optional) is cut_at_exit's `quick`: volume(p) or ±infinity where the sign is
 // certain.
 // `grown` (optional): every pore's fibre as grow_fibre grows it along these guides with these
-// options, fibre_point_count(options) points each, in pore order (the density model's deposit
+// options, fibre_point_count(options.wisp) points each, in pore order (the density model's deposit
 // grew them already). Its buffer is taken over and left empty, and those fibres are not grown
 // again; the result is the same bit for bit.
 Strands make_strands(const Curves& guides, const Pores& pores, const StrandOptions& options,

@@ -4,6 +4,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <stdexcept>
 
 #include "core/error.h"
 #include "density/accumulator.h"
@@ -125,4 +126,20 @@ TEST_CASE("gradient and Jacobian agree with finite differences away from cell-ce
       CHECK(std::abs((grid.value(p + dp) - grid.value(p - dp)) / (2 * h) - gj.gradient[s]) < 1e-12);
     }
   }
+}
+
+TEST_CASE("from_values builds the grid of given cell values and refuses values that do not fill it") {
+  const GridGeometry g = geometry(0.5, 4);
+  std::vector<double> values(g.cell_count());
+  for (std::size_t n = 0; n < values.size(); ++n) values[n] = 0.25 * double(n % 7);
+  const DensityGrid grid = DensityGrid::from_values(g, values);
+  CHECK(grid.values() == values);
+  CHECK(grid.cell(1, 2, 3) == values[g.index(1, 2, 3)]);
+  CHECK(grid.value(g.cell_centre(2, 1, 0)) == values[g.index(2, 1, 0)]);  // at a centre, the cell's value
+  CHECK(grid.cell(-1, 0, 0) == 0.0);
+  CHECK_THROWS_AS(DensityGrid::from_values(g, std::vector<double>(values.size() - 1)), std::invalid_argument);
+  GridGeometry flat = g;
+  flat.voxel = -0.5;
+  CHECK_THROWS_AS(DensityGrid::from_values(flat, values), std::invalid_argument);
+  CHECK(DensityGrid::from_values(GridGeometry{}, {}).values().empty());
 }

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <stdexcept>
 #include <string>
 
 #include "core/error.h"
@@ -528,4 +529,42 @@ TEST_CASE("distance_lower_bound never exceeds the exact distance, and is within 
   }
   CHECK(make_distance_field(test::icosphere(1, 1.0), spec_for(0.1, 3, 0.4), 1)
             .distance_lower_bound(Vec3(std::nan(""), 0, 0)) == -std::numeric_limits<double>::infinity());
+}
+
+TEST_CASE("from_parts rebuilds a field from its parts, the same at every point, and refuses parts that are no field") {
+  const Mesh mesh = test::icosphere(2, 1.0);
+  const DistanceField f = make_distance_field(mesh, spec_for(0.1, 3, 0.4), 1);
+  auto parts_of = [&f] {
+    DistanceFieldParts p;
+    p.origin = f.origin();
+    p.voxel = f.voxel();
+    p.dims = f.dims();
+    p.band_width = f.band_width();
+    p.band_voxels = f.band_voxels();
+    p.samples = f.samples();
+    p.flags = f.flags();
+    return p;
+  };
+  const DistanceField g = DistanceField::from_parts(parts_of());
+  CHECK(g.dims() == f.dims());
+  CHECK(g.band_voxels() == f.band_voxels());
+  Random r(3, RandomStage::test, 1);
+  for (int n = 0; n < 200; ++n) {
+    const Vec3 p(r.uniform(-1.8, 1.8), r.uniform(-1.8, 1.8), r.uniform(-1.8, 1.8));
+    CHECK(g.value(p) == f.value(p));
+    CHECK(g.gradient(p) == f.gradient(p));
+    CHECK(g.side(p) == f.side(p));
+  }
+  DistanceFieldParts short_samples = parts_of();
+  short_samples.samples.pop_back();
+  CHECK_THROWS_AS(DistanceField::from_parts(short_samples), std::invalid_argument);
+  DistanceFieldParts short_flags = parts_of();
+  short_flags.flags.pop_back();
+  CHECK_THROWS_AS(DistanceField::from_parts(short_flags), std::invalid_argument);
+  DistanceFieldParts no_voxel = parts_of();
+  no_voxel.voxel = 0.0;
+  CHECK_THROWS_AS(DistanceField::from_parts(no_voxel), std::invalid_argument);
+  DistanceFieldParts negative = parts_of();
+  negative.dims.x() = -1;
+  CHECK_THROWS_AS(DistanceField::from_parts(negative), std::invalid_argument);
 }

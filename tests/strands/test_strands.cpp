@@ -7,7 +7,7 @@
 #include "core/segment_triangle.h"
 #include "core/triangle_grid.h"
 #include "strands/cutting.h"
-#include "strands/guide_track.h"
+#include "hair/guide_track.h"
 #include "strands/strands.h"
 
 using namespace hairfit;
@@ -164,12 +164,12 @@ TEST_CASE("the guide track's frame is orthonormal and does not twist along a pla
 
 TEST_CASE("a fibre starts exactly at its pore and has exactly its own length") {
   StrandOptions o;
-  o.points = 16;
+  o.wisp.points = 16;
   Random r(3, RandomStage::test, 0);
   for (int k = 0; k < 200; ++k) {
     const Vec3 pore(r.uniform(-0.4, 0.4), r.uniform(-0.1, 0.1), r.uniform(-0.4, 0.4));
     const double length = r.uniform(0.5, 20.0);  // shorter and longer than the guide (7.85 cm)
-    o.turns = r.uniform(-2, 2);
+    o.wisp.turns = r.uniform(-2, 2);
     const std::vector<Vec3> f = make_fibre(bent_guide(), pore, length, 0.6, o);
     REQUIRE(f.size() == 16);
     CHECK((f[0] - pore).norm() <= 1e-9);
@@ -180,7 +180,7 @@ TEST_CASE("a fibre starts exactly at its pore and has exactly its own length") {
   // straight fibre of exactly its length along the root tangent.
   for (double length : {1e-3, 0.01, 0.05}) {
     const Vec3 pore(0.4, 0.0, 0.3);
-    o.turns = 1.0;
+    o.wisp.turns = 1.0;
     const std::vector<Vec3> f = make_fibre(bent_guide(), pore, length, 0.5, o);
     CHECK((f[0] - pore).norm() <= 1e-12);
     CHECK(std::fabs(polyline_length(f) - length) <= 1e-12 * length);
@@ -193,17 +193,17 @@ TEST_CASE("fibres stay inside the generalised cylinder and wind by the declared 
   std::vector<Vec3> guide;
   for (int i = 0; i <= 10; ++i) guide.emplace_back(0, 0, i);
   StrandOptions o;
-  o.points = 41;
-  o.root_radius = 0.3;
-  o.tip_radius = 0.9;
-  o.turns = 1.5;
+  o.wisp.points = 41;
+  o.wisp.root_radius = 0.3;
+  o.wisp.tip_radius = 0.9;
+  o.wisp.turns = 1.5;
   const Vec3 pore(0.3, 0.0, 0.0);  // on the rim of a wisp of extent 0.3
   const std::vector<Vec3> f = make_fibre(guide, pore, 10.0, 0.3, o);
   double previous_angle = 0.0, turned = 0.0;
   for (int i = 0; i < 41; ++i) {
     const double t = i / 40.0;
     const double radius = std::hypot(f[i].x(), f[i].y());
-    CHECK(radius <= o.root_radius + (o.tip_radius - o.root_radius) * t + 1e-9);
+    CHECK(radius <= o.wisp.root_radius + (o.wisp.tip_radius - o.wisp.root_radius) * t + 1e-9);
     const double angle = std::atan2(f[i].y(), f[i].x());
     if (i > 0) turned += std::remainder(angle - previous_angle, 2 * M_PI);
     previous_angle = angle;
@@ -215,8 +215,8 @@ TEST_CASE("fibres stay inside the generalised cylinder and wind by the declared 
 
 TEST_CASE("a fibre longer than its guide continues along the guide's last tangent") {
   StrandOptions o;
-  o.points = 31;
-  o.root_radius = o.tip_radius = 0.0;
+  o.wisp.points = 31;
+  o.wisp.root_radius = o.wisp.tip_radius = 0.0;
   const std::vector<Vec3> f = make_fibre(bent_guide(), Vec3::Zero(), 12.0, 0.0, o);
   // With zero radius the fibre is the guide itself, then a straight run along its last chord.
   const std::vector<Vec3> g = bent_guide();
@@ -244,7 +244,7 @@ TEST_CASE("make_strands: one fibre per pore, cutting counted, identical for any 
   StrandOptions o;
   o.cutting = true;
   o.cut_threshold = 0.5;
-  o.turns = 0.5;
+  o.wisp.turns = 0.5;
   // The volume: the slab y < 4.5 (fibres rise along +y and leave it for good).
   const DistanceFunction slab = [](const Vec3& p) { return p.y() - 4.5; };
   Strands reference;
@@ -309,10 +309,10 @@ TEST_CASE("a fibre that would pass behind the scalp is moved out of the head, ke
   for (int i = 0; i <= 40; ++i) guide.emplace_back(0.25 * i, 0.05 * std::sin(M_PI * i / 40.0), 0.0);
   const HeadExit project = plane_scalp_exit();
   StrandOptions o;
-  o.points = 24;
-  o.root_radius = 0.5;
-  o.tip_radius = 1.0;
-  o.turns = 0.75;
+  o.wisp.points = 24;
+  o.wisp.root_radius = 0.5;
+  o.wisp.tip_radius = 1.0;
+  o.wisp.turns = 0.75;
   Random r(5, RandomStage::test, 0);
   int moved = 0;
   for (int k = 0; k < 50; ++k) {
@@ -352,10 +352,10 @@ TEST_CASE("make_strands takes over fibres grown beforehand (grow_fibre): the sam
     pores.guide.push_back(g);
   }
   StrandOptions o;
-  o.points = 24;
-  o.root_radius = 0.5;
-  o.tip_radius = 1.0;
-  o.turns = 0.75;
+  o.wisp.points = 24;
+  o.wisp.root_radius = 0.5;
+  o.wisp.tip_radius = 1.0;
+  o.wisp.turns = 0.75;
   o.cutting = true;
   o.cut_threshold = 0.2;
   // The wisp extents as make_strands measures them.
@@ -367,13 +367,13 @@ TEST_CASE("make_strands takes over fibres grown beforehand (grow_fibre): the sam
     tracks.emplace_back(std::vector<Vec3>(guides.points.begin() + guides.offsets[g], guides.points.begin() + guides.offsets[g + 1]));
     extent.push_back(wisp_extent(tracks[g], pores.positions, pores_of[g]));
   }
-  const std::size_t n = fibre_point_count(o);
+  const std::size_t n = fibre_point_count(o.wisp);
   REQUIRE(n == 24);
   for (int threads : {1, 3}) {
     o.threads = threads;
     std::vector<Vec3> grown(n * pores.positions.size());
     for (std::size_t i = 0; i < pores.positions.size(); ++i)
-      grow_fibre(tracks[pores.guide[i]], pores.positions[i], pores.lengths[i], extent[pores.guide[i]], o, &grown[n * i]);
+      grow_fibre(tracks[pores.guide[i]], pores.positions[i], pores.lengths[i], extent[pores.guide[i]], o.wisp, &grown[n * i]);
     FibrePointSides sides, sides_grown;
     const Strands fresh = make_strands(guides, pores, o, slab, project, &sides);
     const Strands taken = make_strands(guides, pores, o, slab, project, &sides_grown, nullptr, &grown);
@@ -435,7 +435,7 @@ TEST_CASE("a chord through a narrow ridge the exit does not see is lifted off it
   };
   const std::vector<Vec3> guide = rising_guide(0.15);
   StrandOptions o;
-  o.points = 20;
+  o.wisp.points = 20;
   int crossed_before = 0;
   forty_fibres(8, 7.0, 12.0, [&](const Vec3& pore, double length) {
     const std::vector<Vec3> loose = make_fibre(guide, pore, length, 0.3, o, blind);
@@ -458,8 +458,8 @@ TEST_CASE("fibres held in a thin layer: points that skim out of the volume move 
   const HeadExit head_only = exit;
   exit.into_volume = [](const Vec3& p) { return p.y() > 0.4 && p.y() < 1.4 ? Vec3(p.x(), 0.38, p.z()) : p; };
   StrandOptions o;
-  o.points = 24;
-  o.turns = 0.75;
+  o.wisp.points = 24;
+  o.wisp.turns = 0.75;
   int left_before = 0;
   forty_fibres(9, 6.0, 12.0, [&](const Vec3& pore, double length) {
     const std::vector<Vec3> loose = make_fibre(guide, pore, length, 0.3, o, head_only);

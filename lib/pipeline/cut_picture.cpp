@@ -1,4 +1,4 @@
-#include "prepare/cut_picture.h"
+#include "pipeline/cut_picture.h"
 
 #include <fstream>
 #include <nlohmann/json.hpp>

@@ -1,4 +1,4 @@
-#include "strands/guide_track.h"
+#include "hair/guide_track.h"
 
 #include <algorithm>
 #include <cmath>
