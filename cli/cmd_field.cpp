@@ -1,5 +1,5 @@
 // hairfit field MESH.obj --voxel H --band B [--margin M] [--max-memory GIB] --out F.nrrd [--threads N]
-// One distance field (DESIGN §2), timed: the time printed is make_distance_field alone (no file
+// One distance field (docs/design.md §2), timed: the time printed is make_distance_field alone (no file
 // reading or writing).
 #include <chrono>
 #include <cstdio>

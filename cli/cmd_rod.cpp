@@ -1,4 +1,4 @@
-// `hairfit rod`: solve one clamped Cosserat rod and print it as JSON (DESIGN §1, §9).
+// `hairfit rod`: solve one clamped Cosserat rod and print it as JSON (docs/design.md §1, §9).
 #include <cmath>
 #include <cstdio>
 #include <string>

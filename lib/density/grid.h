@@ -1,4 +1,4 @@
-// Density grids (paper §3.5, DESIGN §6): the rectilinear grid on which the binary occupancy model
+// Density grids (paper §3.5, docs/design.md §6): the rectilinear grid on which the binary occupancy model
 // (BOM) and the continuous density model (CDM) live.
 //
 // Conventions: cell (i,j,k) is the box origin + h·([i,i+1] × [j,j+1] × [k,k+1]) in cm; its value

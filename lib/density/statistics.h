@@ -1,4 +1,4 @@
-// What users look at in a density result (paper §3.5, Fig. 5 and 6; DESIGN §6): the histogram of
+// What users look at in a density result (paper §3.5, Fig. 5 and 6; docs/design.md §6): the histogram of
 // segments per cell, the coefficient of variation of occupied cells, the share of the acceptable
 // region left empty, and a planar slice for NRRD files and pictures.
 #pragma once

@@ -1,4 +1,4 @@
-// Narrow-band signed distance fields of raw triangle meshes (paper §3.2, DESIGN §2).
+// Narrow-band signed distance fields of raw triangle meshes (paper §3.2, docs/design.md §2).
 //
 // What the values mean (full statement: spec/fields.md):
 // - Magnitude. Within the band (|d| ≤ band·voxel) a grid sample is the exact Euclidean distance
@@ -11,7 +11,7 @@
 //   propagation, never below the true distance). Where that interpolant is not above the band's
 //   width, the sample is the exact distance to the nearest of the features the cell's corners are
 //   closest to, so no sample beyond the band reads less than the band's width.
-// - Sign. With an InsideTest (the robust inside, DESIGN §2: generalized winding numbers), every
+// - Sign. With an InsideTest (the robust inside, docs/design.md §2: generalized winding numbers), every
 //   band sample and every coarse node takes the sign the test gives at its own position (band
 //   samples beside faces whose sides the test settles take that answer, field/band_sign.h); a
 //   sample beyond the band takes the sign its coarse cell agrees on (its 8 corners and every band

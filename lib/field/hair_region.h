@@ -1,4 +1,4 @@
-// The acceptable region's robust inside (DESIGN §2): the shell that the hull encloses together with
+// The acceptable region's robust inside (docs/design.md §2): the shell that the hull encloses together with
 // the scalp, the scalp's orientation reversed, decided by generalized winding numbers (Jacobson,
 // Kavan and Sorkine-Hornung 2013) evaluated hierarchically (Barill et al. 2018), so that open hulls
 // in several parts, with holes, overlaps and sheets that dip under the skin still have an inside.

@@ -1,4 +1,4 @@
-// The density term F4 of the principal-guide objective (paper §3.5, DESIGN §5–6) and what a final
+// The density term F4 of the principal-guide objective (paper §3.5, docs/design.md §5–6) and what a final
 // guide deposits into the density grid. Guides then depend on each other: they are optimised in
 // fixed-size batches (make_guides_with_density, guides.h), each batch against the frozen density
 // of all earlier batches, and deposited in guide order, so results do not depend on threads.

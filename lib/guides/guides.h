@@ -1,7 +1,7 @@
 // Principal guides (paper §3.4, eq. 6–9): one per cluster, the rod whose six load parameters
 // minimise Σ wᵢ·Fᵢ, optimised with Ceres (Levenberg–Marquardt; Powell's dogleg for the solves with
 // the density term; automatic differentiation through the rod integrator). The loads are parameterised in the initial-value form η̃ = (f_L, m(0))
-// (DESIGN §1): every evaluation is one forward integration and t_L = m(L) is an output.
+// (docs/design.md §1): every evaluation is one forward integration and t_L = m(L) is an output.
 #pragma once
 #include <string>
 #include <vector>
@@ -84,7 +84,7 @@ struct Guides {
 // Optimises one guide per base. `bases` are the cluster centres (scalp/roots.h RootSet).
 Guides make_guides(const RootSet& bases, const PreGuides& preguides, const Boundary& boundary, const GuideOptions& options);
 
-// With a density model (paper §3.5, DESIGN §6): guides in index order, in batches of
+// With a density model (paper §3.5, docs/design.md §6): guides in index order, in batches of
 // density.batch; each batch is optimised in parallel (options.threads) with the F4 term against
 // the frozen density of all earlier batches (each guide continued from its solve without F4, and
 // DensityTermOptions::outside set to the batch's density_ceiling), then its guides deposit into

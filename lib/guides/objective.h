@@ -1,4 +1,4 @@
-// The principal-guide objective (paper eq. 6–9, DESIGN §5) as least-squares residuals, and its
+// The principal-guide objective (paper eq. 6–9, docs/design.md §5) as least-squares residuals, and its
 // minimisation with Ceres. Internal to lib/guides: Ceres and jets stay in objective.cpp.
 #pragma once
 #include <string>

@@ -1,4 +1,4 @@
-// The scalp as a support (effects.contact, DESIGN §1): a unilateral force per length that holds a
+// The scalp as a support (effects.contact, docs/design.md §1): a unilateral force per length that holds a
 // hair out of the head and lets long hair lie on it. With φ the scalp's distance (positive on the
 // hair's side) and δ the contact layer, the force is k·g(φ)·∇φ, where
 //   g(φ) = (δ − φ)²/(2δ) for 0 ≤ φ < δ,   δ/2 − φ below the scalp,   0 beyond δ:

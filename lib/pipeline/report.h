@@ -1,4 +1,4 @@
-// report.json: one shape from the first stage on (DESIGN §8). Stages add their own figures.
+// report.json: one shape from the first stage on (docs/design.md §8). Stages add their own figures.
 #pragma once
 #include <cstdint>
 #include <string>

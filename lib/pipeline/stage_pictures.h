@@ -1,4 +1,4 @@
-// Pictures of every stage (DESIGN: "every stage can be rendered to PNG"), drawn from the stage
+// Pictures of every stage (docs/design.md §8: every stage can be rendered), drawn from the stage
 // values with lib/render.
 #pragma once
 #include <string>

@@ -1,4 +1,4 @@
-// Static Cosserat (Kirchhoff) rods in cgs units (paper §3.1, DESIGN §1): the description of one
+// Static Cosserat (Kirchhoff) rods in cgs units (paper §3.1, docs/design.md §1): the description of one
 // rod, its clamp and loads, and the solved rod. Inextensible, unshearable, hyper-elastic; clamped
 // at s = 0, loaded at s = L by a force f_L and a torque t_L, and optionally along its length by a
 // constant force per length f (gravity). Internally the rod is dimensionless (rod_integrate.h).
@@ -83,7 +83,7 @@ struct SolvedRod {
   const Mat3& tip_frame() const { return frames.back(); }
 };
 
-// Solves one rod with the scheme options.solver selects (DESIGN §1 eq. r' = d3, R' = R[κ]×,
+// Solves one rod with the scheme options.solver selects (docs/design.md §1 eq. r' = d3, R' = R[κ]×,
 // n(s) = f_L + f·(L − s), m' = −d3 × n). Throws InputError for a bad rod, non-finite loads or
 // segments < 1. Never returns NaN: a shooting solve that fails keeps its best finite iterate and
 // says converged = false.

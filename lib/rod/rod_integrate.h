@@ -1,4 +1,4 @@
-// Forward integration of the static Kirchhoff rod in dimensionless form (DESIGN §1, paper §3.1):
+// Forward integration of the static Kirchhoff rod in dimensionless form (docs/design.md §1, paper §3.1):
 //   r' = d3,  R' = R [κ]×,  κ = κ̂ + C⁻¹ Rᵀ m,  n(s) = f_L + f·(1 − s),  m' = −d3 × n,
 // on s ∈ [0, 1] with r(0) = 0, R(0) = R0 and m(0) given (the initial-value form). The terminal
 // moment m(1) is an output. Lengths are in units of L, forces of EI/L², moments of EI/L (rod.h

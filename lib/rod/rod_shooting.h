@@ -1,4 +1,4 @@
-// Shooting for the dimensionless rod (DESIGN §1): given the terminal force f_L and torque t_L,
+// Shooting for the dimensionless rod (docs/design.md §1): given the terminal force f_L and torque t_L,
 // find the root moment m(0) with m(1; f_L, m(0)) = t_L.
 //
 // Under a large load the map m(0) ↦ m(1) is exponentially sensitive (a rod under tension T

@@ -1,4 +1,4 @@
-// The scalp chart (paper §3.3, DESIGN §3): Floater's mean-value parameterisation of the disk-like
+// The scalp chart (paper §3.3, docs/design.md §3): Floater's mean-value parameterisation of the disk-like
 // scalp onto the unit disk. It is the texture space of the density, tilt and length maps.
 //
 // Orientation convention (exact):

@@ -1,4 +1,4 @@
-// Hair roots (pores), guide clusters and pre-guide roots on the scalp (paper §3.3, DESIGN §3).
+// Hair roots (pores), guide clusters and pre-guide roots on the scalp (paper §3.3, docs/design.md §3).
 #pragma once
 #include <array>
 #include <cstdint>
@@ -119,7 +119,7 @@ struct ScalpRoots {
 };
 ScalpRoots make_scalp_roots(const ScalpChart& chart, const ScalpMaps& maps, const RootOptions& options);
 
-// Unit growth direction (DESIGN §3): the normal rotated by `tilt_degrees` toward down projected
+// Unit growth direction (docs/design.md §3): the normal rotated by `tilt_degrees` toward down projected
 // onto the tangent plane; where down is (nearly) parallel to the normal, toward −front projected,
 // else any tangent. Never NaN for a unit normal.
 Vec3 growth_direction(const Vec3& normal, const Vec3& down, const Vec3& front, double tilt_degrees);

@@ -1,4 +1,4 @@
-// Same scene and seed: byte-identical outputs for any thread count (DESIGN §8), end to end
+// Same scene and seed: byte-identical outputs for any thread count (docs/design.md §8), end to end
 // through the command line.
 #include <doctest/doctest.h>
 

@@ -1,4 +1,4 @@
-// Only the effects declared (DESIGN §8): an effect that is off loads nothing, allocates no grid,
+// Only the effects declared (docs/design.md §8): an effect that is off loads nothing, allocates no grid,
 // sets no load or option, and leaves no trace in report.json; switched on, each one shows.
 #include <doctest/doctest.h>
 

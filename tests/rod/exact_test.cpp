@@ -1,4 +1,4 @@
-// The rod against closed-form and independently computed answers (DESIGN §1 "what must hold").
+// The rod against closed-form and independently computed answers (docs/design.md §1 "what must hold").
 #include <doctest/doctest.h>
 
 #include <cmath>
