@@ -47,6 +47,7 @@ double median_time(int runs, const std::function<void()>& f, double* cpu = nullp
   return t[t.size() / 2];
 }
 
+#ifdef HAIRFIT_HAVE_CGAL
 // Largest distance between our chart and another parameterisation after the best similarity
 // (rotation, uniform scale, translation, optionally a reflection) maps the other onto ours:
 // in complex numbers the least-squares map z ↦ a·z + b has a = Σ(w−w̄)·conj(z−z̄) / Σ|z−z̄|².
@@ -75,7 +76,6 @@ double aligned_difference(const std::vector<Vec2>& ours, const std::vector<Vec2>
   return best;
 }
 
-#ifdef HAIRFIT_HAVE_CGAL
 using Kernel = CGAL::Simple_cartesian<double>;
 using SurfaceMesh = CGAL::Surface_mesh<Kernel::Point_3>;
 using VertexIndex = SurfaceMesh::Vertex_index;

@@ -146,26 +146,50 @@ double worst_excursion(const FibreShape& shape, const Boundary& boundary) {
 // density solve (the loads, the shape, the counts; the cost and its terms stay 0).
 enum class GuideUse { result, start };
 
-// `seed_start`: the loads to start from (world axes, dimensionless); null = as options.warm_start
-// says (the followed pre-guides' loads, weighted, or straight). For a heavy rod, `near` is a solved
-// neighbour's shooting pieces to start its first solve from, and `pieces` receives its own.
-Guide solve_guide(const RootSet& bases, int b, const PreGuides& preguides, const Boundary& boundary, const GuideOptions& o,
-                  const DensityGrid* density = nullptr, const DensityTermOptions& term = {},
-                  const double* seed_start = nullptr, const StallTest& stall = {}, GuideUse use = GuideUse::result,
-                  const ShootingResult* near = nullptr, ShootingResult* pieces = nullptr) {
+// What every guide of a stage is solved against.
+struct GuideProblem {
+  const RootSet& bases;
+  const PreGuides& preguides;
+  const Boundary& boundary;
+  const GuideOptions& options;
+};
+
+// How one guide's solve starts and what it adds to the problem.
+struct GuideSolveSetup {
+  const DensityGrid* density = nullptr;  // the F4 term's grid, or none
+  DensityTermOptions term;               // read with a density grid
+  // The loads to start from (world axes, dimensionless); null = as options.warm_start says (the
+  // followed pre-guides' loads, weighted, or straight).
+  const double* start = nullptr;
+  StallTest stall;
+  GuideUse use = GuideUse::result;
+  // For a heavy rod: a solved neighbour's shooting pieces to start its first solve from, and where
+  // its own go.
+  const ShootingResult* near = nullptr;
+  ShootingResult* pieces = nullptr;
+};
+
+// Guide b of the problem.
+Guide solve_guide(const GuideProblem& problem, int b, const GuideSolveSetup& setup = {}) {
+  const RootSet& bases = problem.bases;
+  const PreGuides& preguides = problem.preguides;
+  const Boundary& boundary = problem.boundary;
+  const GuideOptions& o = problem.options;
+  const StallTest& stall = setup.stall;
+  const ShootingResult* near = setup.near;
   Guide g;
   g.root = bases.positions[b];
   g.normal = bases.normals[b];
   g.direction = bases.directions[b];
   g.length = bases.lengths[b];
   GuideTargets targets = make_targets(bases, b, preguides, boundary, o, g.neighbours, g.neighbour_weights);
-  targets.density = density;
-  targets.density_term = term;
+  targets.density = setup.density;
+  targets.density_term = setup.term;
 
   // Start: straight (the paper) or the neighbours' dimensionless loads, weighted (warm start).
   double start[6] = {0, 0, 0, 0, 0, 0};
-  if (seed_start)
-    std::copy(seed_start, seed_start + 6, start);
+  if (setup.start)
+    std::copy(setup.start, setup.start + 6, start);
   else if (o.warm_start)
     add_weighted_loads(preguides.items, g.neighbours, g.neighbour_weights, start);
   GuideSolve solve = optimise_guide(targets, start, o.max_iterations, o.tolerance, stall, near);
@@ -188,7 +212,7 @@ Guide solve_guide(const RootSet& bases, int b, const PreGuides& preguides, const
     solve.iterations = iterations;
     solve.evaluations = evaluations;
   }
-  if (pieces && solve.heavy) *pieces = solve.solution;
+  if (setup.pieces && solve.heavy) *setup.pieces = solve.solution;
   g.force = Vec3(solve.eta[0], solve.eta[1], solve.eta[2]);
   g.root_moment = Vec3(solve.eta[3], solve.eta[4], solve.eta[5]);
   const RodScales scales = rod_scales(hair_rod(g.length, o.material));
@@ -210,7 +234,7 @@ Guide solve_guide(const RootSet& bases, int b, const PreGuides& preguides, const
     }
     g.contact_share = n > first ? static_cast<double>(touching) / static_cast<double>(n - first) : 0.0;
   }
-  if (use == GuideUse::start) return g;
+  if (setup.use == GuideUse::start) return g;
   const GuideTerms terms =
       !solve.heavy                ? evaluate_guide_terms(targets, solve.eta)
       : solve.weight_share < 1.0 ? evaluate_guide_terms(carrying(targets, solve), solve.solution)
@@ -230,15 +254,19 @@ Guide solve_guide(const RootSet& bases, int b, const PreGuides& preguides, const
 // guide 3.3 cm deep, its wisp leaving density 2.35 cm inside the head; the paper scale, CDM:
 // 3.9 % of guide nodes outside the region against 0.1 % without F4).
 // Iterations and evaluations count both solves; the rest describes the second.
-Guide solve_guide_with_density(const RootSet& bases, int b, const PreGuides& preguides, const Boundary& boundary,
-                               const GuideOptions& o, const Guide& plain, const DensityGrid& density,
+Guide solve_guide_with_density(const GuideProblem& problem, int b, const Guide& plain, const DensityGrid& density,
                                const DensityTermOptions& term, const StallTest& stall) {
   double start[6];
   for (int a = 0; a < 3; ++a) {
     start[a] = plain.force[a];
     start[3 + a] = plain.root_moment[a];
   }
-  Guide g = solve_guide(bases, b, preguides, boundary, o, &density, term, start, stall);
+  GuideSolveSetup setup;
+  setup.density = &density;
+  setup.term = term;
+  setup.start = start;
+  setup.stall = stall;
+  Guide g = solve_guide(problem, b, setup);
   g.iterations += plain.iterations;
   g.evaluations += plain.evaluations;
   return g;
@@ -256,10 +284,11 @@ Guide solve_guide_with_density(const RootSet& bases, int b, const PreGuides& pre
 class FirstSolves {
  public:
   // `use`: the guides are the result (make_guides) or the density solves' starts.
-  FirstSolves(const RootSet& bases, const PreGuides& preguides, const Boundary& boundary, const GuideOptions& options,
-              GuideUse use, std::vector<Guide>& out)
-      : bases_(bases), preguides_(preguides), boundary_(boundary), options_(options), use_(use), out_(out),
-        in_round_(bases.size(), 0), pieces_(bases.size()) {
+  FirstSolves(const GuideProblem& problem, GuideUse use, std::vector<Guide>& out)
+      : problem_(problem), bases_(problem.bases), preguides_(problem.preguides), options_(problem.options), use_(use),
+        out_(out), in_round_(bases_.size(), 0), pieces_(bases_.size()) {
+    const RootSet& bases = bases_;
+    const PreGuides& preguides = preguides_;
     out_.resize(bases.size());
     if (!warm()) return;
     auto base_at = [&](int b) { return bases.positions[b]; };
@@ -286,8 +315,7 @@ class FirstSolves {
       const std::vector<int>& round = rounds_[r];
       parallel_for(round.size(), options_.threads, [&](int i) {
         if (r == 0)
-          out_[round[i]] = solve_guide(bases_, round[i], preguides_, boundary_, options_, nullptr, {}, nullptr, {}, use_,
-                                       nullptr, &pieces_[round[i]]);
+          out_[round[i]] = solve_guide(problem_, round[i], setup(nullptr, nullptr, &pieces_[round[i]]));
         else
           solve(round[i]);
         progress.item_done();
@@ -306,7 +334,7 @@ class FirstSolves {
   // Solves guide b (not a seed) from the guides of the rounds solved so far.
   void solve(int b) {
     if (!warm()) {
-      out_[b] = solve_guide(bases_, b, preguides_, boundary_, options_, nullptr, {}, nullptr, {}, use_);
+      out_[b] = solve_guide(problem_, b, setup(nullptr, nullptr, nullptr));
       return;
     }
     auto base_at = [&](int j) { return bases_.positions[j]; };
@@ -317,16 +345,23 @@ class FirstSolves {
     double start[6] = {0, 0, 0, 0, 0, 0};
     add_weighted_loads(out_, from, weights, start);
     const ShootingResult* near = from.empty() ? nullptr : &pieces_[from[0]];
-    out_[b] = solve_guide(bases_, b, preguides_, boundary_, options_, nullptr, {}, start, {}, use_, near,
-                          in_round_[b] ? &pieces_[b] : nullptr);
+    out_[b] = solve_guide(problem_, b, setup(start, near, in_round_[b] ? &pieces_[b] : nullptr));
   }
 
  private:
   bool warm() const { return options_.warm_start && preguides_.size() > 0; }
+  GuideSolveSetup setup(const double* start, const ShootingResult* near, ShootingResult* pieces) const {
+    GuideSolveSetup s;
+    s.start = start;
+    s.use = use_;
+    s.near = near;
+    s.pieces = pieces;
+    return s;
+  }
 
+  const GuideProblem problem_;
   const RootSet& bases_;
   const PreGuides& preguides_;
-  const Boundary& boundary_;
   const GuideOptions& options_;
   GuideUse use_;
   std::vector<Guide>& out_;
@@ -349,7 +384,7 @@ Curves Guides::curves() const {
 Guides make_guides(const RootSet& bases, const PreGuides& preguides, const Boundary& boundary, const GuideOptions& options) {
   Guides guides;
   ProgressCounter progress(options.progress);
-  FirstSolves first(bases, preguides, boundary, options, GuideUse::result, guides.items);
+  FirstSolves first(GuideProblem{bases, preguides, boundary, options}, GuideUse::result, guides.items);
   first.solve_rounds(progress);
   const std::vector<int> others = first.others(0, bases.size());
   parallel_for(others.size(), options.threads, [&](int i) {
@@ -387,7 +422,8 @@ DensityGuides make_guides_with_density(const RootSet& bases, const PreGuides& pr
   first_options.progress = nullptr;
   first_options.tolerance = std::max(options.tolerance, kFirstSolveTolerance);
   std::vector<Guide> plain;
-  FirstSolves first(bases, preguides, boundary, first_options, GuideUse::start, plain);
+  FirstSolves first(GuideProblem{bases, preguides, boundary, first_options}, GuideUse::start, plain);
+  const GuideProblem problem{bases, preguides, boundary, options};
   ProgressCounter no_progress(first_options.progress);  // empty: the first solves report nothing
   first.solve_rounds(no_progress);
   auto batch_end = [&](int begin) { return std::min(count, begin + density.batch); };
@@ -416,7 +452,7 @@ DensityGuides make_guides_with_density(const RootSet& bases, const PreGuides& pr
     parallel_for(end - begin, options.threads, [&](int i) {
       const int g = order[i];
       out.guides.items[g] =
-          solve_guide_with_density(bases, g, preguides, boundary, options, plain[g], frozen, term, density.stall);
+          solve_guide_with_density(problem, g, plain[g], frozen, term, density.stall);
       if (cdm) grow_guide_fibres(out.guides.items[g].shape.nodes, pores_of[g], density, grown.data());
       progress.item_done();
     });
