@@ -161,7 +161,7 @@ int main(int argc, char** argv) {
   const double slice = best_seconds([&] { (void)centre_slice(cdm_grid, Vec3(1, 0, 0), Vec3(0, 1, 0)); });
   const DensityStatistics s = density_statistics(cdm_grid);
   std::printf("\nfreeze (copy of %.1f MB): %.4f s; statistics: %.4f s; centre slice: %.4f s\n",
-              grid.cell_count() * 8.0 / 1e6, freeze, stats, slice);
+              grid.count() * 8.0 / 1e6, freeze, stats, slice);
   std::printf("90k-fibre CDM: occupied %lld cells, CV %.3f, empty share %.3f of the grid\n", (long long)s.occupied_cells,
               s.coefficient_of_variation, s.empty_share);
   return 0;

@@ -70,7 +70,7 @@ void check_tube(const Tube& tube, size_t item) {
 }  // namespace
 
 DensityAccumulator::DensityAccumulator(const GridGeometry& grid)
-    : geometry_(grid), values_(std::make_shared<std::vector<double>>(size_t(grid.cell_count()), 0.0)) {}
+    : geometry_(grid), values_(std::make_shared<std::vector<double>>(size_t(grid.count()), 0.0)) {}
 
 DensityAccumulator::DensityAccumulator(const DensityGrid& start)
     : geometry_(start.geometry()), values_(std::make_shared<std::vector<double>>(start.values())) {}
@@ -100,7 +100,7 @@ void DensityAccumulator::add_fibres(const std::vector<FibreSpan>& fibres, int th
   std::vector<double>& values = writable_values();
   std::int32_t* counts = nullptr;
   if (segment_counts) {
-    segment_counts->assign(size_t(geometry_.cell_count()), 0);
+    segment_counts->assign(size_t(geometry_.count()), 0);
     counts = segment_counts->data();
   }
   for_each_fibre_slab(geometry_, fibres, layers, threads, [&](int k_begin, int k_end) {

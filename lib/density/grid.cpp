@@ -8,7 +8,6 @@
 
 namespace hairfit {
 
-double GridGeometry::cell_diagonal() const { return voxel * std::sqrt(3.0); }
 
 GridGeometry make_grid_geometry(const Vec3& lower, const Vec3& upper, double voxel, double max_memory_gib) {
   if (!lower.allFinite() || !upper.allFinite() || !(upper.array() > lower.array()).all()) {
@@ -45,7 +44,7 @@ GridGeometry make_grid_geometry(const Vec3& lower, const Vec3& upper, double vox
 DensityGrid DensityGrid::from_values(const GridGeometry& geometry, std::vector<double> values) {
   if (geometry.dims.minCoeff() < 0 || !(std::isfinite(geometry.voxel) && geometry.voxel > 0.0))
     throw std::invalid_argument("a density grid needs non-negative dimensions and a finite voxel > 0");
-  if (std::int64_t(values.size()) != geometry.cell_count())
+  if (std::int64_t(values.size()) != geometry.count())
     throw std::invalid_argument("density grid size does not match its values");
   return DensityGrid(geometry, std::make_shared<const std::vector<double>>(std::move(values)));
 }
@@ -95,7 +94,7 @@ double DensityGrid::value(const Vec3& p) const { return value_and_gradient(p).va
 
 DensityValueGradient DensityGrid::value_and_gradient(const Vec3& p) const {
   DensityValueGradient out;
-  if (geometry_.cell_count() == 0 || !p.allFinite()) return out;
+  if (geometry_.count() == 0 || !p.allFinite()) return out;
   Vec3i b;
   Vec3 f;
   locate(geometry_, p, b, f);
@@ -113,7 +112,7 @@ void DensityGrid::central_gradient_at(const Vec3& p, Vec3& gradient, Mat3* jacob
   const GridGeometry& geometry = geometry_;
   gradient = Vec3::Zero();
   if (jacobian) *jacobian = Mat3::Zero();
-  if (geometry.cell_count() == 0 || !p.allFinite()) return;
+  if (geometry.count() == 0 || !p.allFinite()) return;
   Vec3i b;
   Vec3 f;
   locate(geometry, p, b, f);

@@ -1,8 +1,8 @@
 // Density grids (paper §3.5, docs/design.md §6): the rectilinear grid on which the binary occupancy model
 // (BOM) and the continuous density model (CDM) live.
 //
-// Conventions: cell (i,j,k) is the box origin + h·([i,i+1] × [j,j+1] × [k,k+1]) in cm; its value
-// sits at its centre origin + h·(i+½, j+½, k+½). Values are interpolated trilinearly between cell
+// Conventions: cell (i,j,k) is the box origin + h·([i,i+1] × [j,j+1] × [k,k+1]) in cm
+// (core/grid_geometry.h); its value sits at its centre origin + h·(i+½, j+½, k+½). Values are interpolated trilinearly between cell
 // centres; cells outside the grid count as 0 (no hair there), so every query is defined for any
 // finite point and continuous. A DensityGrid is immutable and shares its buffer (cheap to copy);
 // it is built by a DensityAccumulator (lib/density/accumulator.h) and its freeze().
@@ -11,26 +11,11 @@
 #include <memory>
 #include <vector>
 
+#include "core/grid_geometry.h"
 #include "core/types.h"
 
 namespace hairfit {
 
-struct GridGeometry {
-  Vec3 origin = Vec3::Zero();  // cm: lower corner of cell (0,0,0)
-  double voxel = 1.0;          // cm: cell edge h
-  Vec3i dims = Vec3i::Zero();  // cells along x, y, z
-
-  int64_t cell_count() const { return int64_t(dims.x()) * dims.y() * dims.z(); }
-  // x fastest, then y, then z (the NRRD order).
-  int64_t index(int i, int j, int k) const { return i + int64_t(dims.x()) * (j + int64_t(dims.y()) * k); }
-  bool contains(int i, int j, int k) const {
-    return i >= 0 && j >= 0 && k >= 0 && i < dims.x() && j < dims.y() && k < dims.z();
-  }
-  Vec3 cell_lower(int i, int j, int k) const { return origin + voxel * Vec3(i, j, k); }
-  Vec3 cell_centre(int i, int j, int k) const { return origin + voxel * Vec3(i + 0.5, j + 0.5, k + 0.5); }
-  Vec3 upper() const { return origin + voxel * dims.cast<double>(); }  // cm: far corner of the grid
-  double cell_diagonal() const;  // cm: h·√3, the CDM normaliser
-};
 
 // The grid of cells of edge `voxel` (cm) covering the box [lower, upper] (cm), centred on it
 // (the box grows to a whole number of cells). Throws InputError for a non-finite or empty box, a

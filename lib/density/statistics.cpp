@@ -15,7 +15,7 @@ namespace {
 SegmentHistogram histogram_of_spans(const GridGeometry& grid, const std::vector<FibreSpan>& fibres, int threads) {
   // Each segment visits a cell at most once (traverse_segment), so a per-cell count of visits is
   // the number of distinct segments crossing it. Integer counts: any order gives the same result.
-  std::vector<int32_t> count(size_t(grid.cell_count()), 0);
+  std::vector<int32_t> count(size_t(grid.count()), 0);
   const FibreLayers layers = fibre_layers(grid, fibres, threads);
   for_each_fibre_slab(grid, fibres, layers, threads, [&](int k_begin, int k_end) {
     for_each_crossing_in_slab(grid, fibres, layers, k_begin, k_end, [&](int64_t cell, double) { ++count[cell]; });

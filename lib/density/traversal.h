@@ -43,7 +43,7 @@ void for_each_cell_crossing(const GridGeometry& grid, const Vec3& a, const Vec3&
                             int k_begin = std::numeric_limits<int>::min(), int k_end = std::numeric_limits<int>::max()) {
   const Vec3 d = b - a;
   const double length = d.norm();
-  if (!(length > 0.0) || !std::isfinite(length) || grid.cell_count() == 0) return;
+  if (!(length > 0.0) || !std::isfinite(length) || grid.count() == 0) return;
   const Vec3 lo = grid.origin, hi = grid.upper();
   const double h = grid.voxel;
 

@@ -250,7 +250,7 @@ std::vector<Vec3i> frustum_cells(const GridGeometry& grid, const Frustum& f, Occ
   check_frustum(f);
   std::vector<Vec3i> cells;
   const Axis ax = frustum_axis(f);
-  if (!(ax.length > 0.0) || grid.cell_count() == 0) return cells;
+  if (!(ax.length > 0.0) || grid.count() == 0) return cells;
   if (k_end < 0 || k_end > grid.dims.z()) k_end = grid.dims.z();
   k_begin = std::max(k_begin, 0);
 
@@ -279,7 +279,7 @@ std::vector<Vec3i> frustum_cells(const GridGeometry& grid, const Frustum& f, Occ
   for (int k = first.z(); k <= last.z(); ++k) {
     for (int j = first.y(); j <= last.y(); ++j) {
       for (int i = first.x(); i <= last.x(); ++i) {
-        const Vec3 lower = grid.cell_lower(i, j, k), upper = lower + Vec3::Constant(h);
+        const Vec3 lower = grid.node(i, j, k), upper = lower + Vec3::Constant(h);
         bool hit;
         if (shape == OccupancyShape::obb) {
           hit = sat_box_obb(lower, upper, f, ax);

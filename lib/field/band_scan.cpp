@@ -186,7 +186,7 @@ FeaturePoint closest_on_feature(const MeshFeatures& f, int key, const Vec3& p) {
 }
 
 BandScan scan_band(const MeshFeatures& f, const GridGeometry& grid, double r, int threads) {
-  const double h = grid.h;
+  const double h = grid.voxel;
   const double pad = 1e-9 * h;  // covers round-off in the plane tests; far below the 1e-6 budget
   const int nf = static_cast<int>(f.faces.size());
   const int ne = static_cast<int>(f.edges.size());

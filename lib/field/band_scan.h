@@ -6,18 +6,10 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/grid_geometry.h"
 #include "field/mesh_features.h"
 
 namespace hairfit::field {
-
-struct GridGeometry {
-  Vec3 origin = Vec3::Zero();  // cm, position of node (0,0,0)
-  double h = 1.0;              // cm
-  Vec3i dims = Vec3i::Zero();
-  int64_t index(int i, int j, int k) const { return i + int64_t(dims.x()) * (j + int64_t(dims.y()) * k); }
-  Vec3 node(int i, int j, int k) const { return origin + h * Vec3(i, j, k); }
-  int64_t count() const { return int64_t(dims.x()) * dims.y() * dims.z(); }
-};
 
 // Feature keys: faces [0, F), edges [F, F+E), vertices [F+E, F+E+V). Among equal distances the
 // smaller key wins, so the result never depends on the order features are scanned in.

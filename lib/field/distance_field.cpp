@@ -102,7 +102,7 @@ void require_field_fits(const Mesh& mesh, const FieldSpec& spec) {
 namespace {
 
 // Signs every finite sample by the test at its node: −|v| inside, |v| outside.
-void sign_by_test(std::vector<double>& values, const field::GridGeometry& grid, int stride, const InsideTest& inside,
+void sign_by_test(std::vector<double>& values, const GridGeometry& grid, int stride, const InsideTest& inside,
                   int threads) {
   const int nx = grid.dims.x(), ny = grid.dims.y();
   parallel_for(grid.dims.z(), threads, [&](int k) {
@@ -112,7 +112,7 @@ void sign_by_test(std::vector<double>& values, const field::GridGeometry& grid, 
         if (v == std::numeric_limits<double>::infinity()) continue;
         // The node's position as the fine grid computes it, also for coarse nodes (stride > 1),
         // so that a node both grids share gets one answer.
-        const Vec3 p = grid.origin + (grid.h / stride) * Vec3(double(stride) * i, double(stride) * j, double(stride) * k);
+        const Vec3 p = grid.origin + (grid.voxel / stride) * Vec3(double(stride) * i, double(stride) * j, double(stride) * k);
         v = inside(p) ? -std::abs(v) : std::abs(v);
       }
   });
@@ -143,7 +143,7 @@ DistanceField DistanceField::build(const Mesh& mesh, const FieldSpec& spec, int 
   const FieldGridPlan plan = plan_field_grid(mesh, spec);
   threads = resolve_thread_count(threads);
   const field::MeshFeatures features = field::extract_features(mesh, spec.name);
-  field::GridGeometry grid{plan.origin, spec.voxel, plan.dims};
+  GridGeometry grid{plan.origin, spec.voxel, plan.dims};
   const double r = spec.band * spec.voxel;
   field::BandScan band = field::scan_band(features, grid, r, threads);
   field::FarField far = field::make_far_field(features, grid, band, r, plan.coarse_factor, threads);
@@ -151,7 +151,7 @@ DistanceField DistanceField::build(const Mesh& mesh, const FieldSpec& spec, int 
   if (inside) {
     signs.emplace(features, r, inside, threads, &band);
     field::sign_band(*signs, grid, band, threads);
-    const field::GridGeometry coarse{plan.origin, plan.coarse_factor * spec.voxel, far.dims};
+    const GridGeometry coarse{plan.origin, plan.coarse_factor * spec.voxel, far.dims};
     sign_by_test(far.values, coarse, plan.coarse_factor, inside, threads);
   }
   std::vector<std::uint8_t> in_band(band.value.size());

@@ -17,11 +17,11 @@ FarField make_far_field(const MeshFeatures& features, const GridGeometry& grid, 
   const int nx = out.dims.x(), ny = out.dims.y(), nz = out.dims.z();
   const int64_t count = int64_t(nx) * ny * nz;
   auto at = [&](int i, int j, int k) { return i + int64_t(nx) * (j + int64_t(ny) * k); };
-  const GridGeometry coarse{grid.origin, c * grid.h, out.dims};
+  const GridGeometry coarse{grid.origin, c * grid.voxel, out.dims};
   auto node = [&](int i, int j, int k) { return coarse.node(i, j, k); };
 
   // Exact values for every coarse node a fine voxel just outside the band interpolates from.
-  const BandScan near = scan_band(features, coarse, r + std::sqrt(3.0) * coarse.h, threads);
+  const BandScan near = scan_band(features, coarse, r + std::sqrt(3.0) * coarse.voxel, threads);
   const double inf = std::numeric_limits<double>::infinity();
   std::vector<Vec3> closest(count);
   std::vector<int32_t> feature(count, -1);
@@ -42,7 +42,7 @@ FarField make_far_field(const MeshFeatures& features, const GridGeometry& grid, 
   if (!any_seed) {
     // A mesh much smaller than the coarse spacing can miss every coarse node: seed the node
     // nearest to a mesh vertex with its exact closest point (brute force over all features).
-    const Vec3 u = (features.vertices[0] - grid.origin) / coarse.h;
+    const Vec3 u = (features.vertices[0] - grid.origin) / coarse.voxel;
     const int i = std::clamp(int(std::lround(u.x())), 0, nx - 1);
     const int j = std::clamp(int(std::lround(u.y())), 0, ny - 1);
     const int k = std::clamp(int(std::lround(u.z())), 0, nz - 1);
@@ -202,7 +202,7 @@ void settle_pending(const GridGeometry& grid, const FarField& far, int c, const 
               }
         if (!any) continue;
         const int64_t base = ci + int64_t(cx) * (cj + int64_t(cy) * ck);
-        const bool seam = ask_every_sample(far, base, c * grid.h);
+        const bool seam = ask_every_sample(far, base, c * grid.voxel);
         // Seeds: every sample of the cell's closed box whose sign is known.
         queue.clear();
         for (int k = 0; k < w; ++k)

@@ -15,11 +15,6 @@ struct HairMaterial {
   ContactLaw contact;               // the scalp as a support (effects.contact); inactive when off
 };
 
-struct RodDiscretisation {
-  RodIntegrator integrator = RodIntegrator::rk4;
-  int segments = 64;
-};
-
 // The dimensionless load (weight ρAgL³/EI or terminal force F·L²/EI) beyond which one forward
 // integration loses precision: m(1) depends on m(0) like exp(√load). Heavier rods are solved and
 // optimised by multiple shooting from their terminal loads.

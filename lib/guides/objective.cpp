@@ -403,8 +403,7 @@ class HeavyGuideCost : public ceres::CostFunction {
   HeavyGuideCost(const GuideTargets& t, ShootingResult start) : cost_(t), t_(t), near_(std::move(start)) {
     set_num_residuals(cost_.residual_count());
     mutable_parameter_block_sizes()->push_back(6);
-    options_.integrator = t.rod.integrator;
-    options_.segments = t.rod.segments;
+    static_cast<RodDiscretisation&>(options_) = t.rod;
     options_.max_iterations = 12;
     options_.restart_from_rest = false;
   }
@@ -612,8 +611,7 @@ GuideSolve optimise_heavy_guide(const GuideTargets& targets, const double start[
   GuideSolve result;
   result.heavy = true;
   ShootingOptions first;
-  first.integrator = targets.rod.integrator;
-  first.segments = targets.rod.segments;
+  static_cast<RodDiscretisation&>(first) = targets.rod;
   double x[6] = {start[0], start[1], start[2], 0.0, 0.0, 0.0};
   const Vec3 start_force(x[0], x[1], x[2]);
   ShootingResult at;

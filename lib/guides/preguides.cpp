@@ -108,8 +108,7 @@ class Cantilever {
     const Vec3 force = load * bend_;
     if (heavy_rod(model) || load > kHeavyRod) {
       ShootingOptions options;
-      options.integrator = rod_.integrator;
-      options.segments = rod_.segments;
+      static_cast<RodDiscretisation&>(options) = rod_;
       // A solve from nothing (the rod under its weight alone) continues from the unloaded rod; a
       // failed warm start returns at once, and the caller shortens its load step.
       options.restart_from_rest = at.breaks.empty() && at.root_moment.isZero();

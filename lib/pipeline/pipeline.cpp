@@ -607,7 +607,7 @@ class Runner {
       for (int n = 0; n < g.dims[d]; ++n) centres[d].push_back(g.origin[d] + g.voxel * (n + 0.5));
     const std::vector<std::int8_t> volume_sides = volume.sides_on_lattice(centres[0], centres[1], centres[2], options_.threads);
     const std::vector<std::int8_t> scalp_sides = scalp.sides_on_lattice(centres[0], centres[1], centres[2], options_.threads);
-    std::vector<char> in_region(static_cast<std::size_t>(g.cell_count()), 0);
+    std::vector<char> in_region(static_cast<std::size_t>(g.count()), 0);
     parallel_for(g.dims.z(), options_.threads, [&](int k) {
       for (int j = 0; j < g.dims.y(); ++j)
         for (int i = 0; i < g.dims.x(); ++i) {

@@ -101,8 +101,7 @@ SolvedRod solve_rod(const Rod& rod, const RodRoot& root, const RodLoad& load, co
   Vec3 m0 = load.root_moment / scale.moment, m1;
   if (options.solver == RodSolver::shooting) {
     ShootingOptions shooting;
-    shooting.integrator = options.integrator;
-    shooting.segments = options.segments;
+    static_cast<RodDiscretisation&>(shooting) = options;
     shooting.tolerance = options.tolerance;
     shooting.max_iterations = options.max_iterations;
     const ShootingResult s = shoot_root_moment(model, force, load.terminal_torque / scale.moment, m0, shooting);

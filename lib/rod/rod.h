@@ -58,10 +58,8 @@ struct RodLoad {
   Vec3 root_moment = Vec3::Zero();      // m(0), dyn·cm: given (initial-value) or warm start (shooting)
 };
 
-struct RodOptions {
+struct RodOptions : RodDiscretisation {
   RodSolver solver = RodSolver::shooting;
-  RodIntegrator integrator = RodIntegrator::rk4;
-  int segments = 64;
   // Shooting converges when |m(L) − t_L|·L/EI ≤ tolerance·max(1, |dimensionless loads|).
   double tolerance = 1e-11;
   int max_iterations = 400;  // Newton steps in total, over all continuation levels

@@ -30,6 +30,13 @@ RodIntegrator parse_rod_integrator(const std::string& name);
 const char* rod_integrator_name(RodIntegrator integrator);
 int rod_integrator_order(RodIntegrator integrator);
 
+// How a rod is discretised: the scheme and its N steps over the length. Every solver's options
+// extend it (RodOptions, ShootingOptions), so one assignment hands it on.
+struct RodDiscretisation {
+  RodIntegrator integrator = RodIntegrator::rk4;
+  int segments = 64;
+};
+
 // A rod made dimensionless (make_rod_model in rod.h builds one from cgs values).
 struct RodModel {
   Vec3 compliance{1.0, 1.0, 1.0};  // EI_ref·diag(C⁻¹) = (EI_ref/EI1, EI_ref/EI2, EI_ref/GJ)

@@ -20,9 +20,7 @@
 
 namespace hairfit {
 
-struct ShootingOptions {
-  RodIntegrator integrator = RodIntegrator::rk4;
-  int segments = 64;
+struct ShootingOptions : RodDiscretisation {
   double tolerance = 1e-11;  // on the residual norm, relative to max(1, |f_L|, |t_L|, |f|)
   int max_iterations = 400;  // Newton steps in total
   // When the warm start fails: continue the load from the unloaded rod (true), or give up at once

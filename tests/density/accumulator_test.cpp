@@ -100,7 +100,7 @@ TEST_CASE("deposits are byte-identical for 1, 2 and 4 threads and match one-by-o
       CHECK(bytes_equal(acc.freeze(), reference));
     }
     // Equal to the union of tube_cells.
-    std::vector<char> expected(size_t(g.cell_count()), 0);
+    std::vector<char> expected(size_t(g.count()), 0);
     for (const auto& t : tubes)
       for (int64_t c : tube_cells(g, t, OccupancyShape::frustum)) expected[c] = 1;
     size_t mismatches = 0;
@@ -141,7 +141,7 @@ TEST_CASE("deposits are byte-identical for 1, 2 and 4 threads and match one-by-o
     const CellPredicate region = [](const Vec3& p) { return p.x() + 0.5 * p.z() < 0.3; };
     const DensityStatistics one = density_statistics(grid, region, 1);
     CHECK(one.region_cells > 0);
-    CHECK(one.region_cells < g.cell_count());
+    CHECK(one.region_cells < g.count());
     for (int threads : {2, 4}) {
       const DensityStatistics s = density_statistics(grid, region, threads);
       CHECK(s.region_cells == one.region_cells);

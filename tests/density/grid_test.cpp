@@ -130,7 +130,7 @@ TEST_CASE("gradient and Jacobian agree with finite differences away from cell-ce
 
 TEST_CASE("from_values builds the grid of given cell values and refuses values that do not fill it") {
   const GridGeometry g = geometry(0.5, 4);
-  std::vector<double> values(g.cell_count());
+  std::vector<double> values(g.count());
   for (std::size_t n = 0; n < values.size(); ++n) values[n] = 0.25 * double(n % 7);
   const DensityGrid grid = DensityGrid::from_values(g, values);
   CHECK(grid.values() == values);

@@ -110,5 +110,5 @@ TEST_CASE("centre slice: cell values of the middle layer, placed in the world, a
   CHECK_THROWS_AS(slice_to_nrrd(centre_slice(grid, Vec3(1, 1, 0), Vec3(0, 0, 1))), std::invalid_argument);
   const NrrdVolume whole = grid_to_nrrd(grid);
   CHECK(whole.sizes == g.dims);
-  CHECK(whole.data.size() == size_t(g.cell_count()));
+  CHECK(whole.data.size() == size_t(g.count()));
 }

@@ -129,7 +129,7 @@ TEST_CASE("degenerate segments: zero length, on grid planes, through corners") {
     CHECK(std::abs(cs[0].length - (q - p).norm()) <= 1e-12 * (q - p).norm());
   }
   SUBCASE("along a grid line (edge shared by four cells): one cell per step, upper side") {
-    const Vec3 a = g.cell_lower(2, 3, 1), b = g.cell_lower(2, 3, 7);
+    const Vec3 a = g.node(2, 3, 1), b = g.node(2, 3, 7);
     const auto cs = traverse_segment(g, a, b);
     REQUIRE(cs.size() == 6);
     for (int s = 0; s < 6; ++s) {
@@ -149,7 +149,7 @@ TEST_CASE("degenerate segments: zero length, on grid planes, through corners") {
   SUBCASE("diagonals through cell corners skip the zero-length cells") {
     for (int dir = 0; dir < 8; ++dir) {
       const Vec3 s((dir & 1) ? 1 : -1, (dir & 2) ? 1 : -1, (dir & 4) ? 1 : -1);
-      const Vec3 centre = g.cell_lower(6, 4, 5);  // a grid node
+      const Vec3 centre = g.node(6, 4, 5);  // a grid node
       const Vec3 a = centre - 3.0 * h * s, b = centre + 3.0 * h * s;
       const auto cs = traverse_segment(g, a, b);
       CHECK(cs.size() == 6);  // only the cells the diagonal passes through, h√3 each
@@ -158,7 +158,7 @@ TEST_CASE("degenerate segments: zero length, on grid planes, through corners") {
     }
   }
   SUBCASE("in a face plane at 45°: through edges") {
-    const Vec3 a = g.cell_lower(1, 1, 3), b = g.cell_lower(7, 7, 3);
+    const Vec3 a = g.node(1, 1, 3), b = g.node(7, 7, 3);
     const auto cs = traverse_segment(g, a, b);
     CHECK(cs.size() == 6);
     CHECK(std::abs(total(cs) - (b - a).norm()) <= 1e-12 * (b - a).norm());
