@@ -1,6 +1,7 @@
-// What each stage reads, declared once: the scene keys (or whole sections), the loaded input
-// files, and the earlier stages whose values it consumes. The stage cache keys on exactly this,
-// so a change costs only the stages that read it and those after them.
+// What each stage reads: the scene keys (or whole sections), the loaded input files, and the
+// earlier stages whose values it consumes, declared in the stage's own file (stage.h, beside where
+// it builds its options). The stage cache keys on exactly this, so a change costs only the stages
+// that read it and those after them.
 #pragma once
 #include <map>
 #include <string>
@@ -20,7 +21,7 @@ struct StageDeclaration {
   std::vector<std::string> reads;     // scene key names or section prefixes (spec/scene_keys.h)
   std::vector<std::string> files;     // loaded inputs: scalp, volume, density map, tilt map, length map
   std::vector<std::string> consumes;  // earlier stages
-  bool cached = true;                 // whether its value is worth storing (stage_plan.cpp says why not)
+  bool cached = true;                 // whether its value is worth storing (the stage says why not)
 };
 
 // The scene's stages in order, each with what it reads. Effects that are off are not read (their

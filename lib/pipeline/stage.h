@@ -1,0 +1,114 @@
+// One stage of the pipeline as a descriptor: what it reads (and so what invalidates its cache
+// entry), how it computes its value from the scene and the earlier stages' values, how that value
+// is stored in the cache, and which files it writes. Each stage's descriptor lives in its own file
+// (stage_fields.cpp … stage_density.cpp); the pipeline is the table of them (stage_table).
+#pragma once
+#include <array>
+#include <cstddef>
+#include <filesystem>
+#include <future>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "density/statistics.h"
+#include "guides/boundary.h"
+#include "io/nrrd.h"
+#include "pipeline/byte_stream.h"
+#include "pipeline/pipeline.h"
+#include "pipeline/stage_plan.h"
+#include "scalp/shell_hair.h"
+
+namespace hairfit {
+
+// What a stage sees while it runs: the scene, the inputs, the run's options, the values of the
+// stages before it (its own goes in `values` too), and what stages hand on within one run.
+class StageRun {
+ public:
+  StageRun(const Scene& run_scene, const Inputs& run_inputs, const RunOptions& run_options, StageValues& run_values,
+           std::vector<OutputFile>& outputs)
+      : scene(run_scene), inputs(run_inputs), options(run_options), values(run_values), outputs_(outputs) {}
+
+  const Scene& scene;
+  const Inputs& inputs;
+  const RunOptions& options;
+  StageValues& values;
+
+  // The loop progress of the stage running (empty when the run reports nothing).
+  ProgressCallback loop_progress() const;
+  // Writes out_dir/relative by `write(path)` and lists it among the run's outputs.
+  template <class Write>
+  void output(const std::string& relative, Write write) {
+    const std::filesystem::path path = options.out_dir / relative;
+    write(path);
+    outputs_.push_back({relative, static_cast<std::uint64_t>(std::filesystem::file_size(path))});
+  }
+
+  // Shared views of the earlier values.
+  Boundary boundary() const;  // the acceptable region: the fields
+  Pores pores() const;        // one fibre per pore, grown along its cluster's guide (roots, chart)
+  ScalpMaps maps() const;     // the loaded grey maps
+  // The roots' options with what they read from the fields and the hull: the layer's thickness,
+  // the hull's grain, and the length and tilt of hair that suits its shell. Worked out once a run,
+  // for the roots and for pre-guides that follow the growth field.
+  struct ResolvedRoots {
+    RootOptions options;
+    ShellHair shell;
+  };
+  const ResolvedRoots& resolved_roots();
+
+  // Handed on within one run, never cached; results do not depend on them.
+  // The stage's digest when it is hashed on a thread of its own beside its files.
+  std::future<std::string> digest;
+  // The fields stage's samples (scalp, volume), for its files.
+  std::optional<std::array<NrrdVolume, 2>> field_volumes;
+  // The fibres the guides stage's CDM deposit grew (DensityGuides::fibres), as the strands stage
+  // grows them before the head exit and the cut, so that it need not grow them again.
+  std::vector<Vec3> deposited_fibres;
+  std::optional<SegmentHistogram> histogram;  // the density stage's, for its file
+
+ private:
+  std::vector<OutputFile>& outputs_;
+  std::optional<ResolvedRoots> resolved_;
+};
+
+struct StageDescriptor {
+  const char* name;
+  // What the stage reads (scene keys, input files, earlier stages): its cache key
+  // (stage_declarations names it).
+  StageDeclaration (*declare)(const Scene& scene);
+  // Whether the scene has the stage at all (null: always).
+  bool (*present)(const Scene& scene);
+  // Its loop's length for the progress bar (null: none worth showing).
+  std::size_t (*loop_items)(const StageValues& values);
+  // Computes the value into run.values, with its digest and figures.
+  void (*compute)(StageRun& run, StageReport& report);
+  // The value in and out of a cache entry.
+  void (*encode)(ByteWriter& out, const StageValues& values);
+  void (*decode)(ByteReader& in, StageValues& values);
+  // The stage's files, from run.values (computed or cached).
+  void (*write)(StageRun& run);
+};
+
+// The stages in order.
+const std::vector<const StageDescriptor*>& stage_table();
+
+const StageDescriptor& fields_stage();
+const StageDescriptor& chart_stage();
+const StageDescriptor& roots_stage();
+const StageDescriptor& preguides_stage();
+const StageDescriptor& guides_stage();
+const StageDescriptor& strands_stage();
+const StageDescriptor& density_stage();
+
+// Parts of declarations that several stages share.
+// The rod's material and discretisation (stage_options.cpp hair_material, rod_discretisation);
+// weight only with gravity, the support only with contact.
+void declare_rod_reads(const Scene& scene, StageDeclaration& d);
+// strand_options() and wisp_shape(): winding and cutting parameters only when those effects are on.
+void declare_strand_reads(const Scene& scene, StageDeclaration& d);
+
+// Diameters along a fibre: a hair of section A at the root, tapering to half at the tip.
+void add_fibre_widths(Curves& curves, double cross_section, int threads);
+
+}  // namespace hairfit

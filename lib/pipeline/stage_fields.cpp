@@ -1,0 +1,92 @@
+// The fields stage: the scalp's and the volume's signed distance fields (docs/design.md §2).
+#include "core/digest.h"
+#include "field/field_nrrd.h"
+#include "field/hair_region.h"
+#include "pipeline/stage.h"
+#include "pipeline/stage_codec.h"
+#include "pipeline/stage_options.h"
+
+namespace hairfit {
+
+namespace {
+
+StageDeclaration declare(const Scene&) {
+  StageDeclaration d;
+  d.reads = {"fields"};  // field_spec()
+  d.files = {"scalp", "volume"};
+  return d;
+}
+
+void compute(StageRun& run, StageReport& stage) {
+  const Scene& scene = run.scene;
+  const Inputs& inputs = run.inputs;
+  const int threads = run.options.threads;
+  StageValues& v = run.values;
+  // The scalp's field: the distance to the head closed under the scalp by a floor across the
+  // hairline, negative inside it.
+  const Mesh head = closed_head(inputs.scalp.mesh);
+  const FastWindingNumber head_winding(head, HairRegion::kFirstBeta, threads);
+  const InsideTest inside_head = [&head_winding](const Vec3& p) { return winding_above_half(head_winding, p); };
+  v.scalp_field = std::make_shared<const DistanceField>(
+      make_distance_field(head, field_spec(scene, scene.inputs.scalp.string()), threads, inside_head));
+  // The volume's inside is the region's (HairRegion) together with the head, so that its field
+  // keeps its sign across the scalp, as a prepared volume's floor under the scalp makes it: the
+  // acceptable region, inside the volume and not behind the scalp, is the region's shell.
+  const HairRegion region(inputs.volume.mesh, inputs.scalp.mesh, inputs.volume_report.closed(), threads);
+  const DistanceField& scalp = *v.scalp_field;
+  const InsideTest inside_volume = [&region, &scalp](const Vec3& p) { return scalp.value(p) < 0.0 || region.inside_hull(p); };
+  v.volume_field = std::make_shared<const DistanceField>(
+      make_distance_field(inputs.volume.mesh, field_spec(scene, scene.inputs.volume.string()), threads, inside_volume));
+  Digest d;
+  std::array<NrrdVolume, 2> volumes{field_to_nrrd(*v.scalp_field, threads), field_to_nrrd(*v.volume_field, threads)};
+  for (const NrrdVolume& volume : volumes) d.add_bytes(volume.data.data(), volume.data.size() * sizeof(float));
+  if (run.options.write_outputs) run.field_volumes = std::move(volumes);  // the files hold the same samples
+  stage.digest = d.hex();
+  auto grid = [](const DistanceField& f) {
+    return std::to_string(f.dims().x()) + "x" + std::to_string(f.dims().y()) + "x" + std::to_string(f.dims().z());
+  };
+  stage.add("voxel_cm", scene.fields.voxel);
+  stage.add("scalp_grid", grid(*v.scalp_field));
+  stage.add("volume_grid", grid(*v.volume_field));
+  stage.add("band_voxels", static_cast<std::int64_t>(v.scalp_field->band_voxels() + v.volume_field->band_voxels()));
+  stage.add("memory_bytes", static_cast<std::int64_t>(v.scalp_field->memory_bytes() + v.volume_field->memory_bytes()));
+  // What the inputs were found to be, and how much of the scalp the region covers.
+  const MeshReport& hull = inputs.volume_report;
+  stage.add("volume_closed", hull.closed());
+  stage.add("volume_parts", static_cast<std::int64_t>(hull.parts));
+  stage.add("volume_boundary_loops", static_cast<std::int64_t>(hull.boundary_loops));
+  stage.add("volume_nonmanifold_edges", static_cast<std::int64_t>(hull.nonmanifold_edges));
+  stage.add("volume_flipped_patches", static_cast<std::int64_t>(hull.flipped_patches));
+  stage.add("volume_reversed", inputs.volume_reversed);
+  stage.add("scalp_inside_share", inputs.scalp_inside_share);
+  stage.add("scalp_outside_share", 1.0 - inputs.scalp_inside_share);
+}
+
+void encode_value(ByteWriter& out, const StageValues& v) {
+  encode(out, *v.scalp_field);
+  encode(out, *v.volume_field);
+}
+
+void decode_value(ByteReader& in, StageValues& v) {
+  v.scalp_field = std::make_shared<const DistanceField>(decode_distance_field(in));
+  v.volume_field = std::make_shared<const DistanceField>(decode_distance_field(in));
+}
+
+void write(StageRun& run) {
+  const StageValues& v = run.values;
+  const int threads = run.options.threads;
+  if (!run.field_volumes)  // a cached stage: converted again rather than stored
+    run.field_volumes = {field_to_nrrd(*v.scalp_field, threads), field_to_nrrd(*v.volume_field, threads)};
+  run.output("fields/scalp.nrrd", [&](const std::filesystem::path& p) { write_nrrd(p, (*run.field_volumes)[0]); });
+  run.output("fields/volume.nrrd", [&](const std::filesystem::path& p) { write_nrrd(p, (*run.field_volumes)[1]); });
+  run.field_volumes.reset();
+}
+
+}  // namespace
+
+const StageDescriptor& fields_stage() {
+  static const StageDescriptor d{"fields", declare, nullptr, nullptr, compute, encode_value, decode_value, write};
+  return d;
+}
+
+}  // namespace hairfit

@@ -1,0 +1,81 @@
+#include <algorithm>
+#include <cmath>
+
+#include "core/parallel.h"
+#include "pipeline/stage.h"
+#include "pipeline/stage_options.h"
+#include "scalp/relief.h"
+
+namespace hairfit {
+
+ProgressCallback StageRun::loop_progress() const {
+  return options.progress ? options.progress->callback() : ProgressCallback();
+}
+
+Boundary StageRun::boundary() const { return Boundary{values.scalp_field.get(), values.volume_field.get()}; }
+
+Pores StageRun::pores() const {
+  Pores p;
+  p.positions = values.roots->pores.positions;
+  p.lengths = values.roots->pores.lengths;
+  p.guide = values.clusters->pore_cluster;
+  for (const SurfacePoint& w : values.roots->pores.where)
+    p.normals.push_back(values.chart->outward * triangle_normal(values.chart->mesh, w.triangle));
+  return p;
+}
+
+ScalpMaps StageRun::maps() const {
+  return ScalpMaps{inputs.density_map ? &*inputs.density_map : nullptr, inputs.tilt_map ? &*inputs.tilt_map : nullptr,
+                   inputs.length_map ? &*inputs.length_map : nullptr};
+}
+
+const StageRun::ResolvedRoots& StageRun::resolved_roots() {
+  if (resolved_) return *resolved_;
+  ResolvedRoots r;
+  RootOptions& o = r.options;
+  o = root_options(scene, options.threads);
+  if (o.tilt_toward == TiltToward::thicker) o.thickness = layer_thickness(*values.volume_field);
+  if (o.flow == FlowModel::relief) o.grain = relief_grain(*values.chart, inputs.volume.mesh, scene.hair.relief_radius, options.threads);
+  if (scene.hair.from_shell) {  // hair that suits its shell: length and tilt from the layer
+    r.shell = shell_hair(*values.chart, layer_thickness(*values.volume_field), options.threads);
+    if (r.shell.layer_ends) {
+      o.length = r.shell.length;
+      o.tilt = r.shell.tilt;
+    }
+  }
+  resolved_ = std::move(r);
+  return *resolved_;
+}
+
+void declare_rod_reads(const Scene& scene, StageDeclaration& d) {
+  d.reads.insert(d.reads.end(), {"hair.youngs_modulus", "hair.shear_modulus", "hair.cross_section", "rod.integrator",
+                                 "rod.segments", "effects.gravity", "effects.contact", "units.down", "units.front"});
+  if (scene.effects.gravity) d.reads.insert(d.reads.end(), {"hair.mass_density", "rod.gravity"});
+  if (scene.effects.contact) d.reads.insert(d.reads.end(), {"contact.stiffness", "contact.layer"});
+}
+
+void declare_strand_reads(const Scene& scene, StageDeclaration& d) {
+  d.reads.insert(d.reads.end(), {"strands.points", "strands.root_radius", "strands.tip_radius", "effects.winding",
+                                 "effects.cutting"});
+  if (scene.effects.winding) d.reads.push_back("strands.turns");
+  if (scene.effects.cutting) d.reads.insert(d.reads.end(), {"strands.cut_threshold", "strands.cut_tips"});
+}
+
+void add_fibre_widths(Curves& curves, double cross_section, int threads) {
+  const double root = 2.0 * std::sqrt(cross_section / M_PI);
+  curves.widths.resize(curves.points.size());
+  parallel_for(static_cast<int>(curves.count()), threads, [&](int c) {
+    const std::size_t n = curves.size(c);
+    for (std::size_t i = 0; i < n; ++i)
+      curves.widths[curves.offsets[c] + i] = static_cast<float>(root * (1.0 - 0.5 * i / std::max<std::size_t>(1, n - 1)));
+  });
+}
+
+const std::vector<const StageDescriptor*>& stage_table() {
+  static const std::vector<const StageDescriptor*> table{&fields_stage(),    &chart_stage(),  &roots_stage(),
+                                                         &preguides_stage(), &guides_stage(), &strands_stage(),
+                                                         &density_stage()};
+  return table;
+}
+
+}  // namespace hairfit

@@ -1,0 +1,128 @@
+// The strands stage: a wisp of fibres around each guide, kept out of the head and cut at the
+// volume (docs/design.md §7).
+#include <limits>
+
+#include "core/parallel.h"
+#include "core/triangle_grid.h"
+#include "io/curve_files.h"
+#include "pipeline/scalp_exit.h"
+#include "pipeline/stage.h"
+#include "pipeline/stage_codec.h"
+#include "pipeline/stage_options.h"
+#include "strands/coverage.h"
+
+namespace hairfit {
+
+namespace {
+
+StageDeclaration declare(const Scene& scene) {
+  StageDeclaration d;
+  declare_strand_reads(scene, d);  // strand_options()
+  d.reads.push_back("hair.cross_section");  // fibre widths
+  if (scene.strands.contain > 0.0) d.reads.push_back("strands.contain");  // the deposit's fibres do not
+  d.consumes = {"roots", "guides"};
+  if (scene.effects.cutting || scene.strands.contain > 0.0)
+    d.consumes.push_back("fields");  // cut where the fibres leave the volume, or held in it
+  // Not stored: the strands (and the density of the final fibres) are hit only when nothing
+  // before them changed, while every new weight or strand setting would add the largest entry of
+  // all (31 MB for the spheroid's 68 000 fibres, against 15 MB for its guides); rebuilding them
+  // from the cached guides takes about a second.
+  d.cached = false;
+  return d;
+}
+
+std::size_t loop_items(const StageValues& v) { return v.roots->pores.size(); }
+
+void compute(StageRun& run, StageReport& stage) {
+  const Scene& scene = run.scene;
+  const int threads = run.options.threads;
+  StageValues& v = run.values;
+  const DistanceField* volume = v.volume_field.get();
+  const DistanceFunction volume_distance = [volume](const Vec3& p) { return volume->value(p); };
+  const DistanceFunction volume_quick = [volume](const Vec3& p) {  // the sign alone where the cell tells it
+    const int side = volume->side(p);
+    return side != 0 ? side * std::numeric_limits<double>::infinity() : volume->value(p);
+  };
+  StrandOptions o = strand_options(scene, threads);
+  o.progress = run.loop_progress();
+  FibrePointSides known;  // looked up on the way: the counts need not ask again
+  const TriangleGrid scalp_triangles(v.chart->mesh);
+  HeadExit exit = scalp_exit(*v.scalp_field, &scalp_triangles, v.chart->outward);
+  if (scene.strands.contain > 0.0) exit.into_volume = into_volume(*v.volume_field, scene.strands.contain);
+  Strands s = make_strands(v.guides->curves(), run.pores(), o, volume_distance, exit, &known, volume_quick,
+                           run.deposited_fibres.empty() ? nullptr : &run.deposited_fibres);
+  std::vector<Vec3>().swap(run.deposited_fibres);  // taken over, or unused
+  add_fibre_widths(s.fibres, scene.hair.cross_section, threads);
+  v.strands = std::make_shared<const Strands>(std::move(s));
+  const Curves& fibres = v.strands->fibres;
+  // The digest hashes the 35 MB of points in one serial chain: on a thread of its own, beside the
+  // counts and the files (the runner waits for it).
+  run.digest = std::async(std::launch::async, [&fibres] { return Digest().add(fibres.points).hex(); });
+  // Field values per point after the root (looked up only where make_strands did not): counted
+  // per fibre on all threads, then summed (integers, so the totals do not depend on the thread
+  // count). A root is its pore, a point of the scalp by construction; through the interpolated
+  // fields one near a thin hairline reads either side of it, so roots are not counted
+  // (spec/reference.md, report figures).
+  const Boundary b = run.boundary();
+  std::vector<std::array<int, 3>> counts(fibres.count(), {0, 0, 0});  // inside, in head, outside volume
+  parallel_for(static_cast<int>(fibres.count()), threads, [&](int c) {
+    for (std::size_t k = fibres.offsets[c] + 1; k < fibres.offsets[c + 1]; ++k) {
+      const bool head = !known.in_head.empty() && known.in_head[k] >= 0 ? known.in_head[k] == 1
+                                                                        : b.beyond_scalp(fibres.points[k]) > 0.0;
+      const bool out = known.outside_volume.empty() ? b.beyond_volume(fibres.points[k]) > 0.0 : known.outside_volume[k] == 1;
+      counts[c][0] += !head && !out;
+      counts[c][1] += head;
+      counts[c][2] += out;
+    }
+  });
+  long long inside = 0, in_head = 0, out_volume = 0;
+  for (const std::array<int, 3>& n : counts) inside += n[0], in_head += n[1], out_volume += n[2];
+  const double points = std::max<double>(1.0, static_cast<double>(fibres.points.size() - fibres.count()));
+  stage.add("fibres", static_cast<std::int64_t>(fibres.count()));
+  stage.add("points", static_cast<std::int64_t>(fibres.points.size()));
+  if (scene.effects.cutting) stage.add("cut", static_cast<std::int64_t>(v.strands->cut_count));
+  stage.add("inside_fraction", inside / points);
+  stage.add("inside_head_fraction", in_head / points);  // the two ways of not being inside
+  stage.add("outside_volume_fraction", out_volume / points);
+  if (scene.effects.cutting)
+    stage.add("cut_share", static_cast<double>(v.strands->cut_count) / std::max<std::size_t>(1, fibres.count()));
+  // Segments whose chord crosses the scalp's triangles (exact tests): those the lift could not
+  // clear, a first segment whose root lies behind a neighbouring triangle's plane.
+  stage.add("scalp_crossings", static_cast<std::int64_t>(v.strands->scalp_crossings));
+  CoverageOptions cover;
+  cover.threads = threads;
+  const Coverage coverage = strand_coverage(
+      run.inputs.volume.mesh, fibres.points, [&b](const Vec3& p) { return b.beyond_scalp(p) <= 0.0; }, cover);
+  stage.add("coverage", coverage.share);
+}
+
+void encode_value(ByteWriter& out, const StageValues& v) { encode(out, *v.strands); }
+void decode_value(ByteReader& in, StageValues& v) { v.strands = std::make_shared<const Strands>(decode_strands(in)); }
+
+void write(StageRun& run) {
+  const Scene& scene = run.scene;
+  const Curves& fibres = run.values.strands->fibres;
+  Curves guide_curves = run.values.guides->curves();
+  add_fibre_widths(guide_curves, scene.hair.cross_section, run.options.threads);
+  for (const std::string& format : scene.output.strands) {
+    auto write_as = [&](const std::string& base, const Curves& curves) {
+      run.output(base + "." + format, [&](const std::filesystem::path& p) {
+        if (format == "hair") write_hair_file(p, curves, "hairfit " + base);
+        else if (format == "obj") write_obj_curves(p, curves, run.options.threads);
+        else if (format == "usda") write_usda_curves(p, curves, 0.007, -scene.units.down);
+        else write_ply_curves(p, curves);
+      });
+    };
+    write_as("strands", fibres);
+    if (format != "obj") write_as("guides", guide_curves);  // guides.obj comes from the guides stage
+  }
+}
+
+}  // namespace
+
+const StageDescriptor& strands_stage() {
+  static const StageDescriptor d{"strands", declare, nullptr, loop_items, compute, encode_value, decode_value, write};
+  return d;
+}
+
+}  // namespace hairfit
