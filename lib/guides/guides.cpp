@@ -284,9 +284,9 @@ Guide solve_guide_with_density(const GuideProblem& problem, int b, const Guide& 
 class FirstSolves {
  public:
   // `use`: the guides are the result (make_guides) or the density solves' starts.
-  FirstSolves(const GuideProblem& problem, GuideUse use, std::vector<Guide>& out)
+  FirstSolves(const GuideProblem& problem, GuideUse use, int threads, std::vector<Guide>& out)
       : problem_(problem), bases_(problem.bases), preguides_(problem.preguides), options_(problem.options), use_(use),
-        out_(out), in_round_(bases_.size(), 0), pieces_(bases_.size()) {
+        threads_(threads), out_(out), in_round_(bases_.size(), 0), pieces_(bases_.size()) {
     const RootSet& bases = bases_;
     const PreGuides& preguides = preguides_;
     out_.resize(bases.size());
@@ -313,7 +313,7 @@ class FirstSolves {
   void solve_rounds(ProgressCounter& progress) {
     for (std::size_t r = 0; r < rounds_.size(); ++r) {
       const std::vector<int>& round = rounds_[r];
-      parallel_for(round.size(), options_.threads, [&](int i) {
+      parallel_for(round.size(), threads_, [&](int i) {
         if (r == 0)
           out_[round[i]] = solve_guide(problem_, round[i], setup(nullptr, nullptr, &pieces_[round[i]]));
         else
@@ -364,6 +364,7 @@ class FirstSolves {
   const PreGuides& preguides_;
   const GuideOptions& options_;
   GuideUse use_;
+  int threads_;
   std::vector<Guide>& out_;
   std::vector<char> in_round_;
   std::vector<std::vector<int>> rounds_;  // seeds, then two quarters of the others
@@ -381,13 +382,14 @@ Curves Guides::curves() const {
   return c;
 }
 
-Guides make_guides(const RootSet& bases, const PreGuides& preguides, const Boundary& boundary, const GuideOptions& options) {
+Guides make_guides(const RootSet& bases, const PreGuides& preguides, const Boundary& boundary, const GuideOptions& options,
+                   const Exec& exec) {
   Guides guides;
-  ProgressCounter progress(options.progress);
-  FirstSolves first(GuideProblem{bases, preguides, boundary, options}, GuideUse::result, guides.items);
+  ProgressCounter progress(exec.progress);
+  FirstSolves first(GuideProblem{bases, preguides, boundary, options}, GuideUse::result, exec.threads, guides.items);
   first.solve_rounds(progress);
   const std::vector<int> others = first.others(0, bases.size());
-  parallel_for(others.size(), options.threads, [&](int i) {
+  parallel_for(others.size(), exec.threads, [&](int i) {
     first.solve(others[i]);
     progress.item_done();
   });
@@ -395,7 +397,8 @@ Guides make_guides(const RootSet& bases, const PreGuides& preguides, const Bound
 }
 
 DensityGuides make_guides_with_density(const RootSet& bases, const PreGuides& preguides, const Boundary& boundary,
-                                       const GuideOptions& options, const GuideDensityOptions& density) {
+                                       const GuideOptions& options, const GuideDensityOptions& density,
+                                       const Exec& exec) {
   if (density.batch < 1) throw std::invalid_argument("make_guides_with_density: batch must be >= 1");
   const int count = bases.size();
   DensityGuides out;
@@ -419,23 +422,23 @@ DensityGuides make_guides_with_density(const RootSet& bases, const PreGuides& pr
   // kFirstSolveTolerance: on the paper-scale scene 17 % fewer evaluations, with mean cost, density
   // spread and followed mismatch within run-to-run scatter (bench/results/density_stall.md).
   GuideOptions first_options = options;
-  first_options.progress = nullptr;
   first_options.tolerance = std::max(options.tolerance, kFirstSolveTolerance);
   std::vector<Guide> plain;
-  FirstSolves first(GuideProblem{bases, preguides, boundary, first_options}, GuideUse::start, plain);
+  FirstSolves first(GuideProblem{bases, preguides, boundary, first_options}, GuideUse::start, exec.threads, plain);
   const GuideProblem problem{bases, preguides, boundary, options};
-  ProgressCounter no_progress(first_options.progress);  // empty: the first solves report nothing
+  const ProgressCallback nobody;
+  ProgressCounter no_progress(nobody);  // the first solves report nothing
   first.solve_rounds(no_progress);
   auto batch_end = [&](int begin) { return std::min(count, begin + density.batch); };
   {
     const std::vector<int> todo = first.others(0, batch_end(0));
-    parallel_for(todo.size(), options.threads, [&](int i) { first.solve(todo[i]); });
+    parallel_for(todo.size(), exec.threads, [&](int i) { first.solve(todo[i]); });
   }
-  ProgressCounter progress(options.progress);  // guides finished, after their second solve
+  ProgressCounter progress(exec.progress);  // guides finished, after their second solve
   DensityAccumulator accumulator(density.grid);
   DensityCeiling ceiling(density.term);
   DensityGrid frozen = accumulator.freeze();  // the earlier batches only
-  double outside = ceiling(frozen, options.threads);
+  double outside = ceiling(frozen, exec.threads);
   for (int begin = 0; begin < count; begin += density.batch) {
     const int end = batch_end(begin);
     DensityTermOptions term = density.term;
@@ -449,7 +452,7 @@ DensityGuides make_guides_with_density(const RootSet& bases, const PreGuides& pr
                      [&](int x, int y) { return plain[x].evaluations > plain[y].evaluations; });
     // CDM: each guide grows its fibres into their pores' places as soon as it is solved (they are
     // deposited below, in guide order).
-    parallel_for(end - begin, options.threads, [&](int i) {
+    parallel_for(end - begin, exec.threads, [&](int i) {
       const int g = order[i];
       out.guides.items[g] =
           solve_guide_with_density(problem, g, plain[g], frozen, term, density.stall);
@@ -469,14 +472,14 @@ DensityGuides make_guides_with_density(const RootSet& bases, const PreGuides& pr
       std::vector<Tube> tubes;
       for (int g = begin; g < end; ++g)
         tubes.push_back(guide_tube(out.guides.items[g].shape.nodes, density.wisp.root_radius, density.wisp.tip_radius));
-      accumulator.occupy_all(tubes, options.threads);
+      accumulator.occupy_all(tubes, exec.threads);
     }
     // The fibres' deposit (CDM), the next grid and its ceiling are one thread's task, so that the
     // other threads meanwhile solve the next batch's first solves (they need neither): the fibre
     // deposit's memory traffic scaled poorly over threads, and the other cores idled through it.
     const bool last = end == count;
     const std::vector<int> next = last ? std::vector<int>() : first.others(end, batch_end(end));
-    parallel_for(1 + static_cast<int>(next.size()), options.threads, [&](int i) {
+    parallel_for(1 + static_cast<int>(next.size()), exec.threads, [&](int i) {
       if (i > 0) return first.solve(next[i - 1]);
       if (cdm) accumulator.add_fibres(fibres, 1);
       if (last) return;

@@ -44,8 +44,6 @@ struct GuideOptions {
   bool warm_start = true;      // start from the neighbours' loads (else straight, the paper)
   Vec3 down{0, -1, 0};
   Vec3 front{0, 0, 1};
-  int threads = 1;
-  ProgressCallback progress;  // guides finished so far (never changes results)
 };
 
 struct Guide {
@@ -82,7 +80,8 @@ struct Guides {
 };
 
 // Optimises one guide per base. `bases` are the cluster centres (scalp/roots.h RootSet).
-Guides make_guides(const RootSet& bases, const PreGuides& preguides, const Boundary& boundary, const GuideOptions& options);
+Guides make_guides(const RootSet& bases, const PreGuides& preguides, const Boundary& boundary, const GuideOptions& options,
+                   const Exec& exec = {});
 
 // With a density model (paper §3.5, docs/design.md §6): guides in index order, in batches of
 // density.batch; each batch is optimised in parallel (options.threads) with the F4 term against
@@ -100,7 +99,8 @@ struct DensityGuides {
   std::vector<Vec3> fibres;
 };
 DensityGuides make_guides_with_density(const RootSet& bases, const PreGuides& preguides, const Boundary& boundary,
-                                       const GuideOptions& options, const GuideDensityOptions& density);
+                                       const GuideOptions& options, const GuideDensityOptions& density,
+                                       const Exec& exec = {});
 
 // The figures report.json carries for the stage.
 struct GuideFigures {

@@ -496,13 +496,14 @@ PreGuide preguide_start(const RootSet& roots, int i, const Boundary& boundary, c
   return g;
 }
 
-PreGuides make_preguides(const RootSet& roots, const Boundary& boundary, const PreguideOptions& options) {
+PreGuides make_preguides(const RootSet& roots, const Boundary& boundary, const PreguideOptions& options,
+                         const Exec& exec) {
   PreGuides result;
   result.items.resize(roots.size());
   if (options.immersion == PreguideImmersion::layer && options.material.gravity.isZero(0.0) &&
       !options.material.contact.active()) {
-    ProgressCounter progress(options.progress);
-    parallel_for(roots.size(), options.threads, [&](int i) {
+    ProgressCounter progress(exec.progress);
+    parallel_for(roots.size(), exec.threads, [&](int i) {
       result.items[i] = solve_layer_preguide(roots, i, boundary, options);
       progress.item_done();
     });
@@ -517,8 +518,8 @@ PreGuides make_preguides(const RootSet& roots, const Boundary& boundary, const P
       shared.push_back(shared_march(model.compliance, options));
   }
   for (const PreguideMarch& m : shared) result.shared_solves += m.solves;
-  ProgressCounter progress(options.progress);
-  parallel_for(roots.size(), options.threads, [&](int i) {
+  ProgressCounter progress(exec.progress);
+  parallel_for(roots.size(), exec.threads, [&](int i) {
     result.items[i] = solve_preguide(roots, i, boundary, options, shared);
     progress.item_done();
   });

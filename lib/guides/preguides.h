@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "core/digest.h"
-#include "core/progress.h"
+#include "core/exec.h"
 #include "guides/boundary.h"
 #include "guides/hair_rod.h"
 #include "rod/rod_shooting.h"
@@ -35,8 +35,6 @@ struct PreguideOptions {
   std::shared_ptr<const FlowLookup> flow;
   Vec3 down{0, -1, 0};
   Vec3 front{0, 0, 1};
-  int threads = 1;
-  ProgressCallback progress;  // pre-guides finished so far (never changes results)
   // Rods with their loads at the tip and a straight natural shape replay one shared load march per
   // compliance (make_preguides). false: each follows its own, as a check of the sharing (the
   // results agree to round-off).
@@ -105,7 +103,8 @@ RodModel carrying_share(const RodModel& model, double weight_share);
 // One pre-guide per root, in root order; the same for any thread count. Rods loaded only at the
 // tip with a straight natural shape (no weight, no curl) solve one dimensionless problem in their
 // root frame, so the load march is followed once per compliance and replayed, rotated, by each.
-PreGuides make_preguides(const RootSet& roots, const Boundary& boundary, const PreguideOptions& options);
+PreGuides make_preguides(const RootSet& roots, const Boundary& boundary, const PreguideOptions& options,
+                         const Exec& exec = {});
 
 // The shape of a rod with dimensionless loads (initial-value form: one forward integration), and,
 // if asked, the moment m(1) that integration ends with.

@@ -34,8 +34,9 @@ class StageRun {
   const RunOptions& options;
   StageValues& values;
 
-  // The loop progress of the stage running (empty when the run reports nothing).
-  ProgressCallback loop_progress() const;
+  // How the stage's loops run: the run's threads, and its progress bar (empty when it reports
+  // nothing).
+  Exec exec() const;
   // Writes out_dir/relative by `write(path)` and lists it among the run's outputs.
   template <class Write>
   void output(const std::string& relative, Write write) {

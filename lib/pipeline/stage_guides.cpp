@@ -30,12 +30,11 @@ std::size_t loop_items(const StageValues& v) { return v.clusters->size(); }
 void compute(StageRun& run, StageReport& stage) {
   const Scene& scene = run.scene;
   StageValues& v = run.values;
-  GuideOptions o = guide_options(scene, run.options.threads);
-  o.progress = run.loop_progress();
+  const GuideOptions o = guide_options(scene);
   Digest density_digest;
   if (density_declared(scene)) {
     const GuideDensityOptions d = guide_density_options(scene, density_geometry(scene, run.inputs.volume.mesh), run.pores());
-    DensityGuides result = make_guides_with_density(v.clusters->bases, *v.preguides, run.boundary(), o, d);
+    DensityGuides result = make_guides_with_density(v.clusters->bases, *v.preguides, run.boundary(), o, d, run.exec());
     v.guides = std::make_shared<const Guides>(std::move(result.guides));
     v.guide_density = std::make_shared<const DensityGrid>(std::move(result.density));
     run.deposited_fibres = std::move(result.fibres);
@@ -46,7 +45,7 @@ void compute(StageRun& run, StageReport& stage) {
     for (const Guide& g : v.guides->items) f4 += g.f4;
     stage.add("mean_f4", v.guides->size() ? f4 / v.guides->size() : 0.0);
   } else {
-    v.guides = std::make_shared<const Guides>(make_guides(v.clusters->bases, *v.preguides, run.boundary(), o));
+    v.guides = std::make_shared<const Guides>(make_guides(v.clusters->bases, *v.preguides, run.boundary(), o, run.exec()));
   }
   stage.digest = density_declared(scene) ? Digest().add(digest(*v.guides).hex()).add(density_digest.hex()).hex()
                                          : digest(*v.guides).hex();

@@ -62,7 +62,7 @@ RodDiscretisation rod_discretisation(const Scene& scene) {
   return RodDiscretisation{parse_rod_integrator(scene.rod.integrator), scene.rod.segments};
 }
 
-PreguideOptions preguide_options(const Scene& scene, int threads) {
+PreguideOptions preguide_options(const Scene& scene) {
   PreguideOptions o;
   o.material = hair_material(scene);
   o.rod = rod_discretisation(scene);
@@ -71,11 +71,10 @@ PreguideOptions preguide_options(const Scene& scene, int threads) {
   o.immersion = scene.preguides.immersion == "layer" ? PreguideImmersion::layer : PreguideImmersion::tip;
   o.down = scene.units.down;
   o.front = scene.units.front;
-  o.threads = threads;
   return o;
 }
 
-GuideOptions guide_options(const Scene& scene, int threads) {
+GuideOptions guide_options(const Scene& scene) {
   GuideOptions o;
   o.material = hair_material(scene);
   o.rod = rod_discretisation(scene);
@@ -93,7 +92,6 @@ GuideOptions guide_options(const Scene& scene, int threads) {
   o.warm_start = scene.guides.start == "warm";
   o.down = scene.units.down;
   o.front = scene.units.front;
-  o.threads = threads;
   return o;
 }
 
@@ -106,13 +104,12 @@ WispShape wisp_shape(const Scene& scene) {
   return w;
 }
 
-StrandOptions strand_options(const Scene& scene, int threads) {
+StrandOptions strand_options(const Scene& scene) {
   StrandOptions o;
   o.wisp = wisp_shape(scene);
   o.cutting = scene.effects.cutting;
   o.cut_threshold = scene.strands.cut_threshold;
   o.cut_tips = scene.strands.cut_tips;
-  o.threads = threads;
   return o;
 }
 

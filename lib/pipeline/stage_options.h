@@ -20,11 +20,11 @@ RootOptions root_options(const Scene& scene, int threads);
 ThicknessField layer_thickness(const DistanceField& volume);
 HairMaterial hair_material(const Scene& scene);
 RodDiscretisation rod_discretisation(const Scene& scene);
-PreguideOptions preguide_options(const Scene& scene, int threads);
-GuideOptions guide_options(const Scene& scene, int threads);
+PreguideOptions preguide_options(const Scene& scene);
+GuideOptions guide_options(const Scene& scene);
 // The wisp the strands stage grows and the density model deposits.
 WispShape wisp_shape(const Scene& scene);
-StrandOptions strand_options(const Scene& scene, int threads);
+StrandOptions strand_options(const Scene& scene);
 
 // Whether the scene declares a density model (effects.density ≠ none).
 bool density_declared(const Scene& scene);

@@ -30,15 +30,14 @@ std::size_t loop_items(const StageValues& v) { return v.preguide_roots->roots.si
 
 void compute(StageRun& run, StageReport& stage) {
   StageValues& v = run.values;
-  PreguideOptions o = preguide_options(run.scene, run.options.threads);
-  o.progress = run.loop_progress();
+  PreguideOptions o = preguide_options(run.scene);
   if (follows_growth_field(run.scene)) {
     // The growth field the roots grew along (one solve on the scalp), for the pre-guides to follow.
     const ScalpChart& chart = *v.chart;
     o.flow = std::make_shared<const FlowLookup>(chart.mesh, chart.vertex_normals,
                                                 make_growth_field(chart, run.resolved_roots().options), kFlowLookupRadius);
   }
-  v.preguides = std::make_shared<const PreGuides>(make_preguides(v.preguide_roots->roots, run.boundary(), o));
+  v.preguides = std::make_shared<const PreGuides>(make_preguides(v.preguide_roots->roots, run.boundary(), o, run.exec()));
   stage.digest = digest(*v.preguides).hex();
   const Boundary b = run.boundary();
   int reached = 0, partial_weight = 0, tip_outside = 0;

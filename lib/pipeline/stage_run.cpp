@@ -8,8 +8,8 @@
 
 namespace hairfit {
 
-ProgressCallback StageRun::loop_progress() const {
-  return options.progress ? options.progress->callback() : ProgressCallback();
+Exec StageRun::exec() const {
+  return Exec{options.threads, options.progress ? options.progress->callback() : ProgressCallback()};
 }
 
 Boundary StageRun::boundary() const { return Boundary{values.scalp_field.get(), values.volume_field.get()}; }

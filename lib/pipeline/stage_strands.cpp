@@ -43,17 +43,18 @@ void compute(StageRun& run, StageReport& stage) {
     const int side = volume->side(p);
     return side != 0 ? side * std::numeric_limits<double>::infinity() : volume->value(p);
   };
-  StrandOptions o = strand_options(scene, threads);
-  o.progress = run.loop_progress();
-  FibrePointSides known;  // looked up on the way: the counts need not ask again
   const TriangleGrid scalp_triangles(v.chart->mesh);
-  HeadExit exit = scalp_exit(*v.scalp_field, &scalp_triangles, v.chart->outward);
-  if (scene.strands.contain > 0.0) exit.into_volume = into_volume(*v.volume_field, scene.strands.contain);
-  Strands s = make_strands(v.guides->curves(), run.pores(), o, volume_distance, exit, &known, volume_quick,
-                           run.deposited_fibres.empty() ? nullptr : &run.deposited_fibres);
-  std::vector<Vec3>().swap(run.deposited_fibres);  // taken over, or unused
-  add_fibre_widths(s.fibres, scene.hair.cross_section, threads);
-  v.strands = std::make_shared<const Strands>(std::move(s));
+  StrandSurroundings around;
+  around.volume = volume_distance;
+  around.volume_quick = volume_quick;
+  around.out_of_head = scalp_exit(*v.scalp_field, &scalp_triangles, v.chart->outward);
+  if (scene.strands.contain > 0.0) around.out_of_head.into_volume = into_volume(*v.volume_field, scene.strands.contain);
+  GrownStrands grown = make_strands(v.guides->curves(), run.pores(), strand_options(scene), around, run.exec(),
+                                    std::move(run.deposited_fibres));
+  run.deposited_fibres = {};
+  const FibrePointSides& known = grown.sides;  // looked up on the way: the counts need not ask again
+  add_fibre_widths(grown.strands.fibres, scene.hair.cross_section, threads);
+  v.strands = std::make_shared<const Strands>(std::move(grown.strands));
   const Curves& fibres = v.strands->fibres;
   // The digest hashes the 35 MB of points in one serial chain: on a thread of its own, beside the
   // counts and the files (the runner waits for it).

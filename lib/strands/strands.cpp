@@ -192,9 +192,12 @@ std::vector<Vec3> make_fibre(const std::vector<Vec3>& guide, const Vec3& pore, d
   return points;
 }
 
-Strands make_strands(const Curves& guides, const Pores& pores, const StrandOptions& options, const DistanceFunction& volume,
-                     const HeadExit& out_of_head, FibrePointSides* sides, const DistanceFunction& volume_quick,
-                     std::vector<Vec3>* grown) {
+GrownStrands make_strands(const Curves& guides, const Pores& pores, const StrandOptions& options,
+                          const StrandSurroundings& around, const Exec& exec, std::vector<Vec3> grown) {
+  const DistanceFunction& volume = around.volume;
+  const DistanceFunction& volume_quick = around.volume_quick;
+  const HeadExit& out_of_head = around.out_of_head;
+  const bool pre_grown = !grown.empty();
   const int guide_count = static_cast<int>(guides.count());
   std::vector<GuideTrack> tracks;
   tracks.reserve(guide_count);
@@ -212,15 +215,16 @@ Strands make_strands(const Curves& guides, const Pores& pores, const StrandOptio
   const bool cutting = options.cutting && volume;
   const std::vector<WispStation> stations = wisp_stations(options.wisp);
   const std::size_t n = stations.size(), slots = n * count;
-  Strands strands;
+  GrownStrands result;
+  Strands& strands = result.strands;
+  FibrePointSides* sides = &result.sides;
   Curves& out = strands.fibres;
-  if (grown) {
-    if (grown->size() != slots)
-      throw std::invalid_argument("make_strands: the grown fibres hold " + std::to_string(grown->size()) +
+  if (pre_grown) {
+    if (grown.size() != slots)
+      throw std::invalid_argument("make_strands: the grown fibres hold " + std::to_string(grown.size()) +
                                   " points; " + std::to_string(count) + " pores of " + std::to_string(n) +
                                   " points need " + std::to_string(slots));
-    out.points = std::move(*grown);
-    grown->clear();
+    out.points = std::move(grown);
   } else {
     out.points.resize(slots);  // not zeroed: every slot is written on the thread that grows its fibre
   }
@@ -233,15 +237,15 @@ Strands make_strands(const Curves& guides, const Pores& pores, const StrandOptio
   std::vector<std::uint32_t> kept(count, static_cast<std::uint32_t>(n));
   std::vector<char> cut(count, 0);
   std::vector<int> crossing(count, 0);
-  ProgressCounter progress(options.progress);
-  parallel_for(count, options.threads, [&](int i) {
+  ProgressCounter progress(exec.progress);
+  parallel_for(count, exec.threads, [&](int i) {
     thread_local Scratch scratch;
     scratch.layout.resize(n);
     Vec3* points = out.points.data() + n * i;
     std::int8_t* head = in_head ? in_head->data() + n * i : nullptr;
     const Vec3* root_normal = pores.normals.empty() ? nullptr : &pores.normals[i];
     crossing[i] = fibre_kept_out(tracks[pores.guide[i]], pores.positions[i], pores.lengths[i], extent[pores.guide[i]],
-                                 stations, out_of_head, root_normal, points, scratch.layout.data(), head, grown != nullptr);
+                                 stations, out_of_head, root_normal, points, scratch.layout.data(), head, pre_grown);
     if (cutting) {
       scratch.distances.resize(n);
       if (head) scratch.before_cut.assign(points, points + n);
@@ -277,7 +281,7 @@ Strands make_strands(const Curves& guides, const Pores& pores, const StrandOptio
   out.guide.assign(pores.guide.begin(), pores.guide.end());
   for (int i = 0; i < count; ++i) strands.cut_count += cut[i], strands.scalp_crossings += crossing[i];
   strands.cut = std::move(cut);
-  return strands;
+  return result;
 }
 
 }  // namespace hairfit

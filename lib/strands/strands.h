@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "core/curves.h"
-#include "core/progress.h"
+#include "core/exec.h"
 #include "hair/wisp.h"
 #include "strands/cutting.h"
 
@@ -20,8 +20,6 @@ struct StrandOptions {
   bool cutting = false;
   double cut_threshold = 1.0;  // cm outside the volume before a cut
   bool cut_tips = false;       // a fibre ending outside is cut where it last left (cut_at_exit)
-  int threads = 1;
-  ProgressCallback progress;  // fibres finished so far (never changes results)
 };
 
 // sin of the least angle a fibre's first segment rises above its pore's triangle (2°).
@@ -87,23 +85,32 @@ struct FibrePointSides {
                                      // (roots, moved points, cut ends); else empty
 };
 
-// `guides` holds one polyline per guide (index = guide id), root first; `volume` is the signed
-// distance to the hair-volume boundary (needed only when options.cutting). Each fibre starts
-// exactly at its pore and, unless cut, has exactly its length; a fibre longer than its guide
-// continues along the guide's last tangent. With `out_of_head`, a fibre that would pass behind
-// the scalp (a wisp wider than the guide's clearance, or a guide that dips in) has those points
-// moved out of the head, still with exactly its length. Deterministic for any thread count.
-// With `sides`, what the field values looked up on the way said is handed back there.
-// `volume_quick` (optional) is cut_at_exit's `quick`: volume(p) or ±infinity where the sign is
-// certain.
-// `grown` (optional): every pore's fibre as grow_fibre grows it along these guides with these
-// options, fibre_point_count(options.wisp) points each, in pore order (the density model's deposit
-// grew them already). Its buffer is taken over and left empty, and those fibres are not grown
-// again; the result is the same bit for bit.
-Strands make_strands(const Curves& guides, const Pores& pores, const StrandOptions& options,
-                     const DistanceFunction& volume = nullptr, const HeadExit& out_of_head = nullptr,
-                     FibrePointSides* sides = nullptr, const DistanceFunction& volume_quick = nullptr,
-                     std::vector<Vec3>* grown = nullptr);
+// What the fibres are grown against; each part is optional.
+struct StrandSurroundings {
+  DistanceFunction volume;  // signed distance to the hair-volume boundary (read only with cutting)
+  // cut_at_exit's `quick`: volume(p), or ±infinity where the sign is certain.
+  DistanceFunction volume_quick;
+  // Keeps fibres out of the head: a fibre that would pass behind the scalp (a wisp wider than the
+  // guide's clearance, or a guide that dips in) has those points moved out, still with exactly
+  // its length.
+  HeadExit out_of_head;
+};
+
+// The strands, and what the field values looked up on the way said about every point.
+struct GrownStrands {
+  Strands strands;
+  FibrePointSides sides;
+};
+
+// `guides` holds one polyline per guide (index = guide id), root first. Each fibre starts exactly
+// at its pore and, unless cut, has exactly its length; a fibre longer than its guide continues
+// along the guide's last tangent. Deterministic for any thread count.
+// `grown` (optional, else empty): every pore's fibre as grow_fibre grows it along these guides
+// with these options, fibre_point_count(options.wisp) points each, in pore order (the density
+// model's deposit grew them already); those fibres are not grown again, and the result is the
+// same bit for bit. Throws std::invalid_argument when it holds another number of points.
+GrownStrands make_strands(const Curves& guides, const Pores& pores, const StrandOptions& options,
+                          const StrandSurroundings& around = {}, const Exec& exec = {}, std::vector<Vec3> grown = {});
 
 // One fibre (exposed for tests): the wisp frame is rotation-minimising along the guide.
 std::vector<Vec3> make_fibre(const std::vector<Vec3>& guide, const Vec3& pore, double length, double wisp_extent,

@@ -274,11 +274,9 @@ TEST_CASE("guides are identical for 1, 2 and 4 threads") {
   PreGuides pre;
   for (int i = 0; i < r.size(); i += 3)
     pre.items.push_back(preguide_with_loads(r, i, o, Vec3(1.0 + 0.1 * i, 0, 0.2), Vec3(0, 0.5, 0)));
-  o.threads = 1;
-  const Guides one = make_guides(r, pre, world().boundary(), o);
+  const Guides one = make_guides(r, pre, world().boundary(), o, Exec{1, {}});
   for (int threads : {2, 4}) {
-    o.threads = threads;
-    const Guides many = make_guides(r, pre, world().boundary(), o);
+    const Guides many = make_guides(r, pre, world().boundary(), o, Exec{threads, {}});
     CHECK(digest(many).hex() == digest(one).hex());
   }
 }
@@ -331,8 +329,7 @@ TEST_CASE("pre-guides: each one that reached its depth is a cantilever in equili
     const RootSet r = roots_at(angles, length, 0.3);
     std::string first_digest;
     for (int threads : {1, 3}) {
-      o.threads = threads;
-      const PreGuides pre = make_preguides(r, world().boundary(), o);
+      const PreGuides pre = make_preguides(r, world().boundary(), o, Exec{threads, {}});
       REQUIRE(pre.size() == static_cast<int>(angles.size()));
       if (threads == 1) first_digest = digest(pre).hex();
       else CHECK(digest(pre).hex() == first_digest);
@@ -429,8 +426,7 @@ TEST_CASE("layer pre-guides: rods of their own loads, inside a thin shell where 
   const PreGuides tip = make_preguides(r, b, o);
   o.immersion = PreguideImmersion::layer;
   const PreGuides layer = make_preguides(r, b, o);
-  o.threads = 3;
-  CHECK(digest(make_preguides(r, b, o)).hex() == digest(layer).hex());
+  CHECK(digest(make_preguides(r, b, o, Exec{3, {}})).hex() == digest(layer).hex());
   const double tip_share = inside_share(tip.items, b), layer_share = inside_share(layer.items, b);
   CAPTURE(tip_share);
   CAPTURE(layer_share);

@@ -75,7 +75,7 @@ TEST_CASE("effects that are off leave no trace; switched on, each leaves its own
     for (char c : v.strands->cut) cut += c;
     if (!on) CHECK(cut == 0);
     CHECK((r.report.find("\"cut\":") != std::string::npos) == on);
-    CHECK((strand_options(r.scene, 1).wisp.turns != 0) == on);
+    CHECK((strand_options(r.scene).wisp.turns != 0) == on);
     // The report's list of effects.
     for (const char* effect : {"\"gravity\"", "\"density:binary\"", "\"map:density\"", "\"map:tilt\"", "\"map:length\"",
                                "\"cutting\"", "\"winding\""})

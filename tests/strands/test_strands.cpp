@@ -249,11 +249,12 @@ TEST_CASE("make_strands: one fibre per pore, cutting counted, identical for any 
   const DistanceFunction slab = [](const Vec3& p) { return p.y() - 4.5; };
   Strands reference;
   for (int threads : {1, 2, 4}) {
-    o.threads = threads;
-    FibrePointSides sides;
-    sides.outside_volume = {1};  // replaced
-    sides.in_head = {1};         // emptied: no out_of_head
-    const Strands s = make_strands(guides, pores, o, slab, nullptr, &sides);
+    const Exec exec{threads, {}};
+    StrandSurroundings around;
+    around.volume = slab;
+    const GrownStrands plain = make_strands(guides, pores, o, around, exec);
+    const Strands& s = plain.strands;
+    const FibrePointSides& sides = plain.sides;
     REQUIRE(sides.outside_volume.size() == s.fibres.points.size());
     for (std::size_t k = 0; k < sides.outside_volume.size(); ++k)
       CHECK(sides.outside_volume[k] == (slab(s.fibres.points[k]) > 0.0));
@@ -263,26 +264,32 @@ TEST_CASE("make_strands: one fibre per pore, cutting counted, identical for any 
       const double d = slab(p);
       return std::fabs(d) > 1.0 ? std::copysign(std::numeric_limits<double>::infinity(), d) : d;
     };
-    FibrePointSides quick_sides;
-    const Strands q = make_strands(guides, pores, o, slab, nullptr, &quick_sides, quick);
+    StrandSurroundings quick_around = around;
+    quick_around.volume_quick = quick;
+    const GrownStrands quickly = make_strands(guides, pores, o, quick_around, exec);
+    const Strands& q = quickly.strands;
     CHECK(q.fibres.points == s.fibres.points);
     CHECK(q.fibres.offsets == s.fibres.offsets);
-    CHECK(quick_sides.outside_volume == sides.outside_volume);
+    CHECK(quickly.sides.outside_volume == sides.outside_volume);
     // With a head (below y = −1, beyond every fibre): the reported sides at every point but the
     // roots, and the same fibres.
     const HeadExit below = [](const Vec3& p, double& scalp) {
       scalp = p.y() + 1.0;
       return p.y() < -1.0 ? Vec3(p.x(), -1.0, p.z()) : p;
     };
-    const Strands h = make_strands(guides, pores, o, slab, below, &sides);
+    StrandSurroundings head_around = around;
+    head_around.out_of_head = below;
+    const GrownStrands headed = make_strands(guides, pores, o, head_around, exec);
+    const Strands& h = headed.strands;
+    const FibrePointSides& head_sides = headed.sides;
     CHECK(h.fibres.points == s.fibres.points);
-    REQUIRE(sides.in_head.size() == h.fibres.points.size());
+    REQUIRE(head_sides.in_head.size() == h.fibres.points.size());
     for (std::size_t c = 0; c < h.fibres.count(); ++c)
       for (std::size_t k = h.fibres.offsets[c]; k < h.fibres.offsets[c + 1]; ++k) {
         const int expected = h.fibres.points[k].y() + 1.0 < 0.0;
-        if (k == h.fibres.offsets[c]) CHECK(sides.in_head[k] == -1);  // the root is not asked about
-        else if (h.cut[c] && k + 1 == h.fibres.offsets[c + 1]) CHECK((sides.in_head[k] == -1 || sides.in_head[k] == expected));
-        else CHECK(sides.in_head[k] == expected);
+        if (k == h.fibres.offsets[c]) CHECK(head_sides.in_head[k] == -1);  // the root is not asked about
+        else if (h.cut[c] && k + 1 == h.fibres.offsets[c + 1]) CHECK((head_sides.in_head[k] == -1 || head_sides.in_head[k] == expected));
+        else CHECK(head_sides.in_head[k] == expected);
       }
     CHECK(s.fibres.count() == 300);
     CHECK(s.cut_count > 0);
@@ -369,15 +376,18 @@ TEST_CASE("make_strands takes over fibres grown beforehand (grow_fibre): the sam
   }
   const std::size_t n = fibre_point_count(o.wisp);
   REQUIRE(n == 24);
+  StrandSurroundings around;
+  around.volume = slab;
+  around.out_of_head = project;
   for (int threads : {1, 3}) {
-    o.threads = threads;
+    const Exec exec{threads, {}};
     std::vector<Vec3> grown(n * pores.positions.size());
     for (std::size_t i = 0; i < pores.positions.size(); ++i)
       grow_fibre(tracks[pores.guide[i]], pores.positions[i], pores.lengths[i], extent[pores.guide[i]], o.wisp, &grown[n * i]);
-    FibrePointSides sides, sides_grown;
-    const Strands fresh = make_strands(guides, pores, o, slab, project, &sides);
-    const Strands taken = make_strands(guides, pores, o, slab, project, &sides_grown, nullptr, &grown);
-    CHECK(grown.empty());  // taken over
+    const GrownStrands grown_fresh = make_strands(guides, pores, o, around, exec);
+    const GrownStrands grown_taken = make_strands(guides, pores, o, around, exec, std::move(grown));
+    const Strands &fresh = grown_fresh.strands, &taken = grown_taken.strands;
+    const FibrePointSides &sides = grown_fresh.sides, &sides_grown = grown_taken.sides;
     CHECK(taken.fibres.points == fresh.fibres.points);
     CHECK(taken.fibres.offsets == fresh.fibres.offsets);
     CHECK(taken.cut == fresh.cut);
@@ -391,7 +401,7 @@ TEST_CASE("make_strands takes over fibres grown beforehand (grow_fibre): the sam
     CHECK(fresh.cut_count > 5);
   }
   std::vector<Vec3> wrong(5);
-  CHECK_THROWS_AS(make_strands(guides, pores, o, slab, project, nullptr, nullptr, &wrong), std::invalid_argument);
+  CHECK_THROWS_AS(make_strands(guides, pores, o, around, {}, wrong), std::invalid_argument);
 }
 
 TEST_CASE("a chord through a narrow ridge the exit does not see is lifted off it, keeping root and length") {
