@@ -404,7 +404,7 @@ int main(int argc, char** argv) {
     };
     auto judge = [&](bool density_model) {
       const StageValues& v = reference(density_model).result.values;
-      return Boundary{v.scalp_field.get(), v.volume_field.get()};
+      return Boundary{v.scalp_field, v.volume_field};
     };
 
     std::vector<Row> rows;
@@ -458,7 +458,7 @@ int main(int argc, char** argv) {
     md += "Reference: rk4 with 256 segments, fields.voxel 0.0625 (band 16 voxels = 1 cm), guides.samples 64, "
           "tolerance 1e-10, max_iterations 500, density.voxel 0.125, density.stall_iterations 0 (off).";
     for (const auto& [model, r] : references) {
-      const Boundary b{r.result.values.scalp_field.get(), r.result.values.volume_field.get()};
+      const Boundary b{r.result.values.scalp_field, r.result.values.volume_field};
       md += std::string(model ? " With CDM: " : " Without: ") + number(r.total_seconds()) + " s wall, " +
             number(r.cpu) + " s CPU, inside fraction " + number(inside_fraction(*r.result.values.guides, b)) +
             ", not converged " + number(r.figure("guides", "failures")) + ".";

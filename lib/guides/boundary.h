@@ -2,13 +2,16 @@
 // the two distance fields (negative behind each oriented surface, so the head is behind the scalp
 // and the hair is behind the volume boundary).
 #pragma once
+#include <memory>
+
 #include "field/distance_field.h"
 
 namespace hairfit {
 
+// Shares the two fields, so a boundary never outlives them.
 struct Boundary {
-  const DistanceField* scalp = nullptr;
-  const DistanceField* volume = nullptr;
+  std::shared_ptr<const DistanceField> scalp;
+  std::shared_ptr<const DistanceField> volume;
 
   // How far a point lies outside the acceptable region through each surface, cm: positive outside
   // (inside the head / outside the volume), negative inside.

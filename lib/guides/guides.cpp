@@ -80,7 +80,7 @@ GuideTargets make_targets(const RootSet& bases, int b, const PreGuides& preguide
   t.length = bases.lengths[b];
   t.rod = o.rod;
   const Vec3 bend = bending_direction(bases.normals[b], bases.directions[b], o.down, o.front);
-  t.model = hair_rod_model(t.length, o.material, RodRoot{t.root, root_frame(bases.directions[b], bend)}, boundary.scalp);
+  t.model = hair_rod_model(t.length, o.material, RodRoot{t.root, root_frame(bases.directions[b], bend)}, boundary.scalp.get());
   const int segments = o.rod.segments;
   const int k_max = std::min(o.samples, segments);
   for (int k = 0; k <= k_max; ++k) {

@@ -356,7 +356,7 @@ PreGuide solve_preguide(const RootSet& roots, int i, const Boundary& boundary, c
                         const std::vector<PreguideMarch>& shared) {
   PreGuide g = preguide_start(roots, i, boundary, o);
   const Vec3 bend = bending_direction(g.normal, g.direction, o.down, o.front);
-  const RodModel model = hair_rod_model(g.length, o.material, RodRoot{g.root, root_frame(g.direction, bend)}, boundary.scalp);
+  const RodModel model = hair_rod_model(g.length, o.material, RodRoot{g.root, root_frame(g.direction, bend)}, boundary.scalp.get());
   const Cantilever cantilever(bend, o.rod);
 
   // The states the march visits, with their misses (miss > 0: the tip is not yet deep enough):

@@ -12,7 +12,7 @@ Exec StageRun::exec() const {
   return Exec{options.threads, options.progress ? options.progress->callback() : ProgressCallback()};
 }
 
-Boundary StageRun::boundary() const { return Boundary{values.scalp_field.get(), values.volume_field.get()}; }
+Boundary StageRun::boundary() const { return Boundary{values.scalp_field, values.volume_field}; }
 
 Pores StageRun::pores() const {
   Pores p;

@@ -45,7 +45,10 @@ Mesh ball(double r, int rings, int segments) {
 struct World {
   DistanceField scalp = make_distance_field(ball(8.0, 16, 32), FieldSpec{0.5, 3, 20.0, 1.0, "scalp"}, 2);
   DistanceField volume = make_distance_field(ball(14.0, 16, 32), FieldSpec{0.5, 3, 20.0, 1.0, "volume"}, 2);
-  Boundary boundary() const { return Boundary{&scalp, &volume}; }
+  // The fields share their samples, so the boundary's copies cost nothing.
+  Boundary boundary() const {
+    return Boundary{std::make_shared<const DistanceField>(scalp), std::make_shared<const DistanceField>(volume)};
+  }
 };
 const World& world() {
   static const World w;

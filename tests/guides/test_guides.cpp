@@ -48,7 +48,10 @@ Mesh sphere(double r, int rings, int segments, double cap_below = -1e9) {
 
 struct World {
   DistanceField scalp, volume;
-  Boundary boundary() const { return Boundary{&scalp, &volume}; }
+  // The fields share their samples, so the boundary's copies cost nothing.
+  Boundary boundary() const {
+    return Boundary{std::make_shared<const DistanceField>(scalp), std::make_shared<const DistanceField>(volume)};
+  }
 };
 
 const World& world() {

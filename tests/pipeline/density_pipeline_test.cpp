@@ -58,7 +58,7 @@ DensityGrid fibre_density(const Scene& scene, const Strands& strands) {
 }
 
 DensityStatistics statistics(const PipelineResult& r, const DensityGrid& grid) {
-  const Boundary b{r.values.scalp_field.get(), r.values.volume_field.get()};
+  const Boundary b{r.values.scalp_field, r.values.volume_field};
   return density_statistics(grid, [&b](const Vec3& p) { return b.acceptable(p); });
 }
 
@@ -146,7 +146,7 @@ TEST_CASE("no density inside the head (Fig. 6)") {
     CAPTURE(static_cast<int>(model));
     const Scene scene = smoke_scene(model);
     const PipelineResult r = run(scene, 2);
-    const Boundary b{r.values.scalp_field.get(), r.values.volume_field.get()};
+    const Boundary b{r.values.scalp_field, r.values.volume_field};
     const Curves& fibres = r.values.strands->fibres;
     double deepest_vertex = -1e300;
     for (const Vec3& p : fibres.points) deepest_vertex = std::max(deepest_vertex, b.beyond_scalp(p));
