@@ -23,12 +23,6 @@ struct DensityTermOptions {
   double threshold = 0.5;        // BOM: occupancy above which the surcharge applies
   double surcharge = 10.0;       // c_BOM
   double surcharge_width = 0.2;  // BOM: occupancy over which the surcharge rises (smoothstep)
-  // Not a user option: the F4 integrand a sample pays once it lies a voxel or more beyond the
-  // scalp or the volume boundary, density_ceiling of the grid the guide is optimised against
-  // (make_guides_with_density sets it per batch). Outside the acceptable region F4 is then never
-  // lower than anywhere inside, so leaving the region cannot lower F4 and the boundary term F3
-  // alone decides, as without a density model. 0: the outside residual is zero.
-  double outside = 0.0;
 };
 
 // When a guide's trust-region solve has stopped paying: `iterations` iterations in a row, accepted

@@ -158,6 +158,7 @@ struct GuideProblem {
 struct GuideSolveSetup {
   const DensityGrid* density = nullptr;  // the F4 term's grid, or none
   DensityTermOptions term;               // read with a density grid
+  double density_ceiling = 0.0;          // GuideTargets::density_ceiling
   // The loads to start from (world axes, dimensionless); null = as options.warm_start says (the
   // followed pre-guides' loads, weighted, or straight).
   const double* start = nullptr;
@@ -185,6 +186,7 @@ Guide solve_guide(const GuideProblem& problem, int b, const GuideSolveSetup& set
   GuideTargets targets = make_targets(bases, b, preguides, boundary, o, g.neighbours, g.neighbour_weights);
   targets.density = setup.density;
   targets.density_term = setup.term;
+  targets.density_ceiling = setup.density_ceiling;
 
   // Start: straight (the paper) or the neighbours' dimensionless loads, weighted (warm start).
   double start[6] = {0, 0, 0, 0, 0, 0};
@@ -255,7 +257,7 @@ Guide solve_guide(const GuideProblem& problem, int b, const GuideSolveSetup& set
 // 3.9 % of guide nodes outside the region against 0.1 % without F4).
 // Iterations and evaluations count both solves; the rest describes the second.
 Guide solve_guide_with_density(const GuideProblem& problem, int b, const Guide& plain, const DensityGrid& density,
-                               const DensityTermOptions& term, const StallTest& stall) {
+                               const DensityTermOptions& term, double ceiling, const StallTest& stall) {
   double start[6];
   for (int a = 0; a < 3; ++a) {
     start[a] = plain.force[a];
@@ -264,6 +266,7 @@ Guide solve_guide_with_density(const GuideProblem& problem, int b, const Guide& 
   GuideSolveSetup setup;
   setup.density = &density;
   setup.term = term;
+  setup.density_ceiling = ceiling;
   setup.start = start;
   setup.stall = stall;
   Guide g = solve_guide(problem, b, setup);
@@ -438,11 +441,9 @@ DensityGuides make_guides_with_density(const RootSet& bases, const PreGuides& pr
   DensityAccumulator accumulator(density.grid);
   DensityCeiling ceiling(density.term);
   DensityGrid frozen = accumulator.freeze();  // the earlier batches only
-  double outside = ceiling(frozen, exec.threads);
+  double outside_f4 = ceiling(frozen, exec.threads);
   for (int begin = 0; begin < count; begin += density.batch) {
     const int end = batch_end(begin);
-    DensityTermOptions term = density.term;
-    term.outside = outside;
     // The guides of a batch are independent of each other, so the order they are taken in changes
     // nothing but the balance: the costliest first (by their first solve's evaluations), so that
     // the batch does not end with one thread on a slow guide while the others wait.
@@ -455,7 +456,7 @@ DensityGuides make_guides_with_density(const RootSet& bases, const PreGuides& pr
     parallel_for(end - begin, exec.threads, [&](int i) {
       const int g = order[i];
       out.guides.items[g] =
-          solve_guide_with_density(problem, g, plain[g], frozen, term, density.stall);
+          solve_guide_with_density(problem, g, plain[g], frozen, density.term, outside_f4, density.stall);
       if (cdm) grow_guide_fibres(out.guides.items[g].shape.nodes, pores_of[g], density, grown.data());
       progress.item_done();
     });
@@ -484,7 +485,7 @@ DensityGuides make_guides_with_density(const RootSet& bases, const PreGuides& pr
       if (cdm) accumulator.add_fibres(fibres, 1);
       if (last) return;
       frozen = accumulator.freeze();
-      outside = ceiling(frozen, 1);
+      outside_f4 = ceiling(frozen, 1);
     });
     ++out.batches;
   }

@@ -277,10 +277,10 @@ class GuideCost {
                  surcharge_residual(occupancy, d.threshold, d.surcharge_width);
       }
       // Outside the acceptable region the sample pays the grid's largest F4 integrand on top
-      // (density_term.h, DensityTermOptions::outside): the head and the space beyond the volume
+      // (GuideTargets::density_ceiling): the head and the space beyond the volume
       // count as full, so a guide never escapes crowding by leaving the region.
       const double h = t_.density->geometry().voxel;
-      *out = T(std::sqrt(w.density * d.outside * t_.sample_weights[k])) *
+      *out = T(std::sqrt(w.density * t_.density_ceiling * t_.sample_weights[k])) *
              (outside_step(beyond_scalp, h) + outside_step(beyond_volume, h));
     }
     return true;

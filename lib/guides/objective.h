@@ -37,6 +37,12 @@ struct GuideTargets {
   // The density of the earlier guides (paper §3.5); null: no density model, no F4 residual.
   const DensityGrid* density = nullptr;
   DensityTermOptions density_term;
+  // The F4 integrand a sample pays once it lies a voxel or more beyond the scalp or the volume
+  // boundary: the ceiling of the grid the guide is optimised against (DensityCeiling, one per
+  // batch). Outside the acceptable region F4 is then never lower than anywhere inside, so leaving
+  // the region cannot lower F4 and the boundary term F3 alone decides, as without a density model.
+  // 0: the outside residual is zero.
+  double density_ceiling = 0.0;
 };
 
 // The unweighted terms: F1 = Σ_j ω_j ∫(1 − cos φ_j) ds, F2 = Σ_j ω_j ∫|Δu_j|² ds (F2² of eq. 8),
@@ -45,7 +51,7 @@ struct GuideTargets {
 //   BOM: F4 = ∫ o² ds + c_BOM ∫ S(o)² ds, o the trilinear occupancy at the guide, S the smoothed
 //        surcharge step around the threshold (surcharge_step): the paper's ∫δ ds where o is 0 or
 //        1, plus c_BOM where the guide runs through a region denser than the threshold;
-//   both plus ∫ F4max·(H(u_S) + H(u_V))² ds, F4max = density_term.outside (the grid's largest
+//   both plus ∫ F4max·(H(u_S) + H(u_V))² ds, F4max = density_ceiling (the grid's largest
 //        integrand, density_ceiling), u_S/u_V how far the sample lies behind the scalp/beyond the
 //        volume, H the C¹ step from 0 at the surface to 1 a density voxel beyond it: outside the
 //        acceptable region F4 is never lower than anywhere inside.

@@ -328,7 +328,6 @@ struct PreguideMarch {
 };
 
 bool replays_march(const RodModel& model, const PreguideOptions& o) {
-  if (!o.share_marches) return false;
   const bool straight = std::all_of(model.kappa_hat.begin(), model.kappa_hat.end(), [](const Vec3& k) { return k.isZero(0.0); });
   return straight && model.force_per_length.isZero(0.0) && !o.material.contact.active() && o.max_load <= kHeavyRod;
 }
@@ -496,12 +495,25 @@ PreGuide preguide_start(const RootSet& roots, int i, const Boundary& boundary, c
   return g;
 }
 
+namespace {
+
+// Whether the pre-guides are fitted to the layer (layer_preguide.h) rather than marched.
+bool fitted_to_layer(const PreguideOptions& o) {
+  return o.immersion == PreguideImmersion::layer && o.material.gravity.isZero(0.0) && !o.material.contact.active();
+}
+
+}  // namespace
+
+PreGuide solve_preguide_alone(const RootSet& roots, int i, const Boundary& boundary, const PreguideOptions& options) {
+  return fitted_to_layer(options) ? solve_layer_preguide(roots, i, boundary, options)
+                                  : solve_preguide(roots, i, boundary, options, {});
+}
+
 PreGuides make_preguides(const RootSet& roots, const Boundary& boundary, const PreguideOptions& options,
                          const Exec& exec) {
   PreGuides result;
   result.items.resize(roots.size());
-  if (options.immersion == PreguideImmersion::layer && options.material.gravity.isZero(0.0) &&
-      !options.material.contact.active()) {
+  if (fitted_to_layer(options)) {
     ProgressCounter progress(exec.progress);
     parallel_for(roots.size(), exec.threads, [&](int i) {
       result.items[i] = solve_layer_preguide(roots, i, boundary, options);

@@ -35,10 +35,6 @@ struct PreguideOptions {
   std::shared_ptr<const FlowLookup> flow;
   Vec3 down{0, -1, 0};
   Vec3 front{0, 0, 1};
-  // Rods with their loads at the tip and a straight natural shape replay one shared load march per
-  // compliance (make_preguides). false: each follows its own, as a check of the sharing (the
-  // results agree to round-off).
-  bool share_marches = true;
 };
 
 // A solved rod shape as the guide objective compares it: per node, in world axes.
@@ -105,6 +101,9 @@ RodModel carrying_share(const RodModel& model, double weight_share);
 // root frame, so the load march is followed once per compliance and replayed, rotated, by each.
 PreGuides make_preguides(const RootSet& roots, const Boundary& boundary, const PreguideOptions& options,
                          const Exec& exec = {});
+// Root i's pre-guide on its own, following its own load march: make_preguides' item i, to
+// round-off where make_preguides replays a shared march.
+PreGuide solve_preguide_alone(const RootSet& roots, int i, const Boundary& boundary, const PreguideOptions& options);
 
 // The shape of a rod with dimensionless loads (initial-value form: one forward integration), and,
 // if asked, the moment m(1) that integration ends with.

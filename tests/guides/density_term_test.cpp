@@ -260,7 +260,7 @@ TEST_CASE("outside the acceptable region a sample pays the density ceiling on to
     t.density = model == GuideDensityModel::continuous ? &cdm : &bom;
     t.density_term.model = model;
     const double base = evaluate_guide_terms(t, eta).f4;
-    t.density_term.outside = 3.0;
+    t.density_ceiling = 3.0;
     const double with_outside = evaluate_guide_terms(t, eta).f4;
     // Independently: Σ Δs·3·(H(u_S) + H(u_V))², H the smoothstep from 0 at a surface to 1 one
     // density voxel beyond it.
@@ -291,7 +291,7 @@ TEST_CASE("F4 jets match central finite differences of the double residuals") {
     t.density = model == GuideDensityModel::continuous ? &cdm : &bom;
     t.density_term.model = model;
     t.density_term.surcharge_width = 0.5;  // a wide ramp: more samples on it
-    t.density_term.outside = 2.0;          // and the outside residual, for the samples beyond the volume
+    t.density_ceiling = 2.0;               // and the outside residual, for the samples beyond the volume
     const std::size_t first = t.sample_nodes.size() * (6 * t.neighbours.size() + 2);
     std::vector<double> jacobian;
     const std::vector<double> r = guide_residuals(t, kEta, &jacobian);
