@@ -11,7 +11,7 @@ namespace {
 
 const char* yes_no(bool b) { return b ? "yes" : "no"; }
 
-void print_map(const char* name, const std::optional<GreyMap>& map) {
+void print_map(const char* name, const std::shared_ptr<const GreyMap>& map) {
   if (map) std::printf("  %-8s map %d×%d, %d-bit\n", name, map->width, map->height, map->bits);
 }
 

@@ -143,9 +143,9 @@ Inputs load_inputs(const Scene& scene, int threads) {
                                   "degenerate triangles are dropped; export the hair's outer surface");
   in.volume_report = hull.report;
   in.volume.mesh = std::move(hull.mesh);
-  if (scene.effects.uses_map("density")) in.density_map = load_grey_map(*scene.maps.density);
-  if (scene.effects.uses_map("tilt")) in.tilt_map = load_grey_map(*scene.maps.tilt);
-  if (scene.effects.uses_map("length")) in.length_map = load_grey_map(*scene.maps.length);
+  if (scene.effects.uses_map("density")) in.density_map = std::make_shared<const GreyMap>(load_grey_map(*scene.maps.density));
+  if (scene.effects.uses_map("tilt")) in.tilt_map = std::make_shared<const GreyMap>(load_grey_map(*scene.maps.tilt));
+  if (scene.effects.uses_map("length")) in.length_map = std::make_shared<const GreyMap>(load_grey_map(*scene.maps.length));
   if (scene.output.occluder) {
     in.occluder = load_obj_mesh(*scene.output.occluder, to_cm).mesh;
     require_plausible_coordinates(*in.occluder, scene.output.occluder->string(), scene.units.length);

@@ -1,5 +1,6 @@
 // The scene's input files loaded into values, with the checks `hairfit validate` reports.
 #pragma once
+#include <memory>
 #include <optional>
 
 #include "core/grey_map.h"
@@ -17,7 +18,7 @@ struct Inputs {
   bool scalp_reversed = false;   // the scalp faced into the head: its triangles were reversed
   bool volume_reversed = false;  // the volume faced inward: its triangles were reversed
   double scalp_inside_share = 0.0;  // share of the scalp (one probe per triangle) inside the hull (HairRegion)
-  std::optional<GreyMap> density_map, tilt_map, length_map;  // only the maps effects.maps uses
+  std::shared_ptr<const GreyMap> density_map, tilt_map, length_map;  // only the maps effects.maps uses (else null)
   std::optional<Mesh> occluder;  // output.occluder in cm, for the pictures only
 };
 

@@ -48,12 +48,12 @@ class StageRun {
   // Shared views of the earlier values.
   Boundary boundary() const;  // the acceptable region: the fields
   Pores pores() const;        // one fibre per pore, grown along its cluster's guide (roots, chart)
-  ScalpMaps maps() const;     // the loaded grey maps
-  // The roots' options with what they read from the fields and the hull: the layer's thickness,
-  // the hull's grain, and the length and tilt of hair that suits its shell. Worked out once a run,
-  // for the roots and for pre-guides that follow the growth field.
+  // The roots' options and inputs with what they read from the fields and the hull: the grey
+  // maps, the layer's thickness, the hull's grain, and the length and tilt of hair that suits its
+  // shell. Worked out once a run, for the roots and for pre-guides that follow the growth field.
   struct ResolvedRoots {
     RootOptions options;
+    RootInputs inputs;
     ShellHair shell;
   };
   const ResolvedRoots& resolved_roots();

@@ -52,7 +52,7 @@ std::string input_digest(const Inputs& inputs, const std::string& file) {
     d.add(static_cast<std::int64_t>(m.triangles.size()));
     d.add_bytes(m.triangles.data(), m.triangles.size() * sizeof(Vec3i));
   };
-  auto map = [&d, &file](const std::optional<GreyMap>& m) {
+  auto map = [&d, &file](const std::shared_ptr<const GreyMap>& m) {
     if (!m) throw std::logic_error("the " + file + " is read but was not loaded");
     d.add(static_cast<std::int64_t>(m->width)).add(static_cast<std::int64_t>(m->height)).add(static_cast<std::int64_t>(m->bits));
     d.add_bytes(m->values.data(), m->values.size() * sizeof(float));

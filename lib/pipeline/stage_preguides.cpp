@@ -35,7 +35,7 @@ void compute(StageRun& run, StageReport& stage) {
     // The growth field the roots grew along (one solve on the scalp), for the pre-guides to follow.
     const ScalpChart& chart = *v.chart;
     o.flow = std::make_shared<const FlowLookup>(chart.mesh, chart.vertex_normals,
-                                                make_growth_field(chart, run.resolved_roots().options), kFlowLookupRadius);
+                                                make_growth_field(chart, run.resolved_roots().inputs, run.resolved_roots().options), kFlowLookupRadius);
   }
   v.preguides = std::make_shared<const PreGuides>(make_preguides(v.preguide_roots->roots, run.boundary(), o, run.exec()));
   stage.digest = digest(*v.preguides).hex();

@@ -24,18 +24,17 @@ Pores StageRun::pores() const {
   return p;
 }
 
-ScalpMaps StageRun::maps() const {
-  return ScalpMaps{inputs.density_map ? &*inputs.density_map : nullptr, inputs.tilt_map ? &*inputs.tilt_map : nullptr,
-                   inputs.length_map ? &*inputs.length_map : nullptr};
-}
-
 const StageRun::ResolvedRoots& StageRun::resolved_roots() {
   if (resolved_) return *resolved_;
   ResolvedRoots r;
   RootOptions& o = r.options;
   o = root_options(scene, options.threads);
-  if (o.tilt_toward == TiltToward::thicker) o.thickness = layer_thickness(*values.volume_field);
-  if (o.flow == FlowModel::relief) o.grain = relief_grain(*values.chart, inputs.volume.mesh, scene.hair.relief_radius, options.threads);
+  r.inputs.density = inputs.density_map;
+  r.inputs.tilt = inputs.tilt_map;
+  r.inputs.length = inputs.length_map;
+  if (o.tilt_toward == TiltToward::thicker) r.inputs.thickness = layer_thickness(*values.volume_field);
+  if (o.flow == FlowModel::relief)
+    r.inputs.grain = relief_grain(*values.chart, inputs.volume.mesh, scene.hair.relief_radius, options.threads);
   if (scene.hair.from_shell) {  // hair that suits its shell: length and tilt from the layer
     r.shell = shell_hair(*values.chart, layer_thickness(*values.volume_field), options.threads);
     if (r.shell.layer_ends) {

@@ -140,12 +140,12 @@ void add_declared_style(const ScalpChart& ch, const RootOptions& o, std::vector<
     }
 }
 
-DirectionField make_growth_field(const ScalpChart& ch, const RootOptions& o) {
+DirectionField make_growth_field(const ScalpChart& ch, const RootInputs& in, const RootOptions& o) {
   const Mesh& mesh = ch.mesh;
   const int n = static_cast<int>(mesh.positions.size());
   std::vector<double> thickness(n, 0.0);
   if (o.tilt_toward == TiltToward::thicker)
-    parallel_for(n, o.threads, [&](int i) { thickness[i] = o.thickness(mesh.positions[i]).value; });
+    parallel_for(n, o.threads, [&](int i) { thickness[i] = in.thickness(mesh.positions[i]).value; });
   std::vector<Vec3> guidance(n);
   if (o.tilt_toward != TiltToward::thicker) {
     for (int i = 0; i < n; ++i) guidance[i] = growth_guidance(ch.vertex_normals[i], Vec3::Zero(), o, ch.down, ch.front);
@@ -153,7 +153,7 @@ DirectionField make_growth_field(const ScalpChart& ch, const RootOptions& o) {
     const std::vector<Vec3> gradient = vertex_gradients(mesh, thickness);
     // Where the layer ends within a hair's length, the hair has to grow away from that end: the
     // gradient of the distance to it takes over, fully at the end, not at all a length away.
-    const std::vector<double> reach = layer_end_distance(ch, thickness, o.thickness, kLayerEndProbe);
+    const std::vector<double> reach = layer_end_distance(ch, thickness, in.thickness, kLayerEndProbe);
     const std::vector<Vec3> away = vertex_gradients(mesh, reach);
     for (int i = 0; i < n; ++i) {
       const Vec3 local = growth_guidance(ch.vertex_normals[i], gradient[i], o, ch.down, ch.front);
@@ -164,9 +164,9 @@ DirectionField make_growth_field(const ScalpChart& ch, const RootOptions& o) {
     }
   }
   // The hull's grain steers it where it is sure: a line, turned to agree with the guidance so far.
-  if (o.flow == FlowModel::relief && o.grain.size() == guidance.size())
+  if (o.flow == FlowModel::relief && in.grain.size() == guidance.size())
     for (int i = 0; i < n; ++i) {
-      const Vec3& g = o.grain[i];
+      const Vec3& g = in.grain[i];
       const double sure = std::min(1.0, g.norm());
       if (!(sure > 0.0)) continue;
       const Vec3 along = g.dot(guidance[i]) < 0.0 ? Vec3(-g / g.norm()) : Vec3(g / g.norm());

@@ -37,7 +37,7 @@ constexpr double kLayerEndProbe = 0.5;
 std::vector<double> layer_end_distance(const ScalpChart& chart, const std::vector<double>& thickness,
                                        const ThicknessField& field, double probe);
 
-// With FlowModel::relief, options.grain (one line per vertex, scalp/relief.h) then takes over by
+// With FlowModel::relief, inputs.grain (one line per vertex, scalp/relief.h) then takes over by
 // its anisotropy, turned to agree with the guidance below.
 // Per scalp vertex: growth_guidance with the thickness gradient of the piecewise-linear thickness
 // the field gives at the vertices (per triangle, area-weighted at each vertex); with "thicker",
@@ -45,7 +45,7 @@ std::vector<double> layer_end_distance(const ScalpChart& chart, const std::vecto
 // turned clockwise (seen from outside) by options.swirl, by the smoothstep of 1 − distance / hair
 // length, since a hair needs its length of layer ahead of it; then the smoothest field aligned
 // with it.
-DirectionField make_growth_field(const ScalpChart& chart, const RootOptions& options);
+DirectionField make_growth_field(const ScalpChart& chart, const RootInputs& inputs, const RootOptions& options);
 
 // The declared style, blended into per-vertex guidance last: a crown whorl at the chart point
 // options.whorl (hair grows away from it, turned clockwise by options.swirl) and a parting along

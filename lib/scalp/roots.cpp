@@ -138,7 +138,7 @@ std::vector<TriangleDensity> density_of_triangles(const ScalpChart& ch, const Gr
 }
 
 // `flow`: the growth field (FlowModel::field), or null for each root's own direction.
-RootSet make_root_set(const ScalpChart& ch, const ScalpMaps& maps, const RootOptions& o, const DirectionField* flow,
+RootSet make_root_set(const ScalpChart& ch, const RootInputs& maps, const RootOptions& o, const DirectionField* flow,
                       std::vector<SurfacePoint> where, int threads) {
   RootSet s;
   const int n = static_cast<int>(where.size());
@@ -154,27 +154,27 @@ RootSet make_root_set(const ScalpChart& ch, const ScalpMaps& maps, const RootOpt
     s.positions[i] = surface_position(ch, sp);
     s.normals[i] = surface_normal(ch, sp);
     s.chart[i] = chart_position(ch, sp);
-    const double tilt = maps.tilt ? lerp(o.tilt_range, map_value(maps.tilt, s.chart[i])) : o.tilt;
+    const double tilt = maps.tilt ? lerp(o.tilt_range, map_value(maps.tilt.get(), s.chart[i])) : o.tilt;
     if (flow) {
       const Vec3 fallback = tangent_toward_down(s.normals[i], ch.down, ch.front);
       s.directions[i] = tilted(s.normals[i], field_direction(ch.mesh, *flow, sp.triangle, sp.barycentric, s.normals[i], fallback), tilt);
     } else {
       s.directions[i] = o.tilt_toward == TiltToward::thicker
-                            ? growth_direction_toward_thicker(s.normals[i], o.thickness(s.positions[i]).gradient, ch.down,
+                            ? growth_direction_toward_thicker(s.normals[i], maps.thickness(s.positions[i]).gradient, ch.down,
                                                               ch.front, tilt)
                             : growth_direction(s.normals[i], ch.down, ch.front, tilt);
     }
-    s.lengths[i] = maps.length ? lerp(o.length_range, map_value(maps.length, s.chart[i])) : o.length;
+    s.lengths[i] = maps.length ? lerp(o.length_range, map_value(maps.length.get(), s.chart[i])) : o.length;
     s.heights[i] = height_of(ch, s.positions[i]);
   });
   return s;
 }
 
-void check_options(const RootOptions& o) {
+void check_options(const RootInputs& maps, const RootOptions& o) {
   if (!(o.density >= 0) || !std::isfinite(o.density)) throw std::invalid_argument("roots: density must be ≥ 0");
   if (!(o.oversampling >= 1)) throw std::invalid_argument("roots: oversampling must be ≥ 1");
   if (o.threads < 1) throw std::invalid_argument("roots: threads must be ≥ 1");
-  if (o.tilt_toward == TiltToward::thicker && !o.thickness)
+  if (o.tilt_toward == TiltToward::thicker && !maps.thickness)
     throw std::invalid_argument("roots: tilting toward the thicker layer needs the layer's thickness field");
 }
 
@@ -206,7 +206,7 @@ Vec3 growth_direction_toward_thicker(const Vec3& normal, const Vec3& thickness_g
 
 namespace {
 
-Roots make_roots(const ScalpChart& ch, const ScalpMaps& maps, const RootOptions& o,
+Roots make_roots(const ScalpChart& ch, const RootInputs& maps, const RootOptions& o,
                  const std::vector<TriangleDensity>& density, const DirectionField* flow) {
   Roots roots;
   double top = 0.0;
@@ -223,7 +223,7 @@ Roots make_roots(const ScalpChart& ch, const ScalpMaps& maps, const RootOptions&
   // Candidates at oversampling × the local target density; rounded up so a small set still has
   // enough to choose from.
   const double per_area = o.oversampling * o.density * (1.0 + 1.0 / std::sqrt(static_cast<double>(target)));
-  Candidates c = make_candidates(ch, maps.density, density, per_area, false, RandomStage::roots, o.seed, o.threads);
+  Candidates c = make_candidates(ch, maps.density.get(), density, per_area, false, RandomStage::roots, o.seed, o.threads);
   const int count = static_cast<int>(c.positions.size());
   roots.candidates = count;
   HugeVector<double>& radius = c.values;  // each value becomes the radius for it, in place
@@ -236,7 +236,7 @@ Roots make_roots(const ScalpChart& ch, const ScalpMaps& maps, const RootOptions&
   return roots;
 }
 
-PreguideRoots make_preguide_roots(const ScalpChart& ch, const ScalpMaps& maps, const RootOptions& o,
+PreguideRoots make_preguide_roots(const ScalpChart& ch, const RootInputs& maps, const RootOptions& o,
                                   const std::vector<TriangleDensity>& density, const DirectionField* flow) {
   PreguideRoots pre;
   pre.spacing = o.preguide_spacing;
@@ -247,7 +247,7 @@ PreguideRoots make_preguide_roots(const ScalpChart& ch, const ScalpMaps& maps, c
   const long long target = std::llround(hair_area * rho);
   if (target == 0) return pre;
   const double per_area = o.oversampling * rho * (1.0 + 1.0 / std::sqrt(static_cast<double>(target)));
-  const Candidates c = make_candidates(ch, maps.density, density, per_area, true, RandomStage::preguides, o.seed, o.threads);
+  const Candidates c = make_candidates(ch, maps.density.get(), density, per_area, true, RandomStage::preguides, o.seed, o.threads);
   const std::vector<double> radius(c.positions.size(), 1.0 / std::sqrt(2.0 * std::sqrt(3.0) * rho));
   const std::vector<int> kept =
       eliminate_samples(c.positions.data(), radius.data(), static_cast<int>(radius.size()), static_cast<int>(target), o.threads);
@@ -255,34 +255,34 @@ PreguideRoots make_preguide_roots(const ScalpChart& ch, const ScalpMaps& maps, c
   return pre;
 }
 
-void check_preguide_options(const RootOptions& o) {
-  check_options(o);
+void check_preguide_options(const RootInputs& maps, const RootOptions& o) {
+  check_options(maps, o);
   if (!(o.preguide_spacing > 0)) throw std::invalid_argument("roots: preguide_spacing must be > 0");
 }
 
-std::optional<DirectionField> growth_field_for(const ScalpChart& ch, const RootOptions& o) {
+std::optional<DirectionField> growth_field_for(const ScalpChart& ch, const RootInputs& maps, const RootOptions& o) {
   if (o.flow == FlowModel::local) return std::nullopt;
-  return make_growth_field(ch, o);
+  return make_growth_field(ch, maps, o);
 }
 
 const DirectionField* pointer(const std::optional<DirectionField>& f) { return f ? &*f : nullptr; }
 
 }  // namespace
 
-Roots make_roots(const ScalpChart& ch, const ScalpMaps& maps, const RootOptions& o) {
-  check_options(o);
-  return make_roots(ch, maps, o, density_of_triangles(ch, maps.density, o.threads), pointer(growth_field_for(ch, o)));
+Roots make_roots(const ScalpChart& ch, const RootInputs& maps, const RootOptions& o) {
+  check_options(maps, o);
+  return make_roots(ch, maps, o, density_of_triangles(ch, maps.density.get(), o.threads), pointer(growth_field_for(ch, maps, o)));
 }
 
-PreguideRoots make_preguide_roots(const ScalpChart& ch, const ScalpMaps& maps, const RootOptions& o) {
-  check_preguide_options(o);
-  return make_preguide_roots(ch, maps, o, density_of_triangles(ch, maps.density, o.threads), pointer(growth_field_for(ch, o)));
+PreguideRoots make_preguide_roots(const ScalpChart& ch, const RootInputs& maps, const RootOptions& o) {
+  check_preguide_options(maps, o);
+  return make_preguide_roots(ch, maps, o, density_of_triangles(ch, maps.density.get(), o.threads), pointer(growth_field_for(ch, maps, o)));
 }
 
-ScalpRoots make_scalp_roots(const ScalpChart& ch, const ScalpMaps& maps, const RootOptions& o) {
-  check_preguide_options(o);
-  const std::vector<TriangleDensity> density = density_of_triangles(ch, maps.density, o.threads);
-  const std::optional<DirectionField> flow = growth_field_for(ch, o);
+ScalpRoots make_scalp_roots(const ScalpChart& ch, const RootInputs& maps, const RootOptions& o) {
+  check_preguide_options(maps, o);
+  const std::vector<TriangleDensity> density = density_of_triangles(ch, maps.density.get(), o.threads);
+  const std::optional<DirectionField> flow = growth_field_for(ch, maps, o);
   ScalpRoots r;
   r.roots = make_roots(ch, maps, o, density, pointer(flow));
   r.clusters = make_clusters(ch, r.roots, o);

@@ -3,6 +3,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <vector>
 
 #include "core/digest.h"
@@ -11,12 +12,6 @@
 
 namespace hairfit {
 
-// The maps the scene uses, addressed through the chart (chart_to_image); null = not used.
-struct ScalpMaps {
-  const GreyMap* density = nullptr;  // × RootOptions::density; 0 (black) = no hair at all
-  const GreyMap* tilt = nullptr;     // black → tilt_range[0], white → tilt_range[1]
-  const GreyMap* length = nullptr;   // black → length_range[0], white → length_range[1]
-};
 
 // Which way the normal tilts at a root: toward down (the scene's default), or up the surface
 // gradient of the hair layer's thickness, so hair at a thin hairline grows into the hair mass.
@@ -35,14 +30,23 @@ struct LayerThickness {
 };
 using ThicknessField = std::function<LayerThickness(const Vec3&)>;
 
+// What the roots read besides the chart and their options: the grey maps the scene uses,
+// addressed through the chart (chart_to_image; null = not used), and what the fields and the hull
+// say about the hair layer.
+struct RootInputs {
+  std::shared_ptr<const GreyMap> density;  // × RootOptions::density; 0 (black) = no hair at all
+  std::shared_ptr<const GreyMap> tilt;     // black → tilt_range[0], white → tilt_range[1]
+  std::shared_ptr<const GreyMap> length;   // black → length_range[0], white → length_range[1]
+  ThicknessField thickness;                // required with TiltToward::thicker
+  std::vector<Vec3> grain;                 // FlowModel::relief: per scalp vertex (relief_grain)
+};
+
 struct RootOptions {
   double density = 200.0;                     // hairs per cm² of 3D scalp area (white density map)
   double tilt = 0.0;                          // degrees from the normal (toward tilt_toward), without tilt map
   TiltToward tilt_toward = TiltToward::down;
-  ThicknessField thickness;                   // required with TiltToward::thicker
   FlowModel flow = FlowModel::local;
   double flow_smoothing = 6.0;                // cm: the growth field averages its guidance over this
-  std::vector<Vec3> grain;                    // FlowModel::relief: per scalp vertex (relief_grain)
   double swirl = 0.0;                         // degrees: growth away from the layer's end turns clockwise by this
   Vec2 whorl = Vec2::Zero();                  // chart point of a declared crown whorl
   double whorl_radius = 0.0;                  // cm it reaches (0: no whorl)
@@ -97,7 +101,7 @@ struct PreguideRoots {
 // Exactly round(∫ρ dA) roots (the integral by subdivided-triangle quadrature of the map), by
 // weighted sample elimination from ~oversampling× candidates (Poisson-disk radius 1/sqrt(2√3ρ)
 // adapted to the local density, down to 1/16 of the maximum). No root where the map is 0.
-Roots make_roots(const ScalpChart& chart, const ScalpMaps& maps, const RootOptions& options);
+Roots make_roots(const ScalpChart& chart, const RootInputs& inputs, const RootOptions& options);
 
 // Clusters (paper §3.3): min(guides, pores) centres chosen among the pores as a blue-noise set on
 // the surface; in the chart, circle c has radius cluster_overlap × (largest chart distance from c
@@ -107,7 +111,7 @@ Clusters make_clusters(const ScalpChart& chart, const Roots& roots, const RootOp
 
 // Pre-guide roots: blue noise on the surface at about preguide_spacing (hexagonal packing density
 // 2/(√3 s²)) wherever the density map is non-zero, with growth directions and lengths.
-PreguideRoots make_preguide_roots(const ScalpChart& chart, const ScalpMaps& maps, const RootOptions& options);
+PreguideRoots make_preguide_roots(const ScalpChart& chart, const RootInputs& inputs, const RootOptions& options);
 
 // What the roots stage makes: the pores, their clusters and the pre-guide roots, equal to
 // make_roots, make_clusters and make_preguide_roots called one after the other, with the density
@@ -117,7 +121,7 @@ struct ScalpRoots {
   Clusters clusters;
   PreguideRoots preguides;
 };
-ScalpRoots make_scalp_roots(const ScalpChart& chart, const ScalpMaps& maps, const RootOptions& options);
+ScalpRoots make_scalp_roots(const ScalpChart& chart, const RootInputs& inputs, const RootOptions& options);
 
 // Unit growth direction (docs/design.md §3): the normal rotated by `tilt_degrees` toward down projected
 // onto the tangent plane; where down is (nearly) parallel to the normal, toward −front projected,

@@ -60,9 +60,9 @@ TEST_CASE("effects that are off leave no trace; switched on, each leaves its own
     // Gravity: no weight on any rod.
     CHECK((hair_material(r.scene).gravity.norm() > 0) == on);
     // Maps: none loaded.
-    CHECK(r.inputs.density_map.has_value() == on);
-    CHECK(r.inputs.tilt_map.has_value() == on);
-    CHECK(r.inputs.length_map.has_value() == on);
+    CHECK((r.inputs.density_map != nullptr) == on);
+    CHECK((r.inputs.tilt_map != nullptr) == on);
+    CHECK((r.inputs.length_map != nullptr) == on);
     // Density model: no grid, no stage, no files, no F4 figure.
     CHECK((v.guide_density != nullptr) == on);
     CHECK((v.fibre_density != nullptr) == on);

@@ -85,8 +85,9 @@ TEST_CASE("thicker: roots under a shell thinning away from the pole tilt toward 
   o.guides = 10;
   o.threads = 2;
   o.tilt_toward = TiltToward::thicker;
-  o.thickness = layer_thickness(field);  // as the pipeline's roots stage passes it
-  const Roots roots = make_roots(chart, {}, o);
+  RootInputs shell;
+  shell.thickness = layer_thickness(field);  // as the pipeline's roots stage passes it
+  const Roots roots = make_roots(chart, shell, o);
   o.tilt_toward = TiltToward::down;
   const Roots toward_down = make_roots(chart, {}, o);
   REQUIRE(roots.pores.size() > 300);

@@ -16,6 +16,15 @@ using namespace hairfit;
 
 namespace {
 
+// The roots' inputs with these maps (copies: RootInputs shares them); null = not used.
+RootInputs maps_of(const GreyMap* density, const GreyMap* tilt, const GreyMap* length) {
+  RootInputs in;
+  if (density) in.density = std::make_shared<const GreyMap>(*density);
+  if (tilt) in.tilt = std::make_shared<const GreyMap>(*tilt);
+  if (length) in.length = std::make_shared<const GreyMap>(*length);
+  return in;
+}
+
 const Vec3 kFront(0, 0, 1), kDown(0, -1, 0);
 
 GreyMap make_map(int w, int h, const std::function<float(int, int)>& value) {
@@ -116,7 +125,7 @@ TEST_CASE("roots: density maps — integral, adaptivity, and no root on black") 
   SUBCASE("linear ramp left → right") {
     const int w = 512;
     const GreyMap ramp = make_map(w, w, [&](int x, int) { return static_cast<float>(x) / (w - 1); });
-    const Roots r = make_roots(ch, {&ramp, nullptr, nullptr}, o);
+    const Roots r = make_roots(ch, maps_of(&ramp, nullptr, nullptr), o);
     // The chart is (−x, z)/R, so the map value is (chart_x + 1)/2 and its mean over the disk ½.
     const double integral = o.density * disk_area * 0.5;
     CHECK(std::abs(r.pores.size() - integral) < 0.02 * integral);
@@ -143,22 +152,22 @@ TEST_CASE("roots: density maps — integral, adaptivity, and no root on black") 
   SUBCASE("left half black: density 0 means not a single root") {
     const int w = 256;
     const GreyMap half = make_map(w, w, [&](int x, int) { return x < w / 2 ? 0.0f : 1.0f; });
-    const Roots r = make_roots(ch, {&half, nullptr, nullptr}, o);
+    const Roots r = make_roots(ch, maps_of(&half, nullptr, nullptr), o);
     const double integral = o.density * disk_area * 0.5;
     CHECK(std::abs(r.pores.size() - integral) < 0.02 * integral);
     for (const Vec2& c : r.pores.chart) CHECK(half.sample(chart_to_image(c)) > 0.0);
     const Stats s = spacing_stats(r.pores.positions);
     CHECK(s.min > 0.5 * s.mean);
-    const PreguideRoots pre = make_preguide_roots(ch, {&half, nullptr, nullptr}, o);
+    const PreguideRoots pre = make_preguide_roots(ch, maps_of(&half, nullptr, nullptr), o);
     for (const Vec2& c : pre.roots.chart) CHECK(half.sample(chart_to_image(c)) > 0.0);
   }
 
   SUBCASE("all black or zero density: no roots, no clusters") {
     const GreyMap black = make_map(8, 8, [](int, int) { return 0.0f; });
-    const Roots r = make_roots(ch, {&black, nullptr, nullptr}, o);
+    const Roots r = make_roots(ch, maps_of(&black, nullptr, nullptr), o);
     CHECK(r.pores.size() == 0);
     CHECK(make_clusters(ch, r, o).size() == 0);
-    CHECK(make_preguide_roots(ch, {&black, nullptr, nullptr}, o).roots.size() == 0);
+    CHECK(make_preguide_roots(ch, maps_of(&black, nullptr, nullptr), o).roots.size() == 0);
     RootOptions none = o;
     none.density = 0.0;
     CHECK(make_roots(ch, {}, none).pores.size() == 0);
@@ -175,9 +184,9 @@ TEST_CASE("roots: deterministic for a seed and any thread count; the seed change
   std::string first_roots, first_clusters, first_pre;
   for (int threads : {1, 2, 4}) {
     o.threads = threads;
-    const Roots r = make_roots(ch, {&map, &map, &map}, o);
+    const Roots r = make_roots(ch, maps_of(&map, &map, &map), o);
     const Clusters c = make_clusters(ch, r, o);
-    const PreguideRoots p = make_preguide_roots(ch, {&map, &map, &map}, o);
+    const PreguideRoots p = make_preguide_roots(ch, maps_of(&map, &map, &map), o);
     if (threads == 1) {
       first_roots = digest(r).hex();
       first_clusters = digest(c).hex();
@@ -189,7 +198,7 @@ TEST_CASE("roots: deterministic for a seed and any thread count; the seed change
     }
   }
   o.seed = 100;
-  CHECK(digest(make_roots(ch, {&map, nullptr, nullptr}, o)).hex() != first_roots);
+  CHECK(digest(make_roots(ch, maps_of(&map, nullptr, nullptr), o)).hex() != first_roots);
 }
 
 TEST_CASE("roots: make_scalp_roots equals make_roots, make_clusters and make_preguide_roots") {
@@ -201,7 +210,7 @@ TEST_CASE("roots: make_scalp_roots equals make_roots, make_clusters and make_pre
   o.preguide_spacing = 0.4;
   o.seed = 5;
   o.threads = 2;
-  const ScalpMaps maps{&map, &map, nullptr};
+  const RootInputs maps = maps_of(&map, &map, nullptr);
   const ScalpRoots together = make_scalp_roots(ch, maps, o);
   const Roots roots = make_roots(ch, maps, o);
   CHECK(together.roots.pores.size() > 100);
@@ -238,7 +247,7 @@ TEST_CASE("roots: growth direction tilts toward down and never yields NaN") {
   o.density = 5.0;
   o.tilt_range = {10.0, 50.0};
   o.length_range = {20.0, 40.0};
-  const Roots r = make_roots(ch, {nullptr, &grey, &grey}, o);
+  const Roots r = make_roots(ch, maps_of(nullptr, &grey, &grey), o);
   REQUIRE(r.pores.size() > 100);
   for (int i = 0; i < r.pores.size(); ++i) {
     CHECK(r.pores.lengths[i] == doctest::Approx(25.0));

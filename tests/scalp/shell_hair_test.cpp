@@ -81,10 +81,11 @@ TEST_CASE("growth field: near a hairline where the layer ends, hair grows away f
   const ScalpChart chart = make_scalp_chart(cap_mesh(), Vec3(0, 0, 1), Vec3(0, -1, 0), "cap.obj");
   RootOptions o;
   o.tilt_toward = TiltToward::thicker;
-  o.thickness = shell(kCap);
+  RootInputs layer;
+  layer.thickness = shell(kCap);
   o.length = 10.0;
   o.flow_smoothing = 1.0;
-  const DirectionField f = make_growth_field(chart, o);
+  const DirectionField f = make_growth_field(chart, layer, o);
   int checked = 0;
   for (std::size_t i = 0; i < chart.mesh.positions.size(); ++i) {
     const Vec3& p = chart.mesh.positions[i];
@@ -102,11 +103,12 @@ TEST_CASE("growth field with swirl: near the hairline it turns clockwise from th
   for (double swirl : {30.0, 60.0}) {
     RootOptions o;
     o.tilt_toward = TiltToward::thicker;
-    o.thickness = shell(kCap);
+    RootInputs layer;
+  layer.thickness = shell(kCap);
     o.length = 10.0;
     o.flow_smoothing = 1.0;
     o.swirl = swirl;
-    const DirectionField f = make_growth_field(chart, o);
+    const DirectionField f = make_growth_field(chart, layer, o);
     int checked = 0;
     for (std::size_t i = 0; i < chart.mesh.positions.size(); ++i) {
       const Vec3& p = chart.mesh.positions[i];
@@ -133,7 +135,7 @@ TEST_CASE("declared style: near a whorl hair grows away from it, beside a partin
   o.whorl = Vec2(0.4, -0.3);
   o.whorl_radius = 2.0;
   const Vec3 w = surface_position(chart, locate_in_chart(chart, o.whorl));
-  const DirectionField f = make_growth_field(chart, o);
+  const DirectionField f = make_growth_field(chart, {}, o);
   int checked = 0;
   for (std::size_t i = 0; i < chart.mesh.positions.size(); ++i) {
     const Vec3& p = chart.mesh.positions[i];
@@ -151,7 +153,7 @@ TEST_CASE("declared style: near a whorl hair grows away from it, beside a partin
   q.whorl_radius = 0.0;
   q.parting = Vec2(0.0, 0.9);
   q.parting_radius = 1.5;
-  const DirectionField g = make_growth_field(chart, q);
+  const DirectionField g = make_growth_field(chart, {}, q);
   const Vec3 a = surface_position(chart, locate_in_chart(chart, q.parting));
   const Vec3 b = surface_position(chart, locate_in_chart(chart, q.whorl));
   checked = 0;
