@@ -156,7 +156,7 @@ struct GuideProblem {
 
 // How one guide's solve starts and what it adds to the problem.
 struct GuideSolveSetup {
-  const DensityGrid* density = nullptr;  // the F4 term's grid, or none
+  std::optional<DensityGrid> density;  // the F4 term's grid (sharing its cells), or none
   DensityTermOptions term;               // read with a density grid
   double density_ceiling = 0.0;          // GuideTargets::density_ceiling
   // The loads to start from (world axes, dimensionless); null = as options.warm_start says (the
@@ -264,7 +264,7 @@ Guide solve_guide_with_density(const GuideProblem& problem, int b, const Guide& 
     start[3 + a] = plain.root_moment[a];
   }
   GuideSolveSetup setup;
-  setup.density = &density;
+  setup.density = density;
   setup.term = term;
   setup.density_ceiling = ceiling;
   setup.start = start;

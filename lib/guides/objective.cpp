@@ -671,7 +671,7 @@ GuideSolve optimise_guide(const GuideTargets& targets, const double start[6], in
   ceres::Problem problem;
   problem.AddResidualBlock(new CompressedGuideCost(functor), nullptr, x);
   ceres::Solver::Summary summary;
-  const bool stalled = solve(problem, max_iterations, tolerance, stall, summary, targets.density != nullptr);
+  const bool stalled = solve(problem, max_iterations, tolerance, stall, summary, targets.density.has_value());
 
   bool finite = true;
   for (double v : x) finite = finite && std::isfinite(v);

@@ -1,6 +1,7 @@
 // The principal-guide objective (paper eq. 6–9, docs/design.md §5) as least-squares residuals, and its
 // minimisation with Ceres. Internal to lib/guides: Ceres and jets stay in objective.cpp.
 #pragma once
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -35,7 +36,7 @@ struct GuideTargets {
   double outside_penalty = 10.0;
   double boundary_width = 0.1;
   // The density of the earlier guides (paper §3.5); null: no density model, no F4 residual.
-  const DensityGrid* density = nullptr;
+  std::optional<DensityGrid> density;  // the F4 term's grid (sharing its cells), or none
   DensityTermOptions density_term;
   // The F4 integrand a sample pays once it lies a voxel or more beyond the scalp or the volume
   // boundary: the ceiling of the grid the guide is optimised against (DensityCeiling, one per

@@ -122,7 +122,7 @@ TEST_CASE("F4 adds no residual and is zero without a density model") {
   const DensityGrid zero = std::move(empty).freeze();
   for (GuideDensityModel model : {GuideDensityModel::continuous, GuideDensityModel::binary}) {
     GuideTargets d = targets();
-    d.density = &zero;
+    d.density = zero;
     d.density_term.model = model;
     const std::vector<double> rd = guide_residuals(d, kEta);
     const std::size_t per = model == GuideDensityModel::continuous ? 2 : 3;  // + the outside residual
@@ -139,7 +139,7 @@ TEST_CASE("F4 equals the paper's integrals by the trapezoidal rule on the guide'
   const FibreShape shape = fibre_shape(t.model, t.root, t.length, t.rod, Vec3(kEta[0], kEta[1], kEta[2]),
                                        Vec3(kEta[3], kEta[4], kEta[5]));
   // CDM: c_ρ Σ Δs ⟨∇Φρ, t⟩², gradient from the grid's own central differences.
-  t.density = &cdm;
+  t.density = cdm;
   t.density_term.model = GuideDensityModel::continuous;
   t.density_term.strength = 2.5;
   double expect = 0.0;
@@ -152,7 +152,7 @@ TEST_CASE("F4 equals the paper's integrals by the trapezoidal rule on the guide'
   CHECK(evaluate_guide_terms(t, kEta).f4 == doctest::Approx(expect).epsilon(1e-9));
 
   // BOM: Σ Δs (o² + c_BOM·S(o)²).
-  t.density = &bom;
+  t.density = bom;
   t.density_term.model = GuideDensityModel::binary;
   t.density_term.surcharge = 7.0;
   expect = 0.0;
@@ -257,7 +257,7 @@ TEST_CASE("outside the acceptable region a sample pays the density ceiling on to
   for (GuideDensityModel model : {GuideDensityModel::continuous, GuideDensityModel::binary}) {
     CAPTURE(static_cast<int>(model));
     GuideTargets t = targets(16);
-    t.density = model == GuideDensityModel::continuous ? &cdm : &bom;
+    t.density = model == GuideDensityModel::continuous ? cdm : bom;
     t.density_term.model = model;
     const double base = evaluate_guide_terms(t, eta).f4;
     t.density_ceiling = 3.0;
@@ -288,7 +288,7 @@ TEST_CASE("F4 jets match central finite differences of the double residuals") {
   for (GuideDensityModel model : {GuideDensityModel::continuous, GuideDensityModel::binary}) {
     CAPTURE(static_cast<int>(model));
     GuideTargets t = targets();
-    t.density = model == GuideDensityModel::continuous ? &cdm : &bom;
+    t.density = model == GuideDensityModel::continuous ? cdm : bom;
     t.density_term.model = model;
     t.density_term.surcharge_width = 0.5;  // a wide ramp: more samples on it
     t.density_ceiling = 2.0;               // and the outside residual, for the samples beyond the volume
@@ -321,7 +321,7 @@ TEST_CASE("F4 jets match central finite differences of the double residuals") {
 TEST_CASE("a solve stopped at a stall is the capped solve of the same length, and no worse than its start") {
   const DensityGrid cdm = cdm_grid(grid());
   GuideTargets t = targets();
-  t.density = &cdm;
+  t.density = cdm;
   const GuideSolve full = optimise_guide(t, kEta, 100, 1e-12);
   REQUIRE(full.iterations > 3);
   // Every iteration lowers the cost by less than all of it: the first window of one iteration stalls.
