@@ -1,0 +1,226 @@
+#include "guides/guide_solve.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace hairfit {
+
+// Weights of followed neighbours at these distances, nearest first: inverse distance, softened
+// so that a neighbour at the very root does not take all the weight; they sum to 1.
+std::vector<double> follow_weights(std::vector<double> distances) {
+  if (distances.empty()) return distances;
+  const double soften = 0.25 * distances.back() + 1e-6;
+  double total = 0.0;
+  for (double& d : distances) total += d = 1.0 / (d + soften);
+  for (double& w : distances) w /= total;
+  return distances;
+}
+
+// How far to follow a pre-guide at a point: fully inside the acceptable region, not at all once
+// it is a boundary width beyond the scalp or the volume (smoothstep in between). A pre-guide that
+// could not reach its depth pokes out of the volume; there its direction and curvature would pull
+// the guide out after it, so there the boundary term and the rod alone decide.
+double follow_trust(const Boundary& boundary, const Vec3& p, double width) {
+  const double beyond = std::max(boundary.beyond_scalp(p), boundary.beyond_volume(p));
+  if (beyond <= 0.0) return 1.0;
+  if (beyond >= width) return 0.0;
+  const double x = beyond / width;
+  return 1.0 - x * x * (3.0 - 2.0 * x);
+}
+
+std::vector<int> all_indices(int count) {
+  std::vector<int> all(count);
+  std::iota(all.begin(), all.end(), 0);
+  return all;
+}
+
+namespace {
+
+
+
+
+
+
+
+// The neighbours' quantities at the guide's sample nodes (same normalised arc lengths, since
+// every rod has the same number of segments).
+GuideTargets make_targets(const RootSet& bases, int b, const PreGuides& preguides, const Boundary& boundary,
+                          const GuideOptions& o, std::vector<int>& chosen, std::vector<double>& weights) {
+  GuideTargets t;
+  t.root = bases.positions[b];
+  t.length = bases.lengths[b];
+  t.rod = o.rod;
+  const Vec3 bend = bending_direction(bases.normals[b], bases.directions[b], o.down, o.front);
+  t.model = hair_rod_model(t.length, o.material, RodRoot{t.root, root_frame(bases.directions[b], bend)}, boundary.scalp.get());
+  const int segments = o.rod.segments;
+  const int k_max = std::min(o.samples, segments);
+  for (int k = 0; k <= k_max; ++k) {
+    t.sample_nodes.push_back(static_cast<int>(std::lround(static_cast<double>(k) * segments / k_max)));
+    t.sample_weights.push_back((k == 0 || k == k_max ? 0.5 : 1.0) / k_max);
+  }
+
+  // The nearest pre-guides by root distance, weighted by inverse distance (softened so a
+  // pre-guide at the very root does not take all the weight).
+  chosen = nearest(all_indices(preguides.size()), [&](int j) { return preguides.items[j].root; }, t.root, o.neighbours);
+  const int count = static_cast<int>(chosen.size());
+  weights.clear();
+  for (int j : chosen) weights.push_back((preguides.items[j].root - t.root).norm());
+  weights = follow_weights(weights);
+  for (int i = 0; i < count; ++i) {
+    GuideTargets::Neighbour nb;
+    nb.weight = weights[i];
+    const FibreShape& shape = preguides.items[chosen[i]].shape;
+    for (int node : t.sample_nodes) {
+      nb.tangents.push_back(shape.tangents[node]);
+      nb.darboux.push_back(shape.darboux[node]);
+      nb.trust.push_back(follow_trust(boundary, shape.nodes[node], o.boundary_width));
+    }
+    t.neighbours.push_back(std::move(nb));
+  }
+  t.boundary = &boundary;
+  t.weights = o.weights;
+  t.form = o.boundary;
+  t.outside_penalty = o.outside_penalty;
+  t.boundary_width = o.boundary_width;
+  return t;
+}
+
+// The targets as a solve's rod carries its weight: a copy whose model carries only the share of
+// the weight the solve reached (GuideSolve::weight_share), for a rod that could not carry all.
+GuideTargets carrying(const GuideTargets& t, const GuideSolve& s) {
+  GuideTargets c = t;
+  c.model = carrying_share(t.model, s.weight_share);
+  return c;
+}
+
+// A solved guide's shape and terminal torque m(1): traced piece by piece for a heavy rod (one
+// integration from m(0) would diverge), else one integration from (f_L, m(0)).
+// A rod whose weight could be followed only in part is traced under that share of it.
+FibreShape solved_shape(const GuideTargets& t, const GuideSolve& s, Vec3& terminal_torque) {
+  if (s.heavy) {
+    terminal_torque = s.solution.terminal_torque;
+    if (s.weight_share < 1.0) return fibre_shape(carrying_share(t.model, s.weight_share), t.root, t.length, t.rod, s.solution);
+    return fibre_shape(t.model, t.root, t.length, t.rod, s.solution);
+  }
+  return fibre_shape(t.model, t.root, t.length, t.rod, Vec3(s.eta[0], s.eta[1], s.eta[2]), Vec3(s.eta[3], s.eta[4], s.eta[5]),
+                     &terminal_torque);
+}
+
+// How far (cm) a shape's worst node lies beyond the scalp or the volume (≤ 0: none does).
+double worst_excursion(const FibreShape& shape, const Boundary& boundary) {
+  double worst = -std::numeric_limits<double>::infinity();
+  for (const Vec3& p : shape.nodes) worst = std::max({worst, boundary.beyond_scalp(p), boundary.beyond_volume(p)});
+  return worst;
+}
+
+
+
+
+}  // namespace
+
+Guide solve_guide(const GuideProblem& problem, int b, const GuideSolveSetup& setup) {
+  const RootSet& bases = problem.bases;
+  const PreGuides& preguides = problem.preguides;
+  const Boundary& boundary = problem.boundary;
+  const GuideOptions& o = problem.options;
+  const StallTest& stall = setup.stall;
+  const ShootingResult* near = setup.near;
+  Guide g;
+  g.root = bases.positions[b];
+  g.normal = bases.normals[b];
+  g.direction = bases.directions[b];
+  g.length = bases.lengths[b];
+  GuideTargets targets = make_targets(bases, b, preguides, boundary, o, g.neighbours, g.neighbour_weights);
+  targets.density = setup.density;
+  targets.density_term = setup.term;
+  targets.density_ceiling = setup.density_ceiling;
+
+  // Start: straight (the paper) or the neighbours' dimensionless loads, weighted (warm start).
+  double start[6] = {0, 0, 0, 0, 0, 0};
+  if (setup.start)
+    std::copy(setup.start, setup.start + 6, start);
+  else if (o.warm_start)
+    add_weighted_loads(preguides.items, g.neighbours, g.neighbour_weights, start);
+  GuideSolve solve = optimise_guide(targets, start, o.max_iterations, o.tolerance, stall, near);
+  g.shape = solved_shape(targets, solve, g.terminal_torque);
+  // The solve can stop in a local minimum that runs through the head or out of the
+  // volume well past the boundary ramp: then the other start (straight ↔ the neighbours' loads)
+  // is tried too, and the lower cost kept, unless it is the same start (a heavy rod's solve reads
+  // only the start's force), which would repeat the same solve.
+  double other[6] = {0, 0, 0, 0, 0, 0};
+  if (std::all_of(start, start + 6, [](double v) { return v == 0.0; }))
+    add_weighted_loads(preguides.items, g.neighbours, g.neighbour_weights, other);
+  const bool same_start = std::equal(start, start + (solve.heavy ? 3 : 6), other);
+  if (!same_start && worst_excursion(g.shape, boundary) > o.boundary_width) {
+    GuideSolve retry = optimise_guide(targets, other, o.max_iterations, o.tolerance, stall, near);
+    const int iterations = solve.iterations + retry.iterations, evaluations = solve.evaluations + retry.evaluations;
+    if (retry.final_cost < solve.final_cost) {
+      solve = std::move(retry);
+      g.shape = solved_shape(targets, solve, g.terminal_torque);
+    }
+    solve.iterations = iterations;
+    solve.evaluations = evaluations;
+  }
+  if (setup.pieces && solve.heavy) *setup.pieces = solve.solution;
+  g.force = Vec3(solve.eta[0], solve.eta[1], solve.eta[2]);
+  g.root_moment = Vec3(solve.eta[3], solve.eta[4], solve.eta[5]);
+  const RodScales scales = rod_scales(hair_rod(g.length, o.material));
+  g.force_scale = scales.force;
+  g.moment_scale = scales.moment;
+  g.iterations = solve.iterations;
+  g.evaluations = solve.evaluations;
+  g.converged = solve.converged;
+  g.termination = solve.termination;
+  g.initial_cost = 2.0 * solve.initial_cost;  // Ceres reports ½Σr²
+  if (o.material.contact.active()) {
+    // The share counts the nodes beyond the first tenth of the hair: every root sits in the layer.
+    const std::size_t n = g.shape.nodes.size(), first = (n + 9) / 10;
+    int touching = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const Vec3& p = g.shape.nodes[i];
+      g.contact_force = std::max(g.contact_force, contact_force(*boundary.scalp, o.material.contact, p).norm());
+      if (i >= first) touching += boundary.scalp->value(p) < o.material.contact.layer;
+    }
+    g.contact_share = n > first ? static_cast<double>(touching) / static_cast<double>(n - first) : 0.0;
+  }
+  if (setup.use == GuideUse::start) return g;
+  const GuideTerms terms =
+      !solve.heavy                ? evaluate_guide_terms(targets, solve.eta)
+      : solve.weight_share < 1.0 ? evaluate_guide_terms(carrying(targets, solve), solve.solution)
+                                 : evaluate_guide_terms(targets, solve.solution);
+  g.cost = terms.total;
+  g.f1 = terms.f1;
+  g.f2 = terms.f2;
+  g.f3 = terms.f3;
+  g.f4 = terms.f4;
+  return g;
+}
+
+// A guide with the density term, by continuation: first without F4, as make_guides solves it,
+// then with F4 from that optimum (`plain`). F4 then perturbs a shape that already follows the
+// pre-guides inside the acceptable region. Started from the pre-guides' loads directly,
+// Levenberg–Marquardt with F4 on ended in local minima behind the scalp (smoke fixture, CDM: a
+// guide 3.3 cm deep, its wisp leaving density 2.35 cm inside the head; the paper scale, CDM:
+// 3.9 % of guide nodes outside the region against 0.1 % without F4).
+// Iterations and evaluations count both solves; the rest describes the second.
+Guide solve_guide_with_density(const GuideProblem& problem, int b, const Guide& plain, const DensityGrid& density,
+                               const DensityTermOptions& term, double ceiling, const StallTest& stall) {
+  double start[6];
+  for (int a = 0; a < 3; ++a) {
+    start[a] = plain.force[a];
+    start[3 + a] = plain.root_moment[a];
+  }
+  GuideSolveSetup setup;
+  setup.density = density;
+  setup.term = term;
+  setup.density_ceiling = ceiling;
+  setup.start = start;
+  setup.stall = stall;
+  Guide g = solve_guide(problem, b, setup);
+  g.iterations += plain.iterations;
+  g.evaluations += plain.evaluations;
+  return g;
+}
+
+}  // namespace hairfit
