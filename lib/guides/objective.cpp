@@ -14,13 +14,12 @@ namespace hairfit {
 
 namespace {
 
-
 // The optimiser's coordinates x = (f_L, μ) with m(0) = μ + c × f_L + g, where c is the chord
 // r(1) − r(0) and g = ∫(r − r(0)) ds × q the gravity moment of a reference shape (equilibrium:
 // m(0) = t_L + ∫ d3 × n ds). Near the reference shape μ ≈ t_L, so the root moment no longer
 // has to cancel the large moment of the terminal force to leave a small terminal torque. The
-// Gauss–Newton step is the same in any linear coordinates, but the damping is not: on the
-// spheroid fixture this cut the guides stopped by the iteration cap from 643 to 447 of 3000.
+// Gauss–Newton step is the same in any linear coordinates, but the damping is not: fewer guides
+// stop at the iteration cap in these coordinates (bench/results/guide_solver.md).
 struct LoadCoordinates {
   Vec3 chord = Vec3::Zero();
   Vec3 gravity_moment = Vec3::Zero();
@@ -76,8 +75,8 @@ class ReparameterisedCost {
 // (compress_least_squares: the same cost, gradient, Gauss–Newton matrix and column norms), so
 // Levenberg–Marquardt takes the same steps to round-off; Ceres formed JᵀJ for its normal
 // equations anyway. What this saves is Ceres' own work on a 374 × 6 Jacobian at every evaluation
-// (validating, zeroing, scaling and multiplying it): the guide solves of the 500-guide paper-scale
-// scene went from 4.92 to 3.92 G instructions (callgrind). Where only the cost is asked for, the
+// (validating, zeroing, scaling and multiplying it), a fifth of the guide solves' instructions
+// (bench/results/guide_solver.md). Where only the cost is asked for, the
 // residuals are (0, …, 0, |r|). The residuals are the merged ones (MergedTargets: 160 in place
 // of 374 at paper scale); their constant joins the seventh residual, so Ceres sees the full cost.
 class CompressedGuideCost : public ceres::SizedCostFunction<7, 6> {
