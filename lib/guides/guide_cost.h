@@ -14,23 +14,26 @@ namespace hairfit {
 
 using Jet = RodJet6;
 
-// Distance fields are tabulated in double; a jet takes the field's value at its scalar part and
-// its derivative by the chain rule through the field's gradient (STYLE.md).
+// A value tabulated in double, read at a jet point p: the value at p's scalar part, and its
+// derivative by the chain rule through the table's gradient there (STYLE.md).
+inline Jet chained(double value, const Vec3& gradient, const Jet* p) {
+  Jet out(value);
+  out.v = gradient.x() * p[0].v + gradient.y() * p[1].v + gradient.z() * p[2].v;
+  return out;
+}
+
+// A distance field's value.
 inline double field_at(const DistanceField& field, const double* p) { return field.value(Vec3(p[0], p[1], p[2])); }
 inline Jet field_at(const DistanceField& field, const Jet* p) {
   const FieldValueGradient vg = field.value_and_gradient(Vec3(p[0].a, p[1].a, p[2].a));
-  Jet out(vg.value);
-  out.v = vg.gradient.x() * p[0].v + vg.gradient.y() * p[1].v + vg.gradient.z() * p[2].v;
-  return out;
+  return chained(vg.value, vg.gradient, p);
 }
 
 // The grid's trilinear value (BOM occupancy) and, for jets, its exact piecewise-trilinear gradient.
 inline double density_at(const DensityGrid& grid, const double* p) { return grid.value(Vec3(p[0], p[1], p[2])); }
 inline Jet density_at(const DensityGrid& grid, const Jet* p) {
   const DensityValueGradient vg = grid.value_and_gradient(Vec3(p[0].a, p[1].a, p[2].a));
-  Jet out(vg.value);
-  out.v = vg.gradient.x() * p[0].v + vg.gradient.y() * p[1].v + vg.gradient.z() * p[2].v;
-  return out;
+  return chained(vg.value, vg.gradient, p);
 }
 
 // CDM: ⟨∇Φρ(p), t⟩ with ∇Φρ by central differences; for jets d⟨g, t⟩ = (Jᵀt)·dp + g·dt, J the
