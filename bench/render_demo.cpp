@@ -21,8 +21,8 @@ namespace {
 
 // Strands growing from the upper back of a head-sized sphere (radius 8): out along the normal,
 // then falling, kept outside the head, with a small curl. 16 points each; `ids` gets a patch id.
-Polylines make_strands(int count, std::vector<int>& ids) {
-  Polylines curves;
+Curves make_strands(int count, std::vector<int>& ids) {
+  Curves curves;
   for (int s = 0; s < count; ++s) {
     const double u = (s + 0.5) / count;
     const double y = 1.0 - 1.05 * u;  // spherical Fibonacci points over the cap y > −0.05
@@ -39,7 +39,7 @@ Polylines make_strands(int count, std::vector<int>& ids) {
       p += 1.25 * dir;
       if (p.norm() < 8.4) p = 8.4 * p.normalized();  // stay outside the head
     }
-    curves.push_back(curve);
+    curves.add(curve);
     ids.push_back(static_cast<int>(std::floor((std::atan2(n.z(), n.x()) + M_PI) / (2 * M_PI) * 6)) + 6 * (y > 0.5));
   }
   return curves;
@@ -74,7 +74,7 @@ int main(int argc, char** argv) {
   Mesh volume = uv_sphere(Vec3::Zero(), 1.0, 24, 48);
   for (Vec3& p : volume.positions) p = Vec3(0, -6, -1.5) + Vec3(14.0 * p.x(), 18.0 * p.y(), 14.5 * p.z());
   std::vector<int> ids;
-  const Polylines curves = make_strands(strands, ids);
+  const Curves curves = make_strands(strands, ids);
   const Vec3 down(0, -1, 0), front(0, 0, 1);
   RenderOptions options;
   options.threads = threads;
@@ -101,20 +101,20 @@ int main(int argc, char** argv) {
     const double cpu_ms = 1000.0 * (std::clock() - cpu_start) / CLOCKS_PER_SEC;
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     std::printf("render_3d %s: %zu strands x 16 points, 800x800, ss 2, %d thread(s): %.0f ms wall, %.0f ms CPU\n",
-                name.c_str(), curves.size(), threads, ms, cpu_ms);
+                name.c_str(), curves.count(), threads, ms, cpu_ms);
     write_png(out + "/strands_" + name + ".png", image);
     sheet.push_back(render_3d(drawing, fit_camera(parse_view(name), down, front, lo, hi, 400, 400), options));
     captions.push_back(name);
   }
 
   // A few hundred guides coloured by patch, with their roots, over the scalp.
-  Polylines guides;
+  Curves guides;
   std::vector<int> guide_ids;
   std::vector<Vec3> bases;
-  for (std::size_t k = 0; k < curves.size(); k += std::max<std::size_t>(1, curves.size() / 300)) {
-    guides.push_back(curves[k]);
+  for (std::size_t k = 0; k < curves.count(); k += std::max<std::size_t>(1, curves.count() / 300)) {
+    guides.add(std::vector<Vec3>(curves.points.begin() + curves.offsets[k], curves.points.begin() + curves.offsets[k + 1]));
     guide_ids.push_back(ids[k]);
-    bases.push_back(curves[k][0]);
+    bases.push_back(curves.point(k, 0));
   }
   Drawing3D guide_drawing;
   guide_drawing.meshes.push_back({&head, MeshStyle::shaded});

@@ -34,17 +34,6 @@ std::string stage_needed_for_picture(const std::string& stage) {
 
 namespace {
 
-Polylines polylines(const Curves& curves) {
-  Polylines lines(curves.count());
-  for (std::size_t c = 0; c < curves.count(); ++c)
-    lines[c].assign(curves.points.begin() + curves.offsets[c], curves.points.begin() + curves.offsets[c + 1]);
-  return lines;
-}
-
-}  // namespace
-
-namespace {
-
 // Two pictures side by side (`stacked`: one above the other) in a width × height image.
 Image two_panels(const Image& left, const Image& right, int width, int height, bool stacked = false) {
   Image out = make_image(width, height, 0, 0, 0);
@@ -196,7 +185,7 @@ Image render_stage(const std::string& stage, const Scene& scene, const Inputs& i
   MeshLayer scalp{inputs.occluder ? &*inputs.occluder : &head};
   MeshLayer volume{&inputs.volume.mesh, MeshStyle::silhouette};
   drawing.meshes = {scalp, volume};
-  Polylines lines;
+  Curves lines;
   std::vector<Vec3> points;
   CurveLayer curves;
   curves.curves = &lines;
@@ -215,7 +204,7 @@ Image render_stage(const std::string& stage, const Scene& scene, const Inputs& i
       const Vec3 t = ticks.directions[i] - ticks.directions[i].dot(ticks.normals[i]) * ticks.normals[i];
       if (t.norm() < 1e-9) continue;
       const Vec3 base = ticks.positions[i] + 0.05 * ticks.normals[i];
-      lines.push_back({base, base + 1.0 * t.normalized()});
+      lines.add({base, base + 1.0 * t.normalized()});
     }
     curves.hair_shading = false;
     curves.color = Color{0.95f, 0.95f, 0.95f};
@@ -225,24 +214,24 @@ Image render_stage(const std::string& stage, const Scene& scene, const Inputs& i
                     std::to_string(values.clusters->size()) + " guides";
   } else if (stage == "preguides") {
     for (const PreGuide& g : values.preguides->items) {
-      lines.push_back(g.shape.nodes);
+      lines.add(g.shape.nodes);
       curves.color_ids.push_back(g.reached ? 2 : 0);
     }
     curves.width = 2.0;
     drawing.curves.push_back(curves);
     drawing.title = "pre-guides: " + std::to_string(values.preguides->size());
   } else if (stage == "guides") {
-    lines = polylines(values.guides->curves());
-    for (std::size_t c = 0; c < lines.size(); ++c) curves.color_ids.push_back(static_cast<int>(c));
+    lines = values.guides->curves();
+    for (std::size_t c = 0; c < lines.count(); ++c) curves.color_ids.push_back(static_cast<int>(c));
     curves.width = 1.5;
     drawing.curves.push_back(curves);
     drawing.title = "guides: " + std::to_string(values.guides->size());
   } else if (stage == "strands") {
-    lines = polylines(values.strands->fibres);
+    curves.curves = &values.strands->fibres;  // drawn where they are
     drawing.meshes.pop_back();  // the hair hides the volume's outline
     curves.width = 1.0;
     drawing.curves.push_back(curves);
-    drawing.title = "strands: " + std::to_string(lines.size()) + " fibres";
+    drawing.title = "strands: " + std::to_string(values.strands->fibres.count()) + " fibres";
   }
   const int width_3d = stage == "roots" ? width / 2 : width;
   const auto [lo, hi] = drawing_bounds(drawing);

@@ -167,8 +167,7 @@ std::pair<Vec3, Vec3> drawing_bounds(const Drawing3D& drawing) {
           if (t[k] >= 0 && t[k] < static_cast<int>(m.mesh->positions.size())) add(m.mesh->positions[t[k]]);
   for (const CurveLayer& c : drawing.curves)
     if (c.curves)
-      for (const auto& curve : *c.curves)
-        for (const Vec3& p : curve) add(p);
+      for (const Vec3& p : c.curves->points) add(p);
   for (const PointLayer& p : drawing.points)
     if (p.points)
       for (const Vec3& q : *p.points) add(q);
@@ -181,9 +180,9 @@ Image render_3d(const Drawing3D& drawing, const Camera& camera, const RenderOpti
   for (const MeshLayer& m : drawing.meshes) check_mesh(m);
   for (const CurveLayer& c : drawing.curves) {
     if (!c.curves) throw std::invalid_argument("render_3d: curve layer without curves");
-    if (!c.color_ids.empty() && c.color_ids.size() != c.curves->size())
+    if (!c.color_ids.empty() && c.color_ids.size() != c.curves->count())
       throw std::invalid_argument("render_3d: curve layer has " + std::to_string(c.color_ids.size()) +
-                                  " colour ids for " + std::to_string(c.curves->size()) + " curves");
+                                  " colour ids for " + std::to_string(c.curves->count()) + " curves");
   }
   for (const PointLayer& p : drawing.points) {
     if (!p.points) throw std::invalid_argument("render_3d: point layer without points");
@@ -348,19 +347,18 @@ Image render_3d(const Drawing3D& drawing, const Camera& camera, const RenderOpti
   std::vector<std::pair<int, int>> curve_ref;
   std::size_t vertex_total = 0;
   for (std::size_t li = 0; li < drawing.curves.size(); ++li)
-    for (std::size_t c = 0; c < drawing.curves[li].curves->size(); ++c) {
+    for (std::size_t c = 0; c < drawing.curves[li].curves->count(); ++c) {
       first_vertex.push_back(vertex_total);
       curve_ref.emplace_back(static_cast<int>(li), static_cast<int>(c));
-      vertex_total += (*drawing.curves[li].curves)[c].size();
+      vertex_total += drawing.curves[li].curves->size(c);
     }
   // Depth range of all curve points, for depth cueing.
   float z_near = kFar, z_far = -kFar;
   for (const CurveLayer& layer : drawing.curves)
-    for (const auto& curve : *layer.curves)
-      for (const Vec3& p : curve) {
-        const float z = static_cast<float>((p - camera.centre).dot(camera.forward));
-        if (std::isfinite(z)) z_near = std::min(z_near, z), z_far = std::max(z_far, z);
-      }
+    for (const Vec3& p : layer.curves->points) {
+      const float z = static_cast<float>((p - camera.centre).dot(camera.forward));
+      if (std::isfinite(z)) z_near = std::min(z_near, z), z_far = std::max(z_far, z);
+    }
   const float z_span = z_far > z_near ? z_far - z_near : 1.0f;
   CurveVertices cv;
   cv.screen.resize(vertex_total);
@@ -368,11 +366,11 @@ Image render_3d(const Drawing3D& drawing, const Camera& camera, const RenderOpti
   parallel_for(static_cast<int>(curve_ref.size()), threads, [&](int item) {
     const CurveLayer& layer = drawing.curves[curve_ref[item].first];
     const int c = curve_ref[item].second;
-    const std::vector<Vec3>& curve = (*layer.curves)[c];
+    const Vec3* curve = layer.curves->points.data() + layer.curves->offsets[c];
     Color base = layer.color_ids.empty() ? layer.color : palette_color(layer.color_ids[c]);
     // Neighbouring fibres differ a little in tone, which is what makes a mass of lines read as hair.
     base = scale(base, 1.0f + layer.variation * (hash_unit(static_cast<std::uint32_t>(c)) - 0.5f));
-    const int n = static_cast<int>(curve.size());
+    const int n = static_cast<int>(layer.curves->size(c));
     for (int k = 0; k < n; ++k) {
       const std::size_t v = first_vertex[item] + k;
       cv.screen[v] = camera.project(curve[k]);
@@ -391,7 +389,7 @@ Image render_3d(const Drawing3D& drawing, const Camera& camera, const RenderOpti
   for (std::size_t item = 0; item < curve_ref.size(); ++item) {
     const CurveLayer& layer = drawing.curves[curve_ref[item].first];
     const double h = layer.width + 1.0;
-    const int n = static_cast<int>((*layer.curves)[curve_ref[item].second].size());
+    const int n = static_cast<int>(layer.curves->size(curve_ref[item].second));
     for (int k = 0; k + 1 < n; ++k) {
       const int v = static_cast<int>(first_vertex[item]) + k;
       const Vec3 &a = cv.screen[v], &b = cv.screen[v + 1];

@@ -8,14 +8,13 @@
 #include <utility>
 #include <vector>
 
+#include "core/curves.h"
 #include "core/mesh.h"
 #include "io/png_image.h"
 #include "render/camera.h"
 #include "render/color.h"
 
 namespace hairfit {
-
-using Polylines = std::vector<std::vector<Vec3>>;
 
 enum class MeshStyle {
   shaded,      // opaque, smooth two-sided Lambert shading, z-buffered (the scalp)
@@ -32,7 +31,7 @@ struct MeshLayer {
 };
 
 struct CurveLayer {
-  const Polylines* curves = nullptr;  // world positions; curves with < 2 points are skipped
+  const Curves* curves = nullptr;     // world positions; curves with < 2 points are skipped
   std::vector<int> color_ids;         // one palette id per curve (guide or cluster), or empty
   Color color{0.50f, 0.33f, 0.19f};   // base colour when color_ids is empty (a mid brown)
   double width = 1.0;                 // output pixels

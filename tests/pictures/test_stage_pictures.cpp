@@ -62,13 +62,10 @@ TEST_CASE("the strands' pixels fall inside the projected silhouette of the hair 
   // Draw the volume alone, opaque, and the strands alone, with the same camera: every pixel the
   // strands cover must be covered by the volume too (≥ 99 %; the rest are fibres cut past the rim).
   const Curves& fibres = s.result.values.strands->fibres;
-  Polylines lines(fibres.count());
-  for (std::size_t c = 0; c < fibres.count(); ++c)
-    lines[c].assign(fibres.points.begin() + fibres.offsets[c], fibres.points.begin() + fibres.offsets[c + 1]);
   Drawing3D volume_only, strands_only;
   volume_only.meshes.push_back(MeshLayer{&s.inputs.volume.mesh});
   CurveLayer curves;
-  curves.curves = &lines;
+  curves.curves = &fibres;
   curves.hair_shading = false;
   strands_only.curves.push_back(curves);
   const auto [lo, hi] = drawing_bounds(volume_only);

@@ -41,7 +41,14 @@ RenderOptions black_background() {
   return o;
 }
 
-CurveLayer flat_curves(const Polylines* curves, const Color& color) {
+// Curves from point lists, for the tests' drawings.
+Curves curves_of(const std::vector<std::vector<Vec3>>& lines) {
+  Curves c;
+  for (const std::vector<Vec3>& line : lines) c.add(line);
+  return c;
+}
+
+CurveLayer flat_curves(const Curves* curves, const Color& color) {
   CurveLayer layer;
   layer.curves = curves;
   layer.color = color;
@@ -201,8 +208,8 @@ TEST_CASE("anti-aliased lines deposit width × length in coverage, at any angle 
         // The same through the 3D renderer (a flat white curve in the plane z = 0), split in two
         // segments: the joint must not add or lose coverage.
         const Vec2 m = 0.5 * (a + b) + Vec2(0.01, 0.0);
-        const Polylines curves{{Vec3(a.x() - 100, 80 - a.y(), 0), Vec3(m.x() - 100, 80 - m.y(), 0),
-                                Vec3(b.x() - 100, 80 - b.y(), 0)}};
+        const Curves curves = curves_of({{Vec3(a.x() - 100, 80 - a.y(), 0), Vec3(m.x() - 100, 80 - m.y(), 0),
+                                          Vec3(b.x() - 100, 80 - b.y(), 0)}});
         Drawing3D d;
         d.curves.push_back(flat_curves(&curves, {1, 1, 1}));
         d.curves[0].width = width;
@@ -220,7 +227,7 @@ TEST_CASE("a near curve hides a far one, whatever the drawing order") {
   const std::vector<Vec3> near_curve{Vec3(-50, 0, 5), Vec3(50, 0, 5)};
   const std::vector<Vec3> far_curve{Vec3(0, -50, -5), Vec3(0, 50, -5)};
   for (int order = 0; order < 2; ++order) {
-    const Polylines curves = order ? Polylines{far_curve, near_curve} : Polylines{near_curve, far_curve};
+    const Curves curves = order ? curves_of({far_curve, near_curve}) : curves_of({near_curve, far_curve});
     CurveLayer layer = flat_curves(&curves, {0, 0, 0});
     layer.color_ids = order ? std::vector<int>{2, 4} : std::vector<int>{4, 2};  // near: palette 4 (green)
     layer.width = 3.0;
@@ -314,7 +321,7 @@ TEST_CASE("heat map colours follow the data") {
 TEST_CASE("same inputs give byte-identical PNGs, on 1 or 2 threads") {
   const Mesh head = uv_sphere(Vec3::Zero(), 8.0, 24, 48);
   const Mesh shell = uv_sphere(Vec3(0, -2, 0), 12.0, 16, 32);
-  Polylines curves;
+  Curves curves;
   std::vector<int> ids;
   for (int s = 0; s < 400; ++s) {
     std::vector<Vec3> curve;
@@ -322,11 +329,11 @@ TEST_CASE("same inputs give byte-identical PNGs, on 1 or 2 threads") {
     for (int k = 0; k < 16; ++k)
       curve.push_back(Vec3((8.2 + 0.2 * k) * std::cos(phi), 6.0 - 0.9 * k, (8.2 + 0.2 * k) * std::sin(phi)) +
                       0.5 * Vec3(std::sin(k + s), 0, std::cos(k + s)));
-    curves.push_back(curve);
+    curves.add(curve);
     ids.push_back(s % 13);
   }
   std::vector<Vec3> roots;
-  for (const auto& c : curves) roots.push_back(c.front());
+  for (std::size_t c = 0; c < curves.count(); ++c) roots.push_back(curves.point(c, 0));
   Drawing3D d;
   d.meshes.push_back({&head, MeshStyle::shaded});
   MeshLayer volume;
