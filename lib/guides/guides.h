@@ -84,9 +84,9 @@ Guides make_guides(const RootSet& bases, const PreGuides& preguides, const Bound
                    const Exec& exec = {});
 
 // With a density model (paper §3.5, docs/design.md §6): guides in index order, in batches of
-// density.batch; each batch is optimised in parallel (options.threads) with the F4 term against
+// density.batch; each batch is optimised in parallel (exec.threads) with the F4 term against
 // the frozen density of all earlier batches (each guide continued from its solve without F4, and
-// DensityTermOptions::outside set to the batch's density_ceiling), then its guides deposit into
+// GuideTargets::density_ceiling the batch's density_ceiling), then its guides deposit into
 // the grid in index order (grow_guide_fibres for CDM, guide_tube for BOM). Byte-identical for any thread count.
 // `density` is the grid after the last batch (BOM occupancy 0/1, CDM cell diagonals).
 struct DensityGuides {
