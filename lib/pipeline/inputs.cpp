@@ -155,7 +155,7 @@ Inputs load_inputs(const Scene& scene, int threads) {
   // What later stages would refuse for its size, refused now, before anything is written.
   require_field_fits(in.scalp.mesh, field_spec(scene, scalp_file));
   require_field_fits(in.volume.mesh, field_spec(scene, volume_file));
-  if (density_declared(scene)) density_geometry(scene, in.volume.mesh);
+  if (density_declared(scene)) density_geometry(density_grid_spec(scene), in.volume.mesh);
   return in;
 }
 

@@ -38,16 +38,17 @@ namespace {
 class Runner {
  public:
   Runner(const Scene& scene, const Inputs& inputs, const RunOptions& options)
-      : scene_(scene), options_(options), run_(scene, inputs, options, result_.values, result_.report.outputs) {
+      : scene_(scene), options_(options), run_(inputs, options, result_.values, result_.report.outputs) {
     result_.report.scene = scene.file.string();
     result_.report.seed = scene.seed;
     result_.report.threads = options.threads;
     result_.report.effects = scene.effects.names();
+    const std::vector<ConfiguredStage> stages = configure_stages(scene);
     if (!options.cache_dir.empty()) {
       cache_.emplace(options.cache_dir);
-      keys_ = stage_keys(scene, inputs);
+      keys_ = stage_keys(stages, inputs);
     }
-    for (const StageDeclaration& d : stage_declarations(scene)) cached_[d.name] = d.cached;
+    for (const ConfiguredStage& c : stages) configured_.emplace(c.name, c);
   }
 
   PipelineResult run() {
@@ -65,17 +66,18 @@ class Runner {
     StageReport stage;
     stage.name = descriptor.name;
     const StageMeter meter;
-    const bool cacheable = cache_ && cached_.at(stage.name);
+    const ConfiguredStage& configured = configured_.at(stage.name);
+    const bool cacheable = cache_ && configured.cached;
     if (!(cacheable && load_cached(descriptor, stage))) {
       if (progress())
         progress()->stage_begins(stage.name, descriptor.loop_items ? descriptor.loop_items(result_.values) : 0);
-      descriptor.compute(run_, stage);
+      configured.compute(run_, stage);
       if (cacheable) {
         await_digest(stage);
         store(descriptor, stage);
       }
     }
-    if (options_.write_outputs) descriptor.write(run_);
+    if (options_.write_outputs) descriptor.write(run_, scene_);
     await_digest(stage);
     stage.seconds = meter.seconds();
     stage.cpu_seconds = meter.cpu_seconds();
@@ -162,7 +164,7 @@ class Runner {
   StageRun run_;  // after result_: it holds references into it
   std::optional<StageCache> cache_;
   std::map<std::string, std::string> keys_;
-  std::map<std::string, bool> cached_;
+  std::map<std::string, ConfiguredStage> configured_;  // each present stage, configured from the scene
 };
 
 }  // namespace

@@ -1,6 +1,7 @@
-// One stage of the pipeline as a descriptor: what it reads (and so what invalidates its cache
-// entry), how it computes its value from the scene and the earlier stages' values, how that value
-// is stored in the cache, and which files it writes. Each stage's descriptor lives in its own file
+// One stage of the pipeline as a descriptor: its options, built from the scene in one function
+// (and so what invalidates its cache entry: the key hashes those options, encoded), how it
+// computes its value from them and the earlier stages' values, how that value is stored in the
+// cache, and which files it writes. Each stage's descriptor lives in its own file
 // (stage_fields.cpp … stage_density.cpp); the pipeline is the table of them (stage_table).
 #pragma once
 #include <array>
@@ -16,20 +17,22 @@
 #include "io/nrrd.h"
 #include "pipeline/byte_stream.h"
 #include "pipeline/pipeline.h"
+#include "pipeline/stage_options.h"
 #include "pipeline/stage_plan.h"
+#include "pipeline/options_codec.h"
 #include "scalp/shell_hair.h"
 
 namespace hairfit {
 
-// What a stage sees while it runs: the scene, the inputs, the run's options, the values of the
-// stages before it (its own goes in `values` too), and what stages hand on within one run.
+// What a stage sees while it computes: the inputs, the run's options, the values of the stages
+// before it (its own goes in `values` too), and what stages hand on within one run. Not the
+// scene: a stage reads that only through its options (ConfiguredStage).
 class StageRun {
  public:
-  StageRun(const Scene& run_scene, const Inputs& run_inputs, const RunOptions& run_options, StageValues& run_values,
+  StageRun(const Inputs& run_inputs, const RunOptions& run_options, StageValues& run_values,
            std::vector<OutputFile>& outputs)
-      : scene(run_scene), inputs(run_inputs), options(run_options), values(run_values), outputs_(outputs) {}
+      : inputs(run_inputs), options(run_options), values(run_values), outputs_(outputs) {}
 
-  const Scene& scene;
   const Inputs& inputs;
   const RunOptions& options;
   StageValues& values;
@@ -50,13 +53,14 @@ class StageRun {
   Pores pores() const;        // one fibre per pore, grown along its cluster's guide (roots, chart)
   // The roots' options and inputs with what they read from the fields and the hull: the grey
   // maps, the layer's thickness, the hull's grain, and the length and tilt of hair that suits its
-  // shell. Worked out once a run, for the roots and for pre-guides that follow the growth field.
+  // shell. Worked out once a run (the roots and the pre-guides that follow the growth field hand
+  // in the same settings, both built by root_settings from the run's scene).
   struct ResolvedRoots {
     RootOptions options;
     RootInputs inputs;
     ShellHair shell;
   };
-  const ResolvedRoots& resolved_roots();
+  const ResolvedRoots& resolved_roots(const RootSettings& settings);
 
   // Handed on within one run, never cached; results do not depend on them.
   // The stage's digest when it is hashed on a thread of its own beside its files.
@@ -75,21 +79,36 @@ class StageRun {
 
 struct StageDescriptor {
   const char* name;
-  // What the stage reads (scene keys, input files, earlier stages): its cache key
-  // (stage_declarations names it).
-  StageDeclaration (*declare)(const Scene& scene);
+  // Bump when the stage's values change for the same options and inputs (a new algorithm, a
+  // fixed bug), so caches made by earlier code miss. (The cache also keys on the source
+  // fingerprint; this is the stated reason.)
+  int version;
   // Whether the scene has the stage at all (null: always).
   bool (*present)(const Scene& scene);
+  // The stage's options from the scene, with what it reads beside them and its compute bound to
+  // them (configured()).
+  ConfiguredStage (*configure)(const Scene& scene);
   // Its loop's length for the progress bar (null: none worth showing).
   std::size_t (*loop_items)(const StageValues& values);
-  // Computes the value into run.values, with its digest and figures.
-  void (*compute)(StageRun& run, StageReport& report);
   // The value in and out of a cache entry.
   void (*encode)(ByteWriter& out, const StageValues& values);
   void (*decode)(ByteReader& in, StageValues& values);
-  // The stage's files, from run.values (computed or cached).
-  void (*write)(StageRun& run);
+  // The stage's files, from run.values (computed or cached) and the scene's output keys. Files are
+  // written on every run, so they may read the scene beyond the options.
+  void (*write)(StageRun& run, const Scene& scene);
 };
+
+// A stage configured with `options`: the key hashes their encoding (options_codec.h) and the
+// stage computes with exactly that value, `compute(run, options, report)`.
+template <class Options>
+ConfiguredStage configured(Options options, void (*compute)(StageRun&, const Options&, StageReport&)) {
+  ConfiguredStage c;
+  ByteWriter bytes;
+  encode(bytes, options);
+  c.options = bytes.take();
+  c.compute = [o = std::move(options), compute](StageRun& run, StageReport& report) { compute(run, o, report); };
+  return c;
+}
 
 // The stages in order.
 const std::vector<const StageDescriptor*>& stage_table();
@@ -101,13 +120,6 @@ const StageDescriptor& preguides_stage();
 const StageDescriptor& guides_stage();
 const StageDescriptor& strands_stage();
 const StageDescriptor& density_stage();
-
-// Parts of declarations that several stages share.
-// The rod's material and discretisation (stage_options.cpp hair_material, rod_discretisation);
-// weight only with gravity, the support only with contact.
-void declare_rod_reads(const Scene& scene, StageDeclaration& d);
-// strand_options() and wisp_shape(): winding and cutting parameters only when those effects are on.
-void declare_strand_reads(const Scene& scene, StageDeclaration& d);
 
 // Diameters along a fibre: a hair of section A at the root, tapering to half at the tip.
 void add_fibre_widths(Curves& curves, double cross_section, int threads);

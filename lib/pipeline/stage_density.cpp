@@ -13,20 +13,21 @@ namespace hairfit {
 
 namespace {
 
-StageDeclaration declare(const Scene&) {
-  StageDeclaration d;
-  d.reads = {"effects.density", "density.voxel", "fields.max_memory", "units.down", "units.front"};
-  d.files = {"volume"};
-  d.consumes = {"fields", "strands"};
-  d.cached = false;  // as the strands it is made from
-  return d;
+// The model the scene declares (a figure: every model is measured the same way) and the grid.
+struct DensityOptions {
+  DensityModel model = DensityModel::none;
+  DensityGridSpec grid;
+};
+
+void encode(ByteWriter& out, const DensityOptions& o) {
+  out.put(o.model);
+  encode(out, o.grid);
 }
 
-void compute(StageRun& run, StageReport& stage) {
-  const Scene& scene = run.scene;
+void compute(StageRun& run, const DensityOptions& o, StageReport& stage) {
   const int threads = run.options.threads;
   StageValues& v = run.values;
-  const GridGeometry grid = density_geometry(scene, run.inputs.volume.mesh);
+  const GridGeometry grid = density_geometry(o.grid, run.inputs.volume.mesh);
   DensityAccumulator accumulator(grid);
   std::vector<std::int32_t> segment_counts;  // the histogram's, from the deposit's traversal
   accumulator.add_fibres(v.strands->fibres, threads, &segment_counts);
@@ -61,7 +62,7 @@ void compute(StageRun& run, StageReport& stage) {
       }
   });
   const DensityStatistics s = density_statistics(*v.fibre_density, in_region);
-  stage.add("model", scene.effects.density == DensityModel::binary ? std::string("binary") : std::string("continuous"));
+  stage.add("model", o.model == DensityModel::binary ? std::string("binary") : std::string("continuous"));
   stage.add("voxel_cm", grid.voxel);
   stage.add("grid", std::to_string(grid.dims.x()) + "x" + std::to_string(grid.dims.y()) + "x" + std::to_string(grid.dims.z()));
   stage.add("region_cells", s.region_cells);
@@ -79,10 +80,17 @@ void decode_value(ByteReader& in, StageValues& v) {
   v.fibre_density = std::make_shared<const DensityGrid>(decode_density_grid(in));
 }
 
-void write(StageRun& run) {
-  const Scene& scene = run.scene;
+ConfiguredStage configure(const Scene& scene) {
+  ConfiguredStage c = configured(DensityOptions{scene.effects.density, density_grid_spec(scene)}, compute);
+  c.files = {"volume"};
+  c.consumes = {"fields", "strands"};
+  c.cached = false;  // as the strands it is made from
+  return c;
+}
+
+void write(StageRun& run, const Scene& scene) {
   if (!run.histogram)  // a cached stage: recomputed from the fibres rather than stored
-    run.histogram = segment_histogram_of_curves(density_geometry(scene, run.inputs.volume.mesh),
+    run.histogram = segment_histogram_of_curves(run.values.fibre_density->geometry(),
                                                 run.values.strands->fibres, run.options.threads);
   run.output("density/histogram.csv",
              [&](const std::filesystem::path& p) { write_text_file_atomically(p, histogram_csv(*run.histogram)); });
@@ -97,7 +105,7 @@ void write(StageRun& run) {
 }  // namespace
 
 const StageDescriptor& density_stage() {
-  static const StageDescriptor d{"density", declare, density_declared, nullptr, compute, encode_value, decode_value, write};
+  static const StageDescriptor d{"density", 1, density_declared, configure, nullptr, encode_value, decode_value, write};
   return d;
 }
 

@@ -10,15 +10,17 @@ namespace hairfit {
 
 namespace {
 
-StageDeclaration declare(const Scene&) {
-  StageDeclaration d;
-  d.reads = {"fields"};  // field_spec()
-  d.files = {"scalp", "volume"};
-  return d;
+// The grids of the scalp's and the volume's fields.
+struct FieldsOptions {
+  FieldSpec scalp, volume;
+};
+
+void encode(ByteWriter& out, const FieldsOptions& o) {
+  encode(out, o.scalp);
+  encode(out, o.volume);
 }
 
-void compute(StageRun& run, StageReport& stage) {
-  const Scene& scene = run.scene;
+void compute(StageRun& run, const FieldsOptions& o, StageReport& stage) {
   const Inputs& inputs = run.inputs;
   const int threads = run.options.threads;
   StageValues& v = run.values;
@@ -28,7 +30,7 @@ void compute(StageRun& run, StageReport& stage) {
   const FastWindingNumber head_winding(head, HairRegion::kFirstBeta, threads);
   const InsideTest inside_head = [&head_winding](const Vec3& p) { return winding_above_half(head_winding, p); };
   v.scalp_field = std::make_shared<const DistanceField>(
-      make_distance_field(head, field_spec(scene, scene.inputs.scalp.string()), threads, inside_head));
+      make_distance_field(head, o.scalp, threads, inside_head));
   // The volume's inside is the region's (HairRegion) together with the head, so that its field
   // keeps its sign across the scalp, as a prepared volume's floor under the scalp makes it: the
   // acceptable region, inside the volume and not behind the scalp, is the region's shell.
@@ -36,7 +38,7 @@ void compute(StageRun& run, StageReport& stage) {
   const DistanceField& scalp = *v.scalp_field;
   const InsideTest inside_volume = [&region, &scalp](const Vec3& p) { return scalp.value(p) < 0.0 || region.inside_hull(p); };
   v.volume_field = std::make_shared<const DistanceField>(
-      make_distance_field(inputs.volume.mesh, field_spec(scene, scene.inputs.volume.string()), threads, inside_volume));
+      make_distance_field(inputs.volume.mesh, o.volume, threads, inside_volume));
   Digest d;
   std::array<NrrdVolume, 2> volumes{field_to_nrrd(*v.scalp_field, threads), field_to_nrrd(*v.volume_field, threads)};
   for (const NrrdVolume& volume : volumes) d.add_bytes(volume.data.data(), volume.data.size() * sizeof(float));
@@ -45,7 +47,7 @@ void compute(StageRun& run, StageReport& stage) {
   auto grid = [](const DistanceField& f) {
     return std::to_string(f.dims().x()) + "x" + std::to_string(f.dims().y()) + "x" + std::to_string(f.dims().z());
   };
-  stage.add("voxel_cm", scene.fields.voxel);
+  stage.add("voxel_cm", o.volume.voxel);
   stage.add("scalp_grid", grid(*v.scalp_field));
   stage.add("volume_grid", grid(*v.volume_field));
   stage.add("band_voxels", static_cast<std::int64_t>(v.scalp_field->band_voxels() + v.volume_field->band_voxels()));
@@ -72,7 +74,15 @@ void decode_value(ByteReader& in, StageValues& v) {
   v.volume_field = std::make_shared<const DistanceField>(decode_distance_field(in));
 }
 
-void write(StageRun& run) {
+ConfiguredStage configure(const Scene& scene) {
+  ConfiguredStage c = configured(FieldsOptions{field_spec(scene, scene.inputs.scalp.string()),
+                                               field_spec(scene, scene.inputs.volume.string())},
+                                 compute);
+  c.files = {"scalp", "volume"};
+  return c;
+}
+
+void write(StageRun& run, const Scene&) {
   const StageValues& v = run.values;
   const int threads = run.options.threads;
   if (!run.field_volumes)  // a cached stage: converted again rather than stored
@@ -85,7 +95,7 @@ void write(StageRun& run) {
 }  // namespace
 
 const StageDescriptor& fields_stage() {
-  static const StageDescriptor d{"fields", declare, nullptr, nullptr, compute, encode_value, decode_value, write};
+  static const StageDescriptor d{"fields", 1, nullptr, configure, nullptr, encode_value, decode_value, write};
   return d;
 }
 

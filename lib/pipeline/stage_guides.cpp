@@ -12,28 +12,26 @@ namespace hairfit {
 
 namespace {
 
-StageDeclaration declare(const Scene& scene) {
-  StageDeclaration d;
-  declare_rod_reads(scene, d);
-  d.reads.insert(d.reads.end(), {"guides", "effects.density"});  // guide_options()
-  d.consumes = {"fields", "roots", "preguides"};
-  if (density_declared(scene)) {  // guide_density_options(): the batches, the grid, the wisps they deposit
-    d.reads.insert(d.reads.end(), {"density", "fields.max_memory"});
-    declare_strand_reads(scene, d);
-    d.files.push_back("volume");
-  }
-  return d;
+// The guides' options, and with a density model the batches, the grid and the wisps they deposit.
+struct GuidesOptions {
+  GuideOptions guides;
+  std::optional<GuideDensitySettings> density;
+};
+
+void encode(ByteWriter& out, const GuidesOptions& o) {
+  encode(out, o.guides);
+  out.put<std::uint8_t>(o.density.has_value());
+  if (o.density) encode(out, *o.density);
 }
 
 std::size_t loop_items(const StageValues& v) { return v.clusters->size(); }
 
-void compute(StageRun& run, StageReport& stage) {
-  const Scene& scene = run.scene;
+void compute(StageRun& run, const GuidesOptions& options, StageReport& stage) {
   StageValues& v = run.values;
-  const GuideOptions o = guide_options(scene);
+  const GuideOptions& o = options.guides;
   Digest density_digest;
-  if (density_declared(scene)) {
-    const GuideDensityOptions d = guide_density_options(scene, density_geometry(scene, run.inputs.volume.mesh), run.pores());
+  if (options.density) {
+    const GuideDensityOptions d = guide_density_options(*options.density, run.inputs.volume.mesh, run.pores());
     DensityGuides result = make_guides_with_density(v.clusters->bases, *v.preguides, run.boundary(), o, d, run.exec());
     v.guides = std::make_shared<const Guides>(std::move(result.guides));
     v.guide_density = std::make_shared<const DensityGrid>(std::move(result.density));
@@ -47,9 +45,9 @@ void compute(StageRun& run, StageReport& stage) {
   } else {
     v.guides = std::make_shared<const Guides>(make_guides(v.clusters->bases, *v.preguides, run.boundary(), o, run.exec()));
   }
-  stage.digest = density_declared(scene) ? Digest().add(digest(*v.guides).hex()).add(density_digest.hex()).hex()
+  stage.digest = options.density ? Digest().add(digest(*v.guides).hex()).add(density_digest.hex()).hex()
                                          : digest(*v.guides).hex();
-  const GuideFigures f = guide_figures(*v.guides, *v.preguides, run.boundary(), o, scene.fields.voxel);
+  const GuideFigures f = guide_figures(*v.guides, *v.preguides, run.boundary(), o, v.volume_field->voxel());
   stage.add("guides", static_cast<std::int64_t>(f.guides));
   stage.add("failures", static_cast<std::int64_t>(f.failures));
   stage.add("mean_iterations", f.mean_iterations);
@@ -65,12 +63,12 @@ void compute(StageRun& run, StageReport& stage) {
   stage.add("max_weight", f.max_weight);
   stage.add("unresolved_weight", static_cast<std::int64_t>(f.unresolved_weight));
   stage.add("shorter_than_voxel", static_cast<std::int64_t>(f.shorter_than_voxel));
-  if (scene.effects.contact) {
+  if (o.material.contact.active()) {
     stage.add("max_contact_force", f.max_contact_force);
     stage.add("contact_share", f.contact_share);
     stage.add("guides_in_contact", static_cast<std::int64_t>(f.guides_in_contact));
   }
-  stage.add("start", scene.guides.start);
+  stage.add("start", std::string(o.warm_start ? "warm" : "straight"));
   FlowCrossingOptions flow;
   flow.threads = run.options.threads;
   const FlowCrossing crossing = flow_crossing(v.guides->curves(), flow);
@@ -90,7 +88,17 @@ void decode_value(ByteReader& in, StageValues& v) {
   if (in.get<std::uint8_t>()) v.guide_density = std::make_shared<const DensityGrid>(decode_density_grid(in));
 }
 
-void write(StageRun& run) {
+ConfiguredStage configure(const Scene& scene) {
+  GuidesOptions o{guide_options(scene), std::nullopt};
+  if (density_declared(scene)) o.density = guide_density_settings(scene);
+  const bool density = o.density.has_value();
+  ConfiguredStage c = configured(std::move(o), compute);
+  c.consumes = {"fields", "roots", "preguides"};
+  if (density) c.files = {"volume"};  // the density grid spans the hull
+  return c;
+}
+
+void write(StageRun& run, const Scene&) {
   const Guides& guides = *run.values.guides;
   run.output("guides.obj", [&](const std::filesystem::path& p) { write_obj_curves(p, guides.curves(), run.options.threads); });
   run.output("guides.csv", [&](const std::filesystem::path& p) { write_guides_csv(p, guides); });
@@ -99,7 +107,7 @@ void write(StageRun& run) {
 }  // namespace
 
 const StageDescriptor& guides_stage() {
-  static const StageDescriptor d{"guides", declare, nullptr, loop_items, compute, encode_value, decode_value, write};
+  static const StageDescriptor d{"guides", 1, nullptr, configure, loop_items, encode_value, decode_value, write};
   return d;
 }
 

@@ -12,28 +12,44 @@ FieldSpec field_spec(const Scene& scene, const std::string& mesh_name) {
   return spec;
 }
 
-RootOptions root_options(const Scene& scene, int threads) {
-  RootOptions o;
+RootSettings root_settings(const Scene& scene) {
+  RootSettings s;
+  RootOptions& o = s.options;
   o.density = scene.hair.density;
   o.tilt = scene.hair.tilt;
-  o.tilt_range = scene.hair.tilt_range;
+  if (scene.effects.uses_map("tilt")) o.tilt_range = scene.hair.tilt_range;
   o.tilt_toward = scene.hair.tilt_toward == "thicker" ? TiltToward::thicker : TiltToward::down;
   o.flow = scene.hair.flow == "field" ? FlowModel::field : scene.hair.flow == "relief" ? FlowModel::relief : FlowModel::local;
-  o.flow_smoothing = scene.hair.flow_smoothing;
-  o.swirl = scene.hair.swirl;
-  o.whorl = Vec2(scene.hair.whorl[0], scene.hair.whorl[1]);
-  o.whorl_radius = scene.hair.whorl_radius;
-  o.parting = Vec2(scene.hair.parting[0], scene.hair.parting[1]);
-  o.parting_radius = scene.hair.parting_radius;
+  if (o.flow != FlowModel::local) {  // the growth field's guidance
+    o.flow_smoothing = scene.hair.flow_smoothing;
+    o.swirl = scene.hair.swirl;
+    o.whorl = Vec2(scene.hair.whorl[0], scene.hair.whorl[1]);
+    o.whorl_radius = scene.hair.whorl_radius;
+    o.parting = Vec2(scene.hair.parting[0], scene.hair.parting[1]);
+    o.parting_radius = scene.hair.parting_radius;
+  }
   o.length = scene.hair.length;
-  o.length_range = scene.hair.length_range;
+  if (scene.effects.uses_map("length")) o.length_range = scene.hair.length_range;
   o.guides = scene.roots.guides;
   o.preguide_spacing = scene.roots.preguide_spacing;
   o.cluster_overlap = scene.roots.cluster_overlap;
   o.seed = static_cast<std::uint64_t>(scene.seed);
-  o.threads = threads;
-  return o;
+  for (const char* map : {"density", "tilt", "length"})
+    if (scene.effects.uses_map(map)) s.maps.push_back(map);
+  s.from_shell = scene.hair.from_shell;
+  if (o.flow == FlowModel::relief) s.relief_radius = scene.hair.relief_radius;
+  return s;
 }
+
+std::vector<std::string> root_files(const RootSettings& s) {
+  std::vector<std::string> files;
+  for (const std::string& map : s.maps) files.push_back(map + " map");
+  if (s.options.flow == FlowModel::relief) files.push_back("volume");  // the hull's grain
+  return files;
+}
+
+// Tilting toward the thicker layer, and hair that suits its shell, read the volume's field.
+bool roots_read_fields(const RootSettings& s) { return s.options.tilt_toward == TiltToward::thicker || s.from_shell; }
 
 ThicknessField layer_thickness(const DistanceField& volume) {
   return [&volume](const Vec3& p) {
@@ -52,8 +68,10 @@ HairMaterial hair_material(const Scene& scene) {
   m.youngs_modulus = scene.hair.youngs_modulus;
   m.shear_modulus = scene.hair.shear_modulus;
   m.cross_section = scene.hair.cross_section;
-  m.mass_density = scene.hair.mass_density;
-  m.gravity = scene.effects.gravity ? Vec3(scene.rod.gravity * scene.units.down) : Vec3::Zero();
+  if (scene.effects.gravity) {
+    m.mass_density = scene.hair.mass_density;
+    m.gravity = scene.rod.gravity * scene.units.down;
+  }
   if (scene.effects.contact) m.contact = ContactLaw{scene.contact.stiffness, scene.contact.layer};
   return m;
 }
@@ -108,29 +126,43 @@ StrandOptions strand_options(const Scene& scene) {
   StrandOptions o;
   o.wisp = wisp_shape(scene);
   o.cutting = scene.effects.cutting;
-  o.cut_threshold = scene.strands.cut_threshold;
-  o.cut_tips = scene.strands.cut_tips;
+  if (o.cutting) {
+    o.cut_threshold = scene.strands.cut_threshold;
+    o.cut_tips = scene.strands.cut_tips;
+  }
   return o;
 }
 
 bool density_declared(const Scene& scene) { return scene.effects.density != DensityModel::none; }
 
-GridGeometry density_geometry(const Scene& scene, const Mesh& volume) {
+DensityGridSpec density_grid_spec(const Scene& scene) { return DensityGridSpec{scene.density.voxel, scene.fields.max_memory}; }
+
+GridGeometry density_geometry(const DensityGridSpec& spec, const Mesh& volume) {
   const auto [lower, upper] = bounding_box(volume);
-  return make_density_geometry(lower, upper, scene.density.voxel, 2.0 * scene.density.voxel, scene.fields.max_memory);
+  return make_density_geometry(lower, upper, spec.voxel, 2.0 * spec.voxel, spec.max_memory);
 }
 
-GuideDensityOptions guide_density_options(const Scene& scene, const GridGeometry& grid, Pores pores) {
+GuideDensitySettings guide_density_settings(const Scene& scene) {
+  GuideDensitySettings s;
+  s.term.model = scene.effects.density == DensityModel::binary ? GuideDensityModel::binary : GuideDensityModel::continuous;
+  s.term.strength = scene.density.strength;
+  s.term.threshold = scene.density.threshold;
+  s.term.surcharge = scene.density.surcharge;
+  s.grid = density_grid_spec(scene);
+  s.batch = scene.density.batch;
+  s.stall = StallTest{scene.density.stall_iterations, scene.density.stall_tolerance};
+  s.wisp = wisp_shape(scene);
+  return s;
+}
+
+GuideDensityOptions guide_density_options(const GuideDensitySettings& s, const Mesh& volume, Pores pores) {
   GuideDensityOptions o;
-  o.term.model = scene.effects.density == DensityModel::binary ? GuideDensityModel::binary : GuideDensityModel::continuous;
-  o.term.strength = scene.density.strength;
-  o.term.threshold = scene.density.threshold;
-  o.term.surcharge = scene.density.surcharge;
-  o.grid = grid;
-  o.batch = scene.density.batch;
-  o.stall = StallTest{scene.density.stall_iterations, scene.density.stall_tolerance};
+  o.term = s.term;
+  o.grid = density_geometry(s.grid, volume);
+  o.batch = s.batch;
+  o.stall = s.stall;
   o.pores = std::move(pores);
-  o.wisp = wisp_shape(scene);
+  o.wisp = s.wisp;
   return o;
 }
 

@@ -1,5 +1,7 @@
-// The scene's sections translated into each stage's own options: stages never see the Scene, so
-// they can be used and tested without a scene file.
+// The scene's sections translated into each stage's own options: the library never sees the Scene,
+// so it can be used and tested without a scene file, and each stage of the pipeline reads the
+// scene only through these (its cache key hashes what they return, options_codec.h). Keys of an
+// effect that is off are not read: their options keep the library's defaults.
 #pragma once
 #include "field/distance_field.h"
 #include "core/mesh.h"
@@ -12,7 +14,18 @@
 namespace hairfit {
 
 FieldSpec field_spec(const Scene& scene, const std::string& mesh_name);
-RootOptions root_options(const Scene& scene, int threads);
+// What the roots stage reads of the scene: the root options, and how it resolves them against the
+// fields and the hull (StageRun::resolved_roots).
+struct RootSettings {
+  RootOptions options;
+  std::vector<std::string> maps;  // the grey maps it reads (effects.maps: density, tilt, length)
+  bool from_shell = false;        // length and tilt from the shell (hair.length and hair.tilt unset)
+  double relief_radius = 0.0;     // cm around a scalp point the hull's grain is read (flow = relief)
+};
+RootSettings root_settings(const Scene& scene);
+// The input files and earlier stages those settings read beyond the chart.
+std::vector<std::string> root_files(const RootSettings& settings);
+bool roots_read_fields(const RootSettings& settings);
 // The hair layer's thickness for hair.tilt_toward = "thicker": the depth −Φ_V below the volume
 // boundary, its gradient by central differences one voxel wide (the trilinear gradient jumps
 // between cells: 3–6° of error in the direction of a 0.2 cm/cm slope at 0.2 cm voxels, against
@@ -30,9 +43,23 @@ StrandOptions strand_options(const Scene& scene);
 bool density_declared(const Scene& scene);
 // The density grid: the hair-volume mesh's bounding box plus two voxels on every side, at
 // density.voxel cm, within fields.max_memory.
-GridGeometry density_geometry(const Scene& scene, const Mesh& volume);
-// The batched guide optimisation's options (requires density_declared); `pores` are the fibres'
-// pores with their cluster (guide) index, what CDM deposits.
-GuideDensityOptions guide_density_options(const Scene& scene, const GridGeometry& grid, Pores pores);
+struct DensityGridSpec {
+  double voxel = 0.5;       // cm (density.voxel)
+  double max_memory = 4.0;  // GiB (fields.max_memory)
+};
+DensityGridSpec density_grid_spec(const Scene& scene);
+GridGeometry density_geometry(const DensityGridSpec& spec, const Mesh& volume);
+// The batched guide optimisation's options as the scene gives them (requires density_declared);
+// guide_density_options completes them with the grid over the hull and the pores to deposit.
+struct GuideDensitySettings {
+  DensityTermOptions term;
+  DensityGridSpec grid;
+  int batch = 64;
+  StallTest stall;
+  WispShape wisp;
+};
+GuideDensitySettings guide_density_settings(const Scene& scene);
+// `pores` are the fibres' pores with their cluster (guide) index, what CDM deposits.
+GuideDensityOptions guide_density_options(const GuideDensitySettings& settings, const Mesh& volume, Pores pores);
 
 }  // namespace hairfit

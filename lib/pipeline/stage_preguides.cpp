@@ -10,32 +10,30 @@ namespace hairfit {
 
 namespace {
 
-// Whether the pre-guides follow the growth field the roots grew along.
-bool follows_growth_field(const Scene& scene) { return scene.preguides.immersion == "layer" && scene.hair.flow != "local"; }
+// The pre-guides' options, and when they follow the growth field the roots grew along
+// (immersion = layer, flow ≠ local), the roots' settings that field is made from.
+struct PreguidesOptions {
+  PreguideOptions preguides;
+  std::optional<RootSettings> growth;
+};
 
-StageDeclaration declare(const Scene& scene) {
-  StageDeclaration d;
-  declare_rod_reads(scene, d);
-  d.reads.push_back("preguides");  // preguide_options()
-  d.consumes = {"fields", "roots"};
-  if (follows_growth_field(scene)) {
-    d.reads.insert(d.reads.end(), {"hair", "roots"});
-    d.consumes.push_back("chart");
-    if (scene.hair.flow == "relief") d.files.push_back("volume");
-  }
-  return d;
+void encode(ByteWriter& out, const PreguidesOptions& o) {
+  encode(out, o.preguides);
+  out.put<std::uint8_t>(o.growth.has_value());
+  if (o.growth) encode(out, *o.growth);
 }
 
 std::size_t loop_items(const StageValues& v) { return v.preguide_roots->roots.size(); }
 
-void compute(StageRun& run, StageReport& stage) {
+void compute(StageRun& run, const PreguidesOptions& options, StageReport& stage) {
   StageValues& v = run.values;
-  PreguideOptions o = preguide_options(run.scene);
-  if (follows_growth_field(run.scene)) {
+  PreguideOptions o = options.preguides;
+  if (options.growth) {
     // The growth field the roots grew along (one solve on the scalp), for the pre-guides to follow.
     const ScalpChart& chart = *v.chart;
+    const StageRun::ResolvedRoots& roots = run.resolved_roots(*options.growth);
     o.flow = std::make_shared<const FlowLookup>(chart.mesh, chart.vertex_normals,
-                                                make_growth_field(chart, run.resolved_roots().inputs, run.resolved_roots().options), kFlowLookupRadius);
+                                                make_growth_field(chart, roots.inputs, roots.options), kFlowLookupRadius);
   }
   v.preguides = std::make_shared<const PreGuides>(make_preguides(v.preguide_roots->roots, run.boundary(), o, run.exec()));
   stage.digest = digest(*v.preguides).hex();
@@ -72,7 +70,18 @@ void compute(StageRun& run, StageReport& stage) {
 void encode_value(ByteWriter& out, const StageValues& v) { encode(out, *v.preguides); }
 void decode_value(ByteReader& in, StageValues& v) { v.preguides = std::make_shared<const PreGuides>(decode_preguides(in)); }
 
-void write(StageRun& run) {
+ConfiguredStage configure(const Scene& scene) {
+  PreguidesOptions o{preguide_options(scene), std::nullopt};
+  if (o.preguides.immersion == PreguideImmersion::layer && scene.hair.flow != "local") o.growth = root_settings(scene);
+  const bool follows = o.growth.has_value(), relief = follows && o.growth->options.flow == FlowModel::relief;
+  ConfiguredStage c = configured(std::move(o), compute);
+  c.consumes = {"fields", "roots"};
+  if (follows) c.consumes.push_back("chart");
+  if (relief) c.files = {"volume"};  // the hull's grain steers the growth field
+  return c;
+}
+
+void write(StageRun& run, const Scene&) {
   const PreGuides& preguides = *run.values.preguides;
   Curves curves;
   for (int i = 0; i < preguides.size(); ++i) curves.add(preguides.items[i].shape.nodes, i);
@@ -82,7 +91,7 @@ void write(StageRun& run) {
 }  // namespace
 
 const StageDescriptor& preguides_stage() {
-  static const StageDescriptor d{"preguides", declare, nullptr, loop_items, compute, encode_value, decode_value, write};
+  static const StageDescriptor d{"preguides", 1, nullptr, configure, loop_items, encode_value, decode_value, write};
   return d;
 }
 

@@ -8,40 +8,11 @@ namespace hairfit {
 
 namespace {
 
-StageDeclaration declare(const Scene& scene) {
-  StageDeclaration d;
-  d.reads = {"seed", "hair.density", "hair.length", "hair.tilt", "roots", "effects.maps"};  // root_options()
-  if (scene.effects.uses_map("density")) d.files.push_back("density map");
-  if (scene.effects.uses_map("tilt")) {
-    d.files.push_back("tilt map");
-    d.reads.push_back("hair.tilt_range");
-  }
-  if (scene.effects.uses_map("length")) {
-    d.files.push_back("length map");
-    d.reads.push_back("hair.length_range");
-  }
-  d.consumes = {"chart"};
-  d.reads.push_back("hair.flow");
-  if (scene.hair.flow != "local")
-    d.reads.insert(d.reads.end(), {"hair.flow_smoothing", "hair.swirl", "hair.whorl", "hair.whorl_radius", "hair.parting",
-                                   "hair.parting_radius"});
-  if (scene.hair.flow == "relief") {  // the hull's grain
-    d.reads.push_back("hair.relief_radius");
-    d.files.push_back("volume");
-  }
-  // Tilting toward the thicker layer reads the volume's distance field at each root.
-  if (scene.hair.tilt_toward == "thicker") {
-    d.reads.push_back("hair.tilt_toward");
-    d.consumes.push_back("fields");
-  }
-  return d;
-}
-
-void compute(StageRun& run, StageReport& stage) {
+void compute(StageRun& run, const RootSettings& settings, StageReport& stage) {
   StageValues& v = run.values;
-  const StageRun::ResolvedRoots& resolved = run.resolved_roots();
+  const StageRun::ResolvedRoots& resolved = run.resolved_roots(settings);
   const RootOptions& o = resolved.options;
-  if (run.scene.hair.from_shell) {
+  if (settings.from_shell) {
     stage.add("hair_from_shell", resolved.shell.layer_ends);
     stage.add("shell_thickness_cm", resolved.shell.thickness);
     stage.add("shell_reach_cm", resolved.shell.reach);
@@ -75,7 +46,18 @@ void decode_value(ByteReader& in, StageValues& v) {
   v.preguide_roots = std::make_shared<const PreguideRoots>(decode_preguide_roots(in));
 }
 
-void write(StageRun& run) {
+ConfiguredStage configure(const Scene& scene) {
+  const RootSettings settings = root_settings(scene);
+  const std::vector<std::string> files = root_files(settings);
+  const bool fields = roots_read_fields(settings);
+  ConfiguredStage c = configured(settings, compute);
+  c.files = files;
+  c.consumes = {"chart"};
+  if (fields) c.consumes.push_back("fields");
+  return c;
+}
+
+void write(StageRun& run, const Scene&) {
   const StageValues& v = run.values;
   run.output("roots.ply", [&](const std::filesystem::path& p) { write_roots_ply(p, *v.roots, *v.clusters); });
 }
@@ -83,7 +65,7 @@ void write(StageRun& run) {
 }  // namespace
 
 const StageDescriptor& roots_stage() {
-  static const StageDescriptor d{"roots", declare, nullptr, nullptr, compute, encode_value, decode_value, write};
+  static const StageDescriptor d{"roots", 1, nullptr, configure, nullptr, encode_value, decode_value, write};
   return d;
 }
 

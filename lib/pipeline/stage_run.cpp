@@ -24,18 +24,19 @@ Pores StageRun::pores() const {
   return p;
 }
 
-const StageRun::ResolvedRoots& StageRun::resolved_roots() {
+const StageRun::ResolvedRoots& StageRun::resolved_roots(const RootSettings& settings) {
   if (resolved_) return *resolved_;
   ResolvedRoots r;
   RootOptions& o = r.options;
-  o = root_options(scene, options.threads);
+  o = settings.options;
+  o.threads = options.threads;
   r.inputs.density = inputs.density_map;
   r.inputs.tilt = inputs.tilt_map;
   r.inputs.length = inputs.length_map;
   if (o.tilt_toward == TiltToward::thicker) r.inputs.thickness = layer_thickness(*values.volume_field);
   if (o.flow == FlowModel::relief)
-    r.inputs.grain = relief_grain(*values.chart, inputs.volume.mesh, scene.hair.relief_radius, options.threads);
-  if (scene.hair.from_shell) {  // hair that suits its shell: length and tilt from the layer
+    r.inputs.grain = relief_grain(*values.chart, inputs.volume.mesh, settings.relief_radius, options.threads);
+  if (settings.from_shell) {  // hair that suits its shell: length and tilt from the layer
     r.shell = shell_hair(*values.chart, layer_thickness(*values.volume_field), options.threads);
     if (r.shell.layer_ends) {
       o.length = r.shell.length;
@@ -44,20 +45,6 @@ const StageRun::ResolvedRoots& StageRun::resolved_roots() {
   }
   resolved_ = std::move(r);
   return *resolved_;
-}
-
-void declare_rod_reads(const Scene& scene, StageDeclaration& d) {
-  d.reads.insert(d.reads.end(), {"hair.youngs_modulus", "hair.shear_modulus", "hair.cross_section", "rod.integrator",
-                                 "rod.segments", "effects.gravity", "effects.contact", "units.down", "units.front"});
-  if (scene.effects.gravity) d.reads.insert(d.reads.end(), {"hair.mass_density", "rod.gravity"});
-  if (scene.effects.contact) d.reads.insert(d.reads.end(), {"contact.stiffness", "contact.layer"});
-}
-
-void declare_strand_reads(const Scene& scene, StageDeclaration& d) {
-  d.reads.insert(d.reads.end(), {"strands.points", "strands.root_radius", "strands.tip_radius", "effects.winding",
-                                 "effects.cutting"});
-  if (scene.effects.winding) d.reads.push_back("strands.turns");
-  if (scene.effects.cutting) d.reads.insert(d.reads.end(), {"strands.cut_threshold", "strands.cut_tips"});
 }
 
 void add_fibre_widths(Curves& curves, double cross_section, int threads) {

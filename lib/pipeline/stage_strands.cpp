@@ -15,26 +15,22 @@ namespace hairfit {
 
 namespace {
 
-StageDeclaration declare(const Scene& scene) {
-  StageDeclaration d;
-  declare_strand_reads(scene, d);  // strand_options()
-  d.reads.push_back("hair.cross_section");  // fibre widths
-  if (scene.strands.contain > 0.0) d.reads.push_back("strands.contain");  // the deposit's fibres do not
-  d.consumes = {"roots", "guides"};
-  if (scene.effects.cutting || scene.strands.contain > 0.0)
-    d.consumes.push_back("fields");  // cut where the fibres leave the volume, or held in it
-  // Not stored: the strands (and the density of the final fibres) are hit only when nothing
-  // before them changed, while every new weight or strand setting would add the largest entry of
-  // all (31 MB for the spheroid's 68 000 fibres, against 15 MB for its guides); rebuilding them
-  // from the cached guides takes about a second.
-  d.cached = false;
-  return d;
+// The wisps and their cut, the fibres' section, and how far inside the volume fibres are held.
+struct StrandsOptions {
+  StrandOptions strands;
+  double cross_section = 0.0;  // cm², for the fibres' widths
+  double contain = 0.0;        // cm (strands.contain; 0: not held); the deposit's fibres are not
+};
+
+void encode(ByteWriter& out, const StrandsOptions& o) {
+  encode(out, o.strands);
+  out.put(o.cross_section);
+  out.put(o.contain);
 }
 
 std::size_t loop_items(const StageValues& v) { return v.roots->pores.size(); }
 
-void compute(StageRun& run, StageReport& stage) {
-  const Scene& scene = run.scene;
+void compute(StageRun& run, const StrandsOptions& o, StageReport& stage) {
   const int threads = run.options.threads;
   StageValues& v = run.values;
   const DistanceField* volume = v.volume_field.get();
@@ -48,12 +44,12 @@ void compute(StageRun& run, StageReport& stage) {
   around.volume = volume_distance;
   around.volume_quick = volume_quick;
   around.out_of_head = scalp_exit(*v.scalp_field, &scalp_triangles, v.chart->outward);
-  if (scene.strands.contain > 0.0) around.out_of_head.into_volume = into_volume(*v.volume_field, scene.strands.contain);
-  GrownStrands grown = make_strands(v.guides->curves(), run.pores(), strand_options(scene), around, run.exec(),
+  if (o.contain > 0.0) around.out_of_head.into_volume = into_volume(*v.volume_field, o.contain);
+  GrownStrands grown = make_strands(v.guides->curves(), run.pores(), o.strands, around, run.exec(),
                                     std::move(run.deposited_fibres));
   run.deposited_fibres = {};
   const FibrePointSides& known = grown.sides;  // looked up on the way: the counts need not ask again
-  add_fibre_widths(grown.strands.fibres, scene.hair.cross_section, threads);
+  add_fibre_widths(grown.strands.fibres, o.cross_section, threads);
   v.strands = std::make_shared<const Strands>(std::move(grown.strands));
   const Curves& fibres = v.strands->fibres;
   // The digest hashes the 35 MB of points in one serial chain: on a thread of its own, beside the
@@ -81,11 +77,11 @@ void compute(StageRun& run, StageReport& stage) {
   const double points = std::max<double>(1.0, static_cast<double>(fibres.points.size() - fibres.count()));
   stage.add("fibres", static_cast<std::int64_t>(fibres.count()));
   stage.add("points", static_cast<std::int64_t>(fibres.points.size()));
-  if (scene.effects.cutting) stage.add("cut", static_cast<std::int64_t>(v.strands->cut_count));
+  if (o.strands.cutting) stage.add("cut", static_cast<std::int64_t>(v.strands->cut_count));
   stage.add("inside_fraction", inside / points);
   stage.add("inside_head_fraction", in_head / points);  // the two ways of not being inside
   stage.add("outside_volume_fraction", out_volume / points);
-  if (scene.effects.cutting)
+  if (o.strands.cutting)
     stage.add("cut_share", static_cast<double>(v.strands->cut_count) / std::max<std::size_t>(1, fibres.count()));
   // Segments whose chord crosses the scalp's triangles (exact tests): those the lift could not
   // clear, a first segment whose root lies behind a neighbouring triangle's plane.
@@ -100,8 +96,21 @@ void compute(StageRun& run, StageReport& stage) {
 void encode_value(ByteWriter& out, const StageValues& v) { encode(out, *v.strands); }
 void decode_value(ByteReader& in, StageValues& v) { v.strands = std::make_shared<const Strands>(decode_strands(in)); }
 
-void write(StageRun& run) {
-  const Scene& scene = run.scene;
+ConfiguredStage configure(const Scene& scene) {
+  StrandsOptions o{strand_options(scene), scene.hair.cross_section, scene.strands.contain};
+  const bool reads_fields = o.strands.cutting || o.contain > 0.0;  // cut where fibres leave the volume, or held in it
+  ConfiguredStage c = configured(std::move(o), compute);
+  c.consumes = {"roots", "guides"};
+  if (reads_fields) c.consumes.push_back("fields");
+  // Not stored: the strands (and the density of the final fibres) are hit only when nothing
+  // before them changed, while every new weight or strand setting would add the largest entry of
+  // all (31 MB for the spheroid's 68 000 fibres, against 15 MB for its guides); rebuilding them
+  // from the cached guides takes about a second.
+  c.cached = false;
+  return c;
+}
+
+void write(StageRun& run, const Scene& scene) {
   const Curves& fibres = run.values.strands->fibres;
   Curves guide_curves = run.values.guides->curves();
   add_fibre_widths(guide_curves, scene.hair.cross_section, run.options.threads);
@@ -122,7 +131,7 @@ void write(StageRun& run) {
 }  // namespace
 
 const StageDescriptor& strands_stage() {
-  static const StageDescriptor d{"strands", declare, nullptr, loop_items, compute, encode_value, decode_value, write};
+  static const StageDescriptor d{"strands", 1, nullptr, configure, loop_items, encode_value, decode_value, write};
   return d;
 }
 

@@ -68,27 +68,29 @@ std::string report_without_run_figures(const std::string& out_dir) {
 
 }  // namespace
 
-TEST_CASE("every declared scene part is a key of the table, for every combination of effects") {
+TEST_CASE("every stage configures for every combination of effects, and computes with the options it is keyed on") {
   Scene scene = smoke_scene();
   for (bool on : {false, true}) {
-    scene.effects.gravity = scene.effects.cutting = scene.effects.winding = on;
+    scene.effects.gravity = scene.effects.contact = scene.effects.cutting = scene.effects.winding = on;
     for (DensityModel m : {DensityModel::none, DensityModel::binary, DensityModel::continuous}) {
       scene.effects.density = m;
-      CHECK_NOTHROW(stage_declarations(scene));
-      CHECK(stage_declarations(scene).size() == (m == DensityModel::none ? 6u : 7u));
+      const std::vector<ConfiguredStage> stages = configure_stages(scene);
+      REQUIRE(stages.size() == (m == DensityModel::none ? 6u : 7u));
+      for (const ConfiguredStage& s : stages) {
+        CHECK(!s.options.empty());
+        CHECK(s.compute);
+      }
     }
   }
 }
 
-TEST_CASE("the canonical scene parts are values after defaults, exact to the last bit") {
+TEST_CASE("the keyed options are values after defaults, exact to the last bit") {
   Scene scene = smoke_scene();
-  CHECK(canonical_scene_parts(scene, {"strands"}) ==
-        "strands.points = 12\nstrands.root_radius = 0.3\nstrands.tip_radius = 0.6\nstrands.turns = 1\nstrands.cut_threshold = 1\nstrands.cut_tips = false\n"
-        "strands.contain = 0\n");
-  scene.guides.tolerance = 1e-6 * (1 + 1e-15);  // differs from the default only in its last digits
-  CHECK(canonical_scene_parts(scene, {"guides.tolerance"}) != canonical_scene_parts(smoke_scene(), {"guides.tolerance"}));
-  // Paths never enter as names.
-  CHECK(canonical_scene_parts(scene, {"inputs"}).empty());
+  // A value that differs from the default only in its last digits is another key.
+  scene.guides.tolerance = 1e-6 * (1 + 1e-15);
+  CHECK(missed([&](Scene& s) { s = scene; }) == Names{"guides", "strands"});
+  // Writing a default out changes nothing: the scene after defaults is what is keyed.
+  CHECK(missed([](Scene& s) { s.guides.tolerance = Scene().guides.tolerance; }).empty());
 }
 
 // A test per stage: a key the stage reads misses it and every later stage, and nothing earlier.

@@ -50,7 +50,7 @@ PipelineResult run(const Scene& scene, int threads, const std::string& out = "")
 
 // The CDM density of the final fibres on the scene's density grid.
 DensityGrid fibre_density(const Scene& scene, const Strands& strands) {
-  DensityAccumulator acc(density_geometry(scene, smoke_inputs().volume.mesh));
+  DensityAccumulator acc(density_geometry(density_grid_spec(scene), smoke_inputs().volume.mesh));
   const Curves& c = strands.fibres;
   for (std::size_t i = 0; i < c.count(); ++i)
     acc.add_fibre(std::vector<Vec3>(c.points.begin() + c.offsets[i], c.points.begin() + c.offsets[i + 1]));
