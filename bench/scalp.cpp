@@ -155,14 +155,14 @@ int main(int argc, char** argv) {
   o.density = 200.0;
   o.guides = 3000;
   o.seed = 1;
-  o.threads = threads;
+  const Exec exec{threads};
   Roots roots;
   Clusters clusters;
   PreguideRoots pre;
   double c_roots = 0, c_clusters = 0, c_pre = 0;
-  const double t_roots = median_time(3, [&] { roots = make_roots(chart, {}, o); }, &c_roots);
-  const double t_clusters = median_time(3, [&] { clusters = make_clusters(chart, roots, o); }, &c_clusters);
-  const double t_pre = median_time(3, [&] { pre = make_preguide_roots(chart, {}, o); }, &c_pre);
+  const double t_roots = median_time(3, [&] { roots = make_roots(chart, {}, o, exec); }, &c_roots);
+  const double t_clusters = median_time(3, [&] { clusters = make_clusters(chart, roots, o, exec); }, &c_clusters);
+  const double t_pre = median_time(3, [&] { pre = make_preguide_roots(chart, {}, o, exec); }, &c_pre);
   const ScalpFigures f = scalp_figures(chart, roots, clusters, pre, threads);
   const double hex = std::sqrt(2.0 / (std::sqrt(3.0) * o.density));
   std::printf("| scalp area | roots (expected) | roots wall / CPU | roots/s (wall) | clusters (3000) wall / CPU | pre-guides (1 cm) | NN min / mean / hex spacing |\n");

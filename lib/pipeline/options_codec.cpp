@@ -43,7 +43,6 @@ void encode(ByteWriter& out, const RootOptions& o) {
   out.put(o.preguide_spacing);
   out.put(o.cluster_overlap);
   out.put(o.seed);
-  // o.threads: results never depend on it.
   out.put(o.oversampling);
 }
 

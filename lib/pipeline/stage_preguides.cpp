@@ -33,7 +33,7 @@ void compute(StageRun& run, const PreguidesOptions& options, StageReport& stage)
     const ScalpChart& chart = *v.chart;
     const StageRun::ResolvedRoots& roots = run.resolved_roots(*options.growth);
     o.flow = std::make_shared<const FlowLookup>(chart.mesh, chart.vertex_normals,
-                                                make_growth_field(chart, roots.inputs, roots.options), kFlowLookupRadius);
+                                                make_growth_field(chart, roots.inputs, roots.options, run.exec()), kFlowLookupRadius);
   }
   v.preguides = std::make_shared<const PreGuides>(make_preguides(v.preguide_roots->roots, run.boundary(), o, run.exec()));
   stage.digest = digest(*v.preguides).hex();

@@ -19,7 +19,7 @@ void compute(StageRun& run, const RootSettings& settings, StageReport& stage) {
     stage.add("hair_length_cm", o.length);
     stage.add("hair_tilt_degrees", o.tilt);
   }
-  ScalpRoots made = make_scalp_roots(*v.chart, resolved.inputs, o);
+  ScalpRoots made = make_scalp_roots(*v.chart, resolved.inputs, o, run.exec());
   v.roots = std::make_shared<const Roots>(std::move(made.roots));
   v.clusters = std::make_shared<const Clusters>(std::move(made.clusters));
   v.preguide_roots = std::make_shared<const PreguideRoots>(std::move(made.preguides));

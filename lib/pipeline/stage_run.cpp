@@ -29,7 +29,6 @@ const StageRun::ResolvedRoots& StageRun::resolved_roots(const RootSettings& sett
   ResolvedRoots r;
   RootOptions& o = r.options;
   o = settings.options;
-  o.threads = options.threads;
   r.inputs.density = inputs.density_map;
   r.inputs.tilt = inputs.tilt_map;
   r.inputs.length = inputs.length_map;

@@ -30,7 +30,7 @@ RootSet subset(const RootSet& s, const std::vector<int>& index) {
 
 }  // namespace
 
-Clusters make_clusters(const ScalpChart& ch, const Roots& roots, const RootOptions& o) {
+Clusters make_clusters(const ScalpChart& ch, const Roots& roots, const RootOptions& o, const Exec& exec) {
   if (o.guides < 1) throw std::invalid_argument("clusters: guides must be ≥ 1");
   if (!(o.cluster_overlap >= 1.0)) throw std::invalid_argument("clusters: cluster_overlap must be ≥ 1");
   Clusters cl;
@@ -46,7 +46,7 @@ Clusters make_clusters(const ScalpChart& ch, const Roots& roots, const RootOptio
   const int wanted = static_cast<int>(std::min<double>(np, std::ceil(o.oversampling * ng)));
   if (wanted < np) {
     std::vector<std::uint64_t> key(np);
-    parallel_for(np, o.threads, [&](int i) { key[i] = Random(o.seed, RandomStage::clusters, static_cast<std::uint64_t>(i)).next_u64(); });
+    parallel_for(np, exec.threads, [&](int i) { key[i] = Random(o.seed, RandomStage::clusters, static_cast<std::uint64_t>(i)).next_u64(); });
     std::nth_element(candidates.begin(), candidates.begin() + wanted, candidates.end(),
                      [&](int a, int b) { return key[a] != key[b] ? key[a] < key[b] : a < b; });
     candidates.resize(wanted);
@@ -56,7 +56,7 @@ Clusters make_clusters(const ScalpChart& ch, const Roots& roots, const RootOptio
   for (int i : candidates) candidate_positions.push_back(pores.positions[i]);
   const double area = roots.hair_area > 0 ? roots.hair_area : ch.area;
   const std::vector<double> radius(candidates.size(), 1.0 / std::sqrt(2.0 * std::sqrt(3.0) * ng / area));
-  for (int k : eliminate_samples(candidate_positions, radius, ng, o.threads)) cl.centre_pore.push_back(candidates[k]);
+  for (int k : eliminate_samples(candidate_positions, radius, ng, exec.threads)) cl.centre_pore.push_back(candidates[k]);
   const int nc = cl.size();
   cl.bases = subset(pores, cl.centre_pore);
 
@@ -65,7 +65,7 @@ Clusters make_clusters(const ScalpChart& ch, const Roots& roots, const RootOptio
   const double cell = std::sqrt(M_PI / nc);  // about one centre per cell
   const DiskGrid centre_grid(cl.bases.chart, cell);
   std::vector<int> nearest(np);
-  parallel_for(np, o.threads, [&](int i) { nearest[i] = centre_grid.nearest(pores.chart[i]); });
+  parallel_for(np, exec.threads, [&](int i) { nearest[i] = centre_grid.nearest(pores.chart[i]); });
   std::vector<double> cover(nc, 0.0);
   for (int i = 0; i < np; ++i)
     cover[nearest[i]] = std::max(cover[nearest[i]], (pores.chart[i] - cl.bases.chart[nearest[i]]).norm());
@@ -75,7 +75,7 @@ Clusters make_clusters(const ScalpChart& ch, const Roots& roots, const RootOptio
   // Pores inside each circle, gathered per circle in parallel, then per pore in circle order.
   const DiskGrid pore_grid(pores.chart, cell);
   std::vector<std::vector<int>> inside(nc);
-  parallel_for(nc, o.threads, [&](int c) {
+  parallel_for(nc, exec.threads, [&](int c) {
     pore_grid.for_each_within(cl.bases.chart[c], cl.radius[c], [&](int i) { inside[c].push_back(i); });
     std::sort(inside[c].begin(), inside[c].end());
   });
@@ -89,7 +89,7 @@ Clusters make_clusters(const ScalpChart& ch, const Roots& roots, const RootOptio
 
   cl.pore_cluster.resize(np);
   cl.candidate_clusters.resize(np);
-  parallel_for(np, o.threads, [&](int i) {
+  parallel_for(np, exec.threads, [&](int i) {
     const int k = count[i + 1] - count[i];
     cl.candidate_clusters[i] = std::max(k, 1);
     if (k == 0) {  // only by round-off at a circle's rim: the nearest centre covers it

@@ -140,12 +140,12 @@ void add_declared_style(const ScalpChart& ch, const RootOptions& o, std::vector<
     }
 }
 
-DirectionField make_growth_field(const ScalpChart& ch, const RootInputs& in, const RootOptions& o) {
+DirectionField make_growth_field(const ScalpChart& ch, const RootInputs& in, const RootOptions& o, const Exec& exec) {
   const Mesh& mesh = ch.mesh;
   const int n = static_cast<int>(mesh.positions.size());
   std::vector<double> thickness(n, 0.0);
   if (o.tilt_toward == TiltToward::thicker)
-    parallel_for(n, o.threads, [&](int i) { thickness[i] = in.thickness(mesh.positions[i]).value; });
+    parallel_for(n, exec.threads, [&](int i) { thickness[i] = in.thickness(mesh.positions[i]).value; });
   std::vector<Vec3> guidance(n);
   if (o.tilt_toward != TiltToward::thicker) {
     for (int i = 0; i < n; ++i) guidance[i] = growth_guidance(ch.vertex_normals[i], Vec3::Zero(), o, ch.down, ch.front);

@@ -45,7 +45,8 @@ std::vector<double> layer_end_distance(const ScalpChart& chart, const std::vecto
 // turned clockwise (seen from outside) by options.swirl, by the smoothstep of 1 − distance / hair
 // length, since a hair needs its length of layer ahead of it; then the smoothest field aligned
 // with it.
-DirectionField make_growth_field(const ScalpChart& chart, const RootInputs& inputs, const RootOptions& options);
+DirectionField make_growth_field(const ScalpChart& chart, const RootInputs& inputs, const RootOptions& options,
+                                 const Exec& exec = {});
 
 // The declared style, blended into per-vertex guidance last: a crown whorl at the chart point
 // options.whorl (hair grows away from it, turned clockwise by options.swirl) and a parting along

@@ -170,10 +170,10 @@ RootSet make_root_set(const ScalpChart& ch, const RootInputs& maps, const RootOp
   return s;
 }
 
-void check_options(const RootInputs& maps, const RootOptions& o) {
+void check_options(const RootInputs& maps, const RootOptions& o, const Exec& exec) {
+  if (exec.threads < 1) throw std::invalid_argument("roots: threads must be ≥ 1");
   if (!(o.density >= 0) || !std::isfinite(o.density)) throw std::invalid_argument("roots: density must be ≥ 0");
   if (!(o.oversampling >= 1)) throw std::invalid_argument("roots: oversampling must be ≥ 1");
-  if (o.threads < 1) throw std::invalid_argument("roots: threads must be ≥ 1");
   if (o.tilt_toward == TiltToward::thicker && !maps.thickness)
     throw std::invalid_argument("roots: tilting toward the thicker layer needs the layer's thickness field");
 }
@@ -207,7 +207,7 @@ Vec3 growth_direction_toward_thicker(const Vec3& normal, const Vec3& thickness_g
 namespace {
 
 Roots make_roots(const ScalpChart& ch, const RootInputs& maps, const RootOptions& o,
-                 const std::vector<TriangleDensity>& density, const DirectionField* flow) {
+                 const std::vector<TriangleDensity>& density, const DirectionField* flow, int threads) {
   Roots roots;
   double top = 0.0;
   for (int t = 0; t < static_cast<int>(density.size()); ++t) {
@@ -223,7 +223,7 @@ Roots make_roots(const ScalpChart& ch, const RootInputs& maps, const RootOptions
   // Candidates at oversampling × the local target density; rounded up so a small set still has
   // enough to choose from.
   const double per_area = o.oversampling * o.density * (1.0 + 1.0 / std::sqrt(static_cast<double>(target)));
-  Candidates c = make_candidates(ch, maps.density.get(), density, per_area, false, RandomStage::roots, o.seed, o.threads);
+  Candidates c = make_candidates(ch, maps.density.get(), density, per_area, false, RandomStage::roots, o.seed, threads);
   const int count = static_cast<int>(c.positions.size());
   roots.candidates = count;
   HugeVector<double>& radius = c.values;  // each value becomes the radius for it, in place
@@ -231,13 +231,13 @@ Roots make_roots(const ScalpChart& ch, const RootInputs& maps, const RootOptions
     const double rho = o.density * std::max(r, top / 16.0);  // hairs/cm² here
     r = 1.0 / std::sqrt(2.0 * std::sqrt(3.0) * rho);
   }
-  const std::vector<int> kept = eliminate_samples(c.positions.data(), radius.data(), count, static_cast<int>(target), o.threads);
-  roots.pores = make_root_set(ch, maps, o, flow, pick(c.where, kept), o.threads);
+  const std::vector<int> kept = eliminate_samples(c.positions.data(), radius.data(), count, static_cast<int>(target), threads);
+  roots.pores = make_root_set(ch, maps, o, flow, pick(c.where, kept), threads);
   return roots;
 }
 
 PreguideRoots make_preguide_roots(const ScalpChart& ch, const RootInputs& maps, const RootOptions& o,
-                                  const std::vector<TriangleDensity>& density, const DirectionField* flow) {
+                                  const std::vector<TriangleDensity>& density, const DirectionField* flow, int threads) {
   PreguideRoots pre;
   pre.spacing = o.preguide_spacing;
   double hair_area = 0.0;
@@ -247,46 +247,49 @@ PreguideRoots make_preguide_roots(const ScalpChart& ch, const RootInputs& maps, 
   const long long target = std::llround(hair_area * rho);
   if (target == 0) return pre;
   const double per_area = o.oversampling * rho * (1.0 + 1.0 / std::sqrt(static_cast<double>(target)));
-  const Candidates c = make_candidates(ch, maps.density.get(), density, per_area, true, RandomStage::preguides, o.seed, o.threads);
+  const Candidates c = make_candidates(ch, maps.density.get(), density, per_area, true, RandomStage::preguides, o.seed, threads);
   const std::vector<double> radius(c.positions.size(), 1.0 / std::sqrt(2.0 * std::sqrt(3.0) * rho));
   const std::vector<int> kept =
-      eliminate_samples(c.positions.data(), radius.data(), static_cast<int>(radius.size()), static_cast<int>(target), o.threads);
-  pre.roots = make_root_set(ch, maps, o, flow, pick(c.where, kept), o.threads);
+      eliminate_samples(c.positions.data(), radius.data(), static_cast<int>(radius.size()), static_cast<int>(target), threads);
+  pre.roots = make_root_set(ch, maps, o, flow, pick(c.where, kept), threads);
   return pre;
 }
 
-void check_preguide_options(const RootInputs& maps, const RootOptions& o) {
-  check_options(maps, o);
+void check_preguide_options(const RootInputs& maps, const RootOptions& o, const Exec& exec) {
+  check_options(maps, o, exec);
   if (!(o.preguide_spacing > 0)) throw std::invalid_argument("roots: preguide_spacing must be > 0");
 }
 
-std::optional<DirectionField> growth_field_for(const ScalpChart& ch, const RootInputs& maps, const RootOptions& o) {
+std::optional<DirectionField> growth_field_for(const ScalpChart& ch, const RootInputs& maps, const RootOptions& o,
+                                              const Exec& exec) {
   if (o.flow == FlowModel::local) return std::nullopt;
-  return make_growth_field(ch, maps, o);
+  return make_growth_field(ch, maps, o, exec);
 }
 
 const DirectionField* pointer(const std::optional<DirectionField>& f) { return f ? &*f : nullptr; }
 
 }  // namespace
 
-Roots make_roots(const ScalpChart& ch, const RootInputs& maps, const RootOptions& o) {
-  check_options(maps, o);
-  return make_roots(ch, maps, o, density_of_triangles(ch, maps.density.get(), o.threads), pointer(growth_field_for(ch, maps, o)));
+Roots make_roots(const ScalpChart& ch, const RootInputs& maps, const RootOptions& o, const Exec& exec) {
+  check_options(maps, o, exec);
+  return make_roots(ch, maps, o, density_of_triangles(ch, maps.density.get(), exec.threads),
+                    pointer(growth_field_for(ch, maps, o, exec)), exec.threads);
 }
 
-PreguideRoots make_preguide_roots(const ScalpChart& ch, const RootInputs& maps, const RootOptions& o) {
-  check_preguide_options(maps, o);
-  return make_preguide_roots(ch, maps, o, density_of_triangles(ch, maps.density.get(), o.threads), pointer(growth_field_for(ch, maps, o)));
+PreguideRoots make_preguide_roots(const ScalpChart& ch, const RootInputs& maps, const RootOptions& o, const Exec& exec) {
+  check_preguide_options(maps, o, exec);
+  return make_preguide_roots(ch, maps, o, density_of_triangles(ch, maps.density.get(), exec.threads),
+                             pointer(growth_field_for(ch, maps, o, exec)), exec.threads);
 }
 
-ScalpRoots make_scalp_roots(const ScalpChart& ch, const RootInputs& maps, const RootOptions& o) {
-  check_preguide_options(maps, o);
-  const std::vector<TriangleDensity> density = density_of_triangles(ch, maps.density.get(), o.threads);
-  const std::optional<DirectionField> flow = growth_field_for(ch, maps, o);
+ScalpRoots make_scalp_roots(const ScalpChart& ch, const RootInputs& maps, const RootOptions& o, const Exec& exec) {
+  check_preguide_options(maps, o, exec);
+  const std::vector<TriangleDensity> density = density_of_triangles(ch, maps.density.get(), exec.threads);
+  const std::optional<DirectionField> flow = growth_field_for(ch, maps, o, exec);
   ScalpRoots r;
-  r.roots = make_roots(ch, maps, o, density, pointer(flow));
-  r.clusters = make_clusters(ch, r.roots, o);
-  r.preguides = make_preguide_roots(ch, maps, o, density, pointer(flow));
+  r.roots = make_roots(ch, maps, o, density, pointer(flow), exec.threads);
+  r.clusters = make_clusters(ch, r.roots, o, exec);
+  r.preguides = make_preguide_roots(ch, maps, o, density, pointer(flow), exec.threads);
   return r;
 }
 

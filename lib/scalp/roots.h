@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/digest.h"
+#include "core/exec.h"
 #include "core/grey_map.h"
 #include "scalp/chart.h"
 
@@ -59,7 +60,6 @@ struct RootOptions {
   double preguide_spacing = 1.0;              // cm between pre-guide roots (paper: about 1 per cm)
   double cluster_overlap = 1.3;               // cluster circle radius / covering radius (≥ 1)
   std::uint64_t seed = 0;
-  int threads = 1;                            // ≥ 1; results never depend on it
   double oversampling = 3.0;                  // candidates per kept point for sample elimination
 };
 
@@ -101,17 +101,18 @@ struct PreguideRoots {
 // Exactly round(∫ρ dA) roots (the integral by subdivided-triangle quadrature of the map), by
 // weighted sample elimination from ~oversampling× candidates (Poisson-disk radius 1/sqrt(2√3ρ)
 // adapted to the local density, down to 1/16 of the maximum). No root where the map is 0.
-Roots make_roots(const ScalpChart& chart, const RootInputs& inputs, const RootOptions& options);
+Roots make_roots(const ScalpChart& chart, const RootInputs& inputs, const RootOptions& options, const Exec& exec = {});
 
 // Clusters (paper §3.3): min(guides, pores) centres chosen among the pores as a blue-noise set on
 // the surface; in the chart, circle c has radius cluster_overlap × (largest chart distance from c
 // to a pore whose nearest centre is c), so the circles cover every pore; a pore inside several
 // circles goes to one of them uniformly at random (Random(seed, clusters, pore)).
-Clusters make_clusters(const ScalpChart& chart, const Roots& roots, const RootOptions& options);
+Clusters make_clusters(const ScalpChart& chart, const Roots& roots, const RootOptions& options, const Exec& exec = {});
 
 // Pre-guide roots: blue noise on the surface at about preguide_spacing (hexagonal packing density
 // 2/(√3 s²)) wherever the density map is non-zero, with growth directions and lengths.
-PreguideRoots make_preguide_roots(const ScalpChart& chart, const RootInputs& inputs, const RootOptions& options);
+PreguideRoots make_preguide_roots(const ScalpChart& chart, const RootInputs& inputs, const RootOptions& options,
+                                  const Exec& exec = {});
 
 // What the roots stage makes: the pores, their clusters and the pre-guide roots, equal to
 // make_roots, make_clusters and make_preguide_roots called one after the other, with the density
@@ -121,7 +122,8 @@ struct ScalpRoots {
   Clusters clusters;
   PreguideRoots preguides;
 };
-ScalpRoots make_scalp_roots(const ScalpChart& chart, const RootInputs& inputs, const RootOptions& options);
+ScalpRoots make_scalp_roots(const ScalpChart& chart, const RootInputs& inputs, const RootOptions& options,
+                            const Exec& exec = {});
 
 // Unit growth direction (docs/design.md §3): the normal rotated by `tilt_degrees` toward down projected
 // onto the tangent plane; where down is (nearly) parallel to the normal, toward −front projected,

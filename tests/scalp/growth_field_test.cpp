@@ -83,13 +83,12 @@ TEST_CASE("thicker: roots under a shell thinning away from the pole tilt toward 
   o.density = 2.0;
   o.tilt = 70.0;
   o.guides = 10;
-  o.threads = 2;
   o.tilt_toward = TiltToward::thicker;
   RootInputs shell;
   shell.thickness = layer_thickness(field);  // as the pipeline's roots stage passes it
-  const Roots roots = make_roots(chart, shell, o);
+  const Roots roots = make_roots(chart, shell, o, Exec{2});
   o.tilt_toward = TiltToward::down;
-  const Roots toward_down = make_roots(chart, {}, o);
+  const Roots toward_down = make_roots(chart, {}, o, Exec{2});
   REQUIRE(roots.pores.size() > 300);
   REQUIRE(toward_down.pores.size() == roots.pores.size());
 

@@ -68,8 +68,7 @@ TEST_CASE("roots: uniform density on a head cap — count, blue-noise spacing, a
   RootOptions o;
   o.density = 40.0;
   o.seed = 11;
-  o.threads = 2;
-  const Roots r = make_roots(ch, {}, o);
+  const Roots r = make_roots(ch, {}, o, Exec{2});
   const double integral = o.density * surface_area(ch.mesh);  // independent: the mesh's area
   CHECK(r.expected_count == doctest::Approx(integral).epsilon(1e-12));
   CHECK(std::abs(r.pores.size() - integral) <= 0.5);
@@ -118,14 +117,14 @@ TEST_CASE("roots: density maps — integral, adaptivity, and no root on black") 
   RootOptions o;
   o.density = 200.0;
   o.seed = 5;
-  o.threads = 2;
+  const Exec two{2};
   const int sides = 6 * 40;  // the hairline is a regular 240-gon of circumradius R
   const double disk_area = 0.5 * sides * radius * radius * std::sin(2 * M_PI / sides);
 
   SUBCASE("linear ramp left → right") {
     const int w = 512;
     const GreyMap ramp = make_map(w, w, [&](int x, int) { return static_cast<float>(x) / (w - 1); });
-    const Roots r = make_roots(ch, maps_of(&ramp, nullptr, nullptr), o);
+    const Roots r = make_roots(ch, maps_of(&ramp, nullptr, nullptr), o, two);
     // The chart is (−x, z)/R, so the map value is (chart_x + 1)/2 and its mean over the disk ½.
     const double integral = o.density * disk_area * 0.5;
     CHECK(std::abs(r.pores.size() - integral) < 0.02 * integral);
@@ -152,25 +151,25 @@ TEST_CASE("roots: density maps — integral, adaptivity, and no root on black") 
   SUBCASE("left half black: density 0 means not a single root") {
     const int w = 256;
     const GreyMap half = make_map(w, w, [&](int x, int) { return x < w / 2 ? 0.0f : 1.0f; });
-    const Roots r = make_roots(ch, maps_of(&half, nullptr, nullptr), o);
+    const Roots r = make_roots(ch, maps_of(&half, nullptr, nullptr), o, two);
     const double integral = o.density * disk_area * 0.5;
     CHECK(std::abs(r.pores.size() - integral) < 0.02 * integral);
     for (const Vec2& c : r.pores.chart) CHECK(half.sample(chart_to_image(c)) > 0.0);
     const Stats s = spacing_stats(r.pores.positions);
     CHECK(s.min > 0.5 * s.mean);
-    const PreguideRoots pre = make_preguide_roots(ch, maps_of(&half, nullptr, nullptr), o);
+    const PreguideRoots pre = make_preguide_roots(ch, maps_of(&half, nullptr, nullptr), o, two);
     for (const Vec2& c : pre.roots.chart) CHECK(half.sample(chart_to_image(c)) > 0.0);
   }
 
   SUBCASE("all black or zero density: no roots, no clusters") {
     const GreyMap black = make_map(8, 8, [](int, int) { return 0.0f; });
-    const Roots r = make_roots(ch, maps_of(&black, nullptr, nullptr), o);
+    const Roots r = make_roots(ch, maps_of(&black, nullptr, nullptr), o, two);
     CHECK(r.pores.size() == 0);
-    CHECK(make_clusters(ch, r, o).size() == 0);
-    CHECK(make_preguide_roots(ch, maps_of(&black, nullptr, nullptr), o).roots.size() == 0);
+    CHECK(make_clusters(ch, r, o, two).size() == 0);
+    CHECK(make_preguide_roots(ch, maps_of(&black, nullptr, nullptr), o, two).roots.size() == 0);
     RootOptions none = o;
     none.density = 0.0;
-    CHECK(make_roots(ch, {}, none).pores.size() == 0);
+    CHECK(make_roots(ch, {}, none, two).pores.size() == 0);
   }
 }
 
@@ -183,10 +182,10 @@ TEST_CASE("roots: deterministic for a seed and any thread count; the seed change
   o.seed = 99;
   std::string first_roots, first_clusters, first_pre;
   for (int threads : {1, 2, 4}) {
-    o.threads = threads;
-    const Roots r = make_roots(ch, maps_of(&map, &map, &map), o);
-    const Clusters c = make_clusters(ch, r, o);
-    const PreguideRoots p = make_preguide_roots(ch, maps_of(&map, &map, &map), o);
+    const Exec exec{threads};
+    const Roots r = make_roots(ch, maps_of(&map, &map, &map), o, exec);
+    const Clusters c = make_clusters(ch, r, o, exec);
+    const PreguideRoots p = make_preguide_roots(ch, maps_of(&map, &map, &map), o, exec);
     if (threads == 1) {
       first_roots = digest(r).hex();
       first_clusters = digest(c).hex();
@@ -209,16 +208,17 @@ TEST_CASE("roots: make_scalp_roots equals make_roots, make_clusters and make_pre
   o.guides = 40;
   o.preguide_spacing = 0.4;
   o.seed = 5;
-  o.threads = 2;
+  const Exec two{2};
   const RootInputs maps = maps_of(&map, &map, nullptr);
-  const ScalpRoots together = make_scalp_roots(ch, maps, o);
-  const Roots roots = make_roots(ch, maps, o);
+  const ScalpRoots together = make_scalp_roots(ch, maps, o, two);
+  const Roots roots = make_roots(ch, maps, o, two);
   CHECK(together.roots.pores.size() > 100);
   CHECK(digest(together.roots).hex() == digest(roots).hex());
-  CHECK(digest(together.clusters).hex() == digest(make_clusters(ch, roots, o)).hex());
-  CHECK(digest(together.preguides).hex() == digest(make_preguide_roots(ch, maps, o)).hex());
+  CHECK(digest(together.clusters).hex() == digest(make_clusters(ch, roots, o, two)).hex());
+  CHECK(digest(together.preguides).hex() == digest(make_preguide_roots(ch, maps, o, two)).hex());
+  CHECK_THROWS_AS(make_scalp_roots(ch, maps, o, Exec{0}), std::invalid_argument);
   o.preguide_spacing = 0.0;
-  CHECK_THROWS_AS(make_scalp_roots(ch, maps, o), std::invalid_argument);
+  CHECK_THROWS_AS(make_scalp_roots(ch, maps, o, two), std::invalid_argument);
 }
 
 TEST_CASE("roots: growth direction tilts toward down and never yields NaN") {
@@ -262,9 +262,8 @@ TEST_CASE("clusters: a partition of all pores by randomly chosen overlapping cir
   o.density = 30.0;
   o.guides = 300;
   o.seed = 3;
-  o.threads = 2;
-  const Roots r = make_roots(ch, {}, o);
-  const Clusters c = make_clusters(ch, r, o);
+  const Roots r = make_roots(ch, {}, o, Exec{2});
+  const Clusters c = make_clusters(ch, r, o, Exec{2});
   REQUIRE(c.size() == 300);
   // Partition: every pore in exactly one member list, consistent with pore_cluster.
   std::vector<int> seen(r.pores.size(), 0);
@@ -301,8 +300,7 @@ TEST_CASE("clusters: a partition of all pores by randomly chosen overlapping cir
 
   // The assignment varies with the seed only.
   RootOptions other = o;
-  other.threads = 1;
-  CHECK(digest(make_clusters(ch, r, other)).hex() == digest(c).hex());
+  CHECK(digest(make_clusters(ch, r, other, Exec{1})).hex() == digest(c).hex());
   other.seed = 4;
   const Clusters c2 = make_clusters(ch, r, other);
   CHECK(c2.pore_cluster != c.pore_cluster);
