@@ -37,12 +37,6 @@ std::vector<int> all_indices(int count) {
 
 namespace {
 
-
-
-
-
-
-
 // The neighbours' quantities at the guide's sample nodes (same normalised arc lengths, since
 // every rod has the same number of segments).
 GuideTargets make_targets(const RootSet& bases, int b, const PreGuides& preguides, const Boundary& boundary,
@@ -86,36 +80,12 @@ GuideTargets make_targets(const RootSet& bases, int b, const PreGuides& preguide
   return t;
 }
 
-// The targets as a solve's rod carries its weight: a copy whose model carries only the share of
-// the weight the solve reached (GuideSolve::weight_share), for a rod that could not carry all.
-GuideTargets carrying(const GuideTargets& t, const GuideSolve& s) {
-  GuideTargets c = t;
-  c.model = carrying_share(t.model, s.weight_share);
-  return c;
-}
-
-// A solved guide's shape and terminal torque m(1): traced piece by piece for a heavy rod (one
-// integration from m(0) would diverge), else one integration from (f_L, m(0)).
-// A rod whose weight could be followed only in part is traced under that share of it.
-FibreShape solved_shape(const GuideTargets& t, const GuideSolve& s, Vec3& terminal_torque) {
-  if (s.heavy) {
-    terminal_torque = s.solution.terminal_torque;
-    if (s.weight_share < 1.0) return fibre_shape(carrying_share(t.model, s.weight_share), t.root, t.length, t.rod, s.solution);
-    return fibre_shape(t.model, t.root, t.length, t.rod, s.solution);
-  }
-  return fibre_shape(t.model, t.root, t.length, t.rod, Vec3(s.eta[0], s.eta[1], s.eta[2]), Vec3(s.eta[3], s.eta[4], s.eta[5]),
-                     &terminal_torque);
-}
-
 // How far (cm) a shape's worst node lies beyond the scalp or the volume (≤ 0: none does).
 double worst_excursion(const FibreShape& shape, const Boundary& boundary) {
   double worst = -std::numeric_limits<double>::infinity();
   for (const Vec3& p : shape.nodes) worst = std::max({worst, boundary.beyond_scalp(p), boundary.beyond_volume(p)});
   return worst;
 }
-
-
-
 
 }  // namespace
 
@@ -151,7 +121,7 @@ Guide solve_guide(const GuideProblem& problem, int b, const GuideSolveSetup& set
   double other[6] = {0, 0, 0, 0, 0, 0};
   if (std::all_of(start, start + 6, [](double v) { return v == 0.0; }))
     add_weighted_loads(preguides.items, g.neighbours, g.neighbour_weights, other);
-  const bool same_start = std::equal(start, start + (solve.heavy ? 3 : 6), other);
+  const bool same_start = std::equal(start, start + start_loads_read(solve.scheme), other);
   if (!same_start && worst_excursion(g.shape, boundary) > o.boundary_width) {
     GuideSolve retry = optimise_guide(targets, other, o.max_iterations, o.tolerance, stall, near);
     const int iterations = solve.iterations + retry.iterations, evaluations = solve.evaluations + retry.evaluations;
@@ -162,7 +132,7 @@ Guide solve_guide(const GuideProblem& problem, int b, const GuideSolveSetup& set
     solve.iterations = iterations;
     solve.evaluations = evaluations;
   }
-  if (setup.pieces && solve.heavy) *setup.pieces = solve.solution;
+  if (setup.pieces && solve.scheme == RodScheme::multiple_shooting) *setup.pieces = solve.solution;
   g.force = Vec3(solve.eta[0], solve.eta[1], solve.eta[2]);
   g.root_moment = Vec3(solve.eta[3], solve.eta[4], solve.eta[5]);
   const RodScales scales = rod_scales(hair_rod(g.length, o.material));
@@ -185,10 +155,7 @@ Guide solve_guide(const GuideProblem& problem, int b, const GuideSolveSetup& set
     g.contact_share = n > first ? static_cast<double>(touching) / static_cast<double>(n - first) : 0.0;
   }
   if (setup.use == GuideUse::start) return g;
-  const GuideTerms terms =
-      !solve.heavy                ? evaluate_guide_terms(targets, solve.eta)
-      : solve.weight_share < 1.0 ? evaluate_guide_terms(carrying(targets, solve), solve.solution)
-                                 : evaluate_guide_terms(targets, solve.solution);
+  const GuideTerms terms = solved_terms(targets, solve);
   g.cost = terms.total;
   g.f1 = terms.f1;
   g.f2 = terms.f2;

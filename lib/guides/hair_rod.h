@@ -16,12 +16,26 @@ struct HairMaterial {
 };
 
 // The dimensionless load (weight ρAgL³/EI or terminal force F·L²/EI) beyond which one forward
-// integration loses precision: m(1) depends on m(0) like exp(√load). Heavier rods are solved and
-// optimised by multiple shooting from their terminal loads.
+// integration loses precision: m(1) depends on m(0) like exp(√load).
 constexpr double kHeavyRod = 50.0;
 
-// A rod on a support or heavier than kHeavyRod: solved, and optimised, by multiple shooting.
-inline bool heavy_rod(const RodModel& model) { return model.support || model.force_per_length.norm() > kHeavyRod; }
+// How a hair's rod is solved and optimised, chosen here once for pre-guides and guides alike.
+enum class RodScheme {
+  // One forward integration from the root: the rod's unknowns are its root loads (f_L, m(0)),
+  // and its shape is traced from them.
+  single_shooting,
+  // The rod library's multiple shooting (rod_shooting.h): the unknowns are the terminal loads
+  // (f_L, t_L), m(0) is solved for, and the shape is traced piece by piece from the solution.
+  multiple_shooting,
+};
+
+// Multiple shooting for a rod on a support (its force resultant is no longer known in closed
+// form) or loaded beyond kHeavyRod, by its weight or by the terminal force `terminal_load`
+// (dimensionless) it is solved at; single shooting otherwise.
+inline RodScheme rod_scheme(const RodModel& model, double terminal_load = 0.0) {
+  const bool heavy = model.support || model.force_per_length.norm() > kHeavyRod || terminal_load > kHeavyRod;
+  return heavy ? RodScheme::multiple_shooting : RodScheme::single_shooting;
+}
 
 // A fibre of the given length (cm): circular section, straight at rest, loaded by its weight
 // ρ·A·g per length when the material has gravity.

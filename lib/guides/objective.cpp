@@ -324,14 +324,14 @@ void record(const ceres::Solver::Summary& summary, bool finite, bool stalled, Gu
 // Newton steps a heavy guide's first solve may take from a neighbour's pieces.
 constexpr int kNearNewtonSteps = 12;
 
-// A heavy rod: Levenberg–Marquardt over x = (f_L, t_L) from (start force, zero torque) — a
-// pre-guide's terminal torque is zero — or, when that load cannot be solved, from the rod hanging
-// under its weight alone. The first solve starts from a solved neighbour's pieces where there is
-// one, else continues the loads from the unloaded rod.
-GuideSolve optimise_heavy_guide(const GuideTargets& targets, const double start[6], int max_iterations,
-                                double tolerance, const StallTest& stall, const ShootingResult* near) {
+// A rod solved by multiple shooting: Levenberg–Marquardt over x = (f_L, t_L) from (start force,
+// zero torque) — a pre-guide's terminal torque is zero — or, when that load cannot be solved,
+// from the rod hanging under its weight alone. The first solve starts from a solved neighbour's
+// pieces where there is one, else continues the loads from the unloaded rod.
+GuideSolve optimise_by_multiple_shooting(const GuideTargets& targets, const double start[6], int max_iterations,
+                                         double tolerance, const StallTest& stall, const ShootingResult* near) {
   GuideSolve result;
-  result.heavy = true;
+  result.scheme = RodScheme::multiple_shooting;
   ShootingOptions first;
   static_cast<RodDiscretisation&>(first) = targets.rod;
   double x[6] = {start[0], start[1], start[2], 0.0, 0.0, 0.0};
@@ -381,8 +381,8 @@ GuideSolve optimise_heavy_guide(const GuideTargets& targets, const double start[
 
 GuideSolve optimise_guide(const GuideTargets& targets, const double start[6], int max_iterations, double tolerance,
                           const StallTest& stall, const ShootingResult* near) {
-  if (heavy_rod(targets.model))
-    return optimise_heavy_guide(targets, start, max_iterations, tolerance, stall, near);
+  if (rod_scheme(targets.model) == RodScheme::multiple_shooting)
+    return optimise_by_multiple_shooting(targets, start, max_iterations, tolerance, stall, near);
   GuideSolve result;
   std::copy(start, start + 6, result.eta);
   const LoadCoordinates coordinates(targets.model, targets.rod, start);
@@ -401,5 +401,26 @@ GuideSolve optimise_guide(const GuideTargets& targets, const double start[6], in
   record(summary, finite, stalled, result);
   return result;
 }
+
+FibreShape solved_shape(const GuideTargets& t, const GuideSolve& s, Vec3& terminal_torque) {
+  if (s.scheme == RodScheme::single_shooting)
+    return fibre_shape(t.model, t.root, t.length, t.rod, Vec3(s.eta[0], s.eta[1], s.eta[2]),
+                       Vec3(s.eta[3], s.eta[4], s.eta[5]), &terminal_torque);
+  terminal_torque = s.solution.terminal_torque;
+  if (s.weight_share < 1.0) return fibre_shape(carrying_share(t.model, s.weight_share), t.root, t.length, t.rod, s.solution);
+  return fibre_shape(t.model, t.root, t.length, t.rod, s.solution);
+}
+
+GuideTerms solved_terms(const GuideTargets& t, const GuideSolve& s) {
+  if (s.scheme == RodScheme::single_shooting) return evaluate_guide_terms(t, s.eta);
+  if (s.weight_share < 1.0) {  // the targets as the rod carries its weight: that share of it
+    GuideTargets carrying = t;
+    carrying.model = carrying_share(t.model, s.weight_share);
+    return evaluate_guide_terms(carrying, s.solution);
+  }
+  return evaluate_guide_terms(t, s.solution);
+}
+
+int start_loads_read(RodScheme scheme) { return scheme == RodScheme::single_shooting ? 6 : 3; }
 
 }  // namespace hairfit

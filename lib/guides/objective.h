@@ -81,12 +81,12 @@ MergedGuideResiduals merged_guide_residuals(const GuideTargets& targets, const d
 
 struct GuideSolve {
   double eta[6] = {0, 0, 0, 0, 0, 0};  // best (f_L, m(0)), dimensionless
-  // A heavy rod (weight beyond kHeavyRod) is optimised in its terminal loads by multiple shooting:
-  // then `solution` holds the pieces its shape is traced from (one integration from eta would not
-  // reproduce it), and solution.terminal_torque is t_L.
-  bool heavy = false;
+  // The rod's scheme (rod_scheme of the targets' model). With multiple shooting the rod is
+  // optimised in its terminal loads, `solution` holds the pieces its shape is traced from (one
+  // integration from eta would not reproduce it), and solution.terminal_torque is t_L.
+  RodScheme scheme = RodScheme::single_shooting;
   ShootingResult solution;
-  // 1, or less for a heavy rod whose weight could not be followed to the full weight (a fold, see
+  // 1, or less for a rod whose weight could not be followed to the full weight (a fold, see
   // hang_under_weight): then `solution` is the hanging rod at this share, termination "NO_START".
   double weight_share = 1.0;
   int iterations = 0;
@@ -104,5 +104,14 @@ struct GuideSolve {
 // at the start loads is tried before the load continuation from rest (null: from rest only).
 GuideSolve optimise_guide(const GuideTargets& targets, const double start[6], int max_iterations, double tolerance,
                           const StallTest& stall = {}, const ShootingResult* near = nullptr);
+
+// What a solve's scheme makes of it. The shape and m(1): one integration from (f_L, m(0)), or the
+// multiple-shooting solution traced piece by piece, under the share of its weight it carries.
+FibreShape solved_shape(const GuideTargets& targets, const GuideSolve& solve, Vec3& terminal_torque);
+// Its terms F1–F4, on that shape.
+GuideTerms solved_terms(const GuideTargets& targets, const GuideSolve& solve);
+// How many of a start's six loads the scheme reads: all of (f_L, m(0)) for single shooting; only
+// f_L for multiple shooting, whose terminal torque starts at zero (a pre-guide's).
+int start_loads_read(RodScheme scheme);
 
 }  // namespace hairfit

@@ -106,7 +106,7 @@ class Cantilever {
   bool solve(const RodModel& model, double load, ShootingResult& at, int& solves, std::optional<RodEnd>& end) const {
     end.reset();
     const Vec3 force = load * bend_;
-    if (heavy_rod(model) || load > kHeavyRod) {
+    if (rod_scheme(model, load) == RodScheme::multiple_shooting) {
       ShootingOptions options;
       static_cast<RodDiscretisation&>(options) = rod_;
       // A solve from nothing (the rod under its weight alone) continues from the unloaded rod; a
@@ -200,7 +200,7 @@ WeightedRod carry_weight(const Cantilever& cantilever, const RodModel& model, co
   WeightedRod w;
   RodModel scaled = model;
   double share_step = model.force_per_length.norm() > 0.0 ? 0.05 : 1.0;
-  const bool from_rest = heavy_rod(model);
+  const bool from_rest = rod_scheme(model) == RodScheme::multiple_shooting;
   if (from_rest) {
     std::optional<RodEnd> end;
     ShootingResult trial;
@@ -403,7 +403,7 @@ PreGuide solve_preguide(const RootSet& roots, int i, const Boundary& boundary, c
   } else {
     // The rod under its own weight first, then the bending load's march from there.
     const WeightedRod weighted = carry_weight(cantilever, model, o.rod, g.direction, g.solves);
-    if (heavy_rod(model)) rest_solves = g.solves;
+    if (rod_scheme(model) == RodScheme::multiple_shooting) rest_solves = g.solves;
     if (weighted.share < 1.0) {
       // The weight could be followed to this share of itself only: a fold, beyond which the rod
       // snaps through to an equilibrium no continuation from here reaches. The pre-guide keeps the
