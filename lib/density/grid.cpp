@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "core/error.h"
+#include "core/trilinear.h"
 
 namespace hairfit {
 
@@ -68,26 +69,6 @@ void locate(const GridGeometry& g, const Vec3& p, Vec3i& b, Vec3& f) {
   }
 }
 
-// Trilinear weights of the 8 corners and their derivatives in the fractions.
-struct Weights {
-  double w[8];
-  Vec3 dw[8];
-};
-
-Weights trilinear_weights(const Vec3& f) {
-  Weights out;
-  for (int c = 0; c < 8; ++c) {
-    const int dx = c & 1, dy = (c >> 1) & 1, dz = (c >> 2) & 1;
-    const double wx = dx ? f.x() : 1.0 - f.x();
-    const double wy = dy ? f.y() : 1.0 - f.y();
-    const double wz = dz ? f.z() : 1.0 - f.z();
-    const double sx = dx ? 1.0 : -1.0, sy = dy ? 1.0 : -1.0, sz = dz ? 1.0 : -1.0;
-    out.w[c] = wx * wy * wz;
-    out.dw[c] = Vec3(sx * wy * wz, wx * sy * wz, wx * wy * sz);
-  }
-  return out;
-}
-
 }  // namespace
 
 double DensityGrid::value(const Vec3& p) const { return value_and_gradient(p).value; }
@@ -98,7 +79,7 @@ DensityValueGradient DensityGrid::value_and_gradient(const Vec3& p) const {
   Vec3i b;
   Vec3 f;
   locate(geometry_, p, b, f);
-  const Weights w = trilinear_weights(f);
+  const TrilinearWeights w = trilinear_weights(f);
   for (int c = 0; c < 8; ++c) {
     const double v = cell(b.x() + (c & 1), b.y() + ((c >> 1) & 1), b.z() + ((c >> 2) & 1));
     out.value += w.w[c] * v;
@@ -116,7 +97,7 @@ void DensityGrid::central_gradient_at(const Vec3& p, Vec3& gradient, Mat3* jacob
   Vec3i b;
   Vec3 f;
   locate(geometry, p, b, f);
-  const Weights w = trilinear_weights(f);
+  const TrilinearWeights w = trilinear_weights(f);
   const double h = geometry.voxel;
   // Every cell the differences read lies within one of the block: away from the grid's faces
   // they are read by offset, without bounds checks (the guide optimiser calls this per sample).

@@ -270,13 +270,13 @@ void DistanceField::inside_grid(const Vec3& p, double& value, Vec3* gradient) co
   const int64_t dy = dims_.x(), dz = int64_t(dims_.x()) * dims_.y();
   const double* s = samples_->data() + base;
   const double corners[8] = {s[0], s[1], s[dy], s[dy + 1], s[dz], s[dz + 1], s[dz + dy], s[dz + dy + 1]};
-  field::trilinear<kGradient>(corners, frac, value, gradient);
+  trilinear<kGradient>(corners, frac, value, gradient);
   if ((*flags_)[base] & kCellSeam) {
     // The sign of the interpolated samples, the magnitude of the interpolated magnitudes.
     double magnitudes[8];
     for (int q = 0; q < 8; ++q) magnitudes[q] = std::abs(corners[q]);
     const double sign = value < 0 ? -1.0 : 1.0;
-    field::trilinear<kGradient>(magnitudes, frac, value, gradient);
+    trilinear<kGradient>(magnitudes, frac, value, gradient);
     value *= sign;
     if constexpr (kGradient) *gradient *= sign;
   }
