@@ -101,6 +101,7 @@ int main(int argc, char** argv) {
   const auto guides = make_guides(guides_count, segments);
   const auto tubes = make_tubes(guides);
   const auto fibres = make_fibres(guides, 30);
+  const Curves guide_curves = make_curves(guides), fibre_curves = make_curves(fibres);
   std::printf("grid %dx%dx%d cells (h = %.2f cm), %d guides x %d segments, %zu fibres\n", grid.dims.x(),
               grid.dims.y(), grid.dims.z(), grid.voxel, guides_count, segments, fibres.size());
 
@@ -131,12 +132,12 @@ int main(int argc, char** argv) {
     std::printf("BOM obb      : %.3f s  %.0f strands/s  %.3g voxel hits/s\n", obb, guides_count / obb, hits_obb / obb);
     const double cdm = best_seconds([&] {
       DensityAccumulator acc(grid);
-      acc.add_fibres(guides, threads);
+      acc.add_fibres(guide_curves, threads);
     });
     std::printf("CDM guides   : %.4f s  %.0f strands/s  %.3g cell crossings/s\n", cdm, guides_count / cdm, crossings / cdm);
     const double cdm_fibres = best_seconds([&] {
       DensityAccumulator acc(grid);
-      acc.add_fibres(fibres, threads);
+      acc.add_fibres(fibre_curves, threads);
     }, 2);
     std::printf("CDM fibres   : %.3f s  %.0f fibres/s\n", cdm_fibres, fibres.size() / cdm_fibres);
     // The guide loop: deposit a batch, freeze the grid the next batch is optimised against.
@@ -150,11 +151,11 @@ int main(int argc, char** argv) {
       }
     });
     std::printf("BOM loop     : %.3f s  (batches of %d, deposit + freeze each)\n", loop, batch);
-    const double hist = best_seconds([&] { (void)segment_histogram(grid, fibres, threads); }, 2);
+    const double hist = best_seconds([&] { (void)segment_histogram(grid, fibre_curves, threads); }, 2);
     std::printf("histogram    : %.3f s  (90k fibres)\n", hist);
   }
   DensityAccumulator acc(grid);
-  acc.add_fibres(fibres, 2);
+  acc.add_fibres(fibre_curves, 2);
   const double freeze = best_seconds([&] { (void)acc.freeze(); });
   const DensityGrid cdm_grid = acc.freeze();
   const double stats = best_seconds([&] { (void)density_statistics(cdm_grid); });

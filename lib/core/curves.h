@@ -26,4 +26,11 @@ struct Curves {
   }
 };
 
+// Polylines given one vector each, as one Curves (no guide).
+inline Curves make_curves(const std::vector<std::vector<Vec3>>& polylines) {
+  Curves curves;
+  for (const std::vector<Vec3>& p : polylines) curves.add(p);
+  return curves;
+}
+
 }  // namespace hairfit

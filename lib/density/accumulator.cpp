@@ -84,11 +84,6 @@ void DensityAccumulator::add_fibre(const std::vector<Vec3>& fibre) {
   add_fibres(std::vector<FibreSpan>{FibreSpan{fibre.data(), fibre.size()}}, 1, nullptr);
 }
 
-void DensityAccumulator::add_fibres(const std::vector<std::vector<Vec3>>& fibres, int threads,
-                                    std::vector<std::int32_t>* segment_counts) {
-  add_fibres(fibre_spans(fibres), threads, segment_counts);
-}
-
 void DensityAccumulator::add_fibres(const Curves& fibres, int threads, std::vector<std::int32_t>* segment_counts) {
   add_fibres(fibre_spans(fibres), threads, segment_counts);
 }

@@ -35,11 +35,9 @@ class DensityAccumulator {
   // With `segment_counts`, also sets it to the number of distinct segments of these fibres that
   // cross each cell (index order), counted in the same traversal (histogram_of_counts turns it
   // into segment_histogram's result).
-  void add_fibres(const std::vector<std::vector<Vec3>>& fibres, int threads = 1,
-                  std::vector<std::int32_t>* segment_counts = nullptr);
-  // The same for curves stored end to end (Curves::points), read in place.
+  // The fibres are read in place.
   void add_fibres(const Curves& fibres, int threads = 1, std::vector<std::int32_t>* segment_counts = nullptr);
-  // The same for fibres wherever they lie, read in place.
+  // The same for fibres wherever they lie.
   void add_fibres(const std::vector<FibreSpan>& fibres, int threads = 1,
                   std::vector<std::int32_t>* segment_counts = nullptr);
 

@@ -30,12 +30,6 @@ void z_layers(const GridGeometry& grid, double z_lo, double z_hi, int& k_first, 
   k_last = z_layer(grid, z_hi);
 }
 
-std::vector<FibreSpan> fibre_spans(const std::vector<std::vector<Vec3>>& fibres) {
-  std::vector<FibreSpan> spans(fibres.size());
-  for (std::size_t f = 0; f < fibres.size(); ++f) spans[f] = {fibres[f].data(), fibres[f].size()};
-  return spans;
-}
-
 std::vector<FibreSpan> fibre_spans(const Curves& fibres) {
   std::vector<FibreSpan> spans(fibres.count());
   for (std::size_t f = 0; f < spans.size(); ++f) spans[f] = {fibres.points.data() + fibres.offsets[f], fibres.size(f)};

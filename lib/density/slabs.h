@@ -21,12 +21,12 @@ void for_each_z_slab(const GridGeometry& grid, int threads, const std::function<
 void z_layers(const GridGeometry& grid, double z_lo, double z_hi, int& k_first, int& k_last);
 int z_layer(const GridGeometry& grid, double z);
 
-// A fibre as the deposits read it: its points in place, wherever they are stored.
+// A fibre as the deposits read it: its points in place, wherever they are stored (a Curves, or
+// the guides' shapes beside fibres grown into one buffer, as the density batches deposit them).
 struct FibreSpan {
   const Vec3* points;
   std::size_t size;
 };
-std::vector<FibreSpan> fibre_spans(const std::vector<std::vector<Vec3>>& fibres);
 std::vector<FibreSpan> fibre_spans(const Curves& fibres);
 
 // The layers the fibres touch (z_layers), found once on `threads` threads: each point's, and each

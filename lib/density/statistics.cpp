@@ -25,12 +25,7 @@ SegmentHistogram histogram_of_spans(const GridGeometry& grid, const std::vector<
 
 }  // namespace
 
-SegmentHistogram segment_histogram(const GridGeometry& grid, const std::vector<std::vector<Vec3>>& fibres,
-                                   int threads) {
-  return histogram_of_spans(grid, fibre_spans(fibres), threads);
-}
-
-SegmentHistogram segment_histogram_of_curves(const GridGeometry& grid, const Curves& fibres, int threads) {
+SegmentHistogram segment_histogram(const GridGeometry& grid, const Curves& fibres, int threads) {
   return histogram_of_spans(grid, fibre_spans(fibres), threads);
 }
 

@@ -20,10 +20,7 @@ namespace hairfit {
 struct SegmentHistogram {
   std::vector<int64_t> cells_with;
 };
-SegmentHistogram segment_histogram(const GridGeometry& grid, const std::vector<std::vector<Vec3>>& fibres,
-                                   int threads = 1);
-// The same for curves stored end to end (Curves::points), read in place.
-SegmentHistogram segment_histogram_of_curves(const GridGeometry& grid, const Curves& fibres, int threads = 1);
+SegmentHistogram segment_histogram(const GridGeometry& grid, const Curves& fibres, int threads = 1);
 // The histogram of per-cell segment counts (DensityAccumulator::add_fibres counts them while it
 // deposits, so a stage that does both traverses the segments once).
 SegmentHistogram histogram_of_counts(const std::vector<int32_t>& segment_counts);

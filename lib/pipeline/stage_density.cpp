@@ -90,7 +90,7 @@ ConfiguredStage configure(const Scene& scene) {
 
 void write(StageRun& run, const Scene& scene) {
   if (!run.histogram)  // a cached stage: recomputed from the fibres rather than stored
-    run.histogram = segment_histogram_of_curves(run.values.fibre_density->geometry(),
+    run.histogram = segment_histogram(run.values.fibre_density->geometry(),
                                                 run.values.strands->fibres, run.options.threads);
   run.output("density/histogram.csv",
              [&](const std::filesystem::path& p) { write_text_file_atomically(p, histogram_csv(*run.histogram)); });

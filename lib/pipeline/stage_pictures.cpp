@@ -122,10 +122,7 @@ Image density_picture(const Scene& scene, const StageValues& v, int width, int h
   if (!v.fibre_density)
     throw InputError(scene.file.string(), "declares no density model (effects.density = \"none\"), so there is no "
                                           "density stage to draw; declare one or pick another stage");
-  std::vector<std::vector<Vec3>> fibres(v.strands->fibres.count());
-  const Curves& c = v.strands->fibres;
-  for (std::size_t i = 0; i < c.count(); ++i) fibres[i].assign(c.points.begin() + c.offsets[i], c.points.begin() + c.offsets[i + 1]);
-  const SegmentHistogram histogram = segment_histogram(v.fibre_density->geometry(), fibres, threads);
+  const SegmentHistogram histogram = segment_histogram(v.fibre_density->geometry(), v.strands->fibres, threads);
   BarPlot bars;
   bars.title = "segments per cell (Fig. 5)";
   bars.x_label = "segments per cell";

@@ -82,12 +82,12 @@ TEST_CASE("deposits are byte-identical for 1, 2 and 4 threads and match one-by-o
     for (int threads : {1, 2, 3, 4}) {
       DensityAccumulator acc(g);
       // Two batches, as the guide loop deposits them.
-      acc.add_fibres(std::vector<std::vector<Vec3>>(fibres.begin(), fibres.begin() + 150), threads);
-      acc.add_fibres(std::vector<std::vector<Vec3>>(fibres.begin() + 150, fibres.end()), threads);
+      acc.add_fibres(make_curves(std::vector<std::vector<Vec3>>(fibres.begin(), fibres.begin() + 150)), threads);
+      acc.add_fibres(make_curves(std::vector<std::vector<Vec3>>(fibres.begin() + 150, fibres.end())), threads);
       CHECK_MESSAGE(bytes_equal(acc.freeze(), reference), threads << " threads");
     }
     // Not a vacuous comparison: many cells sum several contributions.
-    CHECK(segment_histogram(g, fibres).cells_with.size() > 4);
+    CHECK(segment_histogram(g, make_curves(fibres)).cells_with.size() > 4);
   }
   SUBCASE("BOM") {
     const auto tubes = random_tubes(60, 20, 32);
@@ -108,7 +108,7 @@ TEST_CASE("deposits are byte-identical for 1, 2 and 4 threads and match one-by-o
     CHECK(mismatches == 0);
   }
   SUBCASE("histogram") {
-    const auto fibres = random_fibres(300, 30, 33);
+    const Curves fibres = make_curves(random_fibres(300, 30, 33));
     const SegmentHistogram one = segment_histogram(g, fibres, 1);
     CHECK(segment_histogram(g, fibres, 2).cells_with == one.cells_with);
     CHECK(segment_histogram(g, fibres, 4).cells_with == one.cells_with);
@@ -122,21 +122,15 @@ TEST_CASE("deposits are byte-identical for 1, 2 and 4 threads and match one-by-o
       CHECK(histogram_of_counts(counts).cells_with == one.cells_with);
       CHECK(bytes_equal(acc.freeze(), plain.freeze()));
     }
-    // The same fibres end to end in one Curves, read in place: the same deposit and histogram.
-    Curves curves;
-    for (const auto& f : fibres) curves.add(f);
-    for (int threads : {1, 2}) {
-      DensityAccumulator acc(g);
-      std::vector<std::int32_t> counts;
-      acc.add_fibres(curves, threads, &counts);
-      CHECK(histogram_of_counts(counts).cells_with == one.cells_with);
-      CHECK(bytes_equal(acc.freeze(), plain.freeze()));
-      CHECK(segment_histogram_of_curves(g, curves, threads).cells_with == one.cells_with);
-    }
+    // The same fibres one by one: the same deposit.
+    DensityAccumulator one_by_one(g);
+    for (std::size_t f = 0; f < fibres.count(); ++f)
+      one_by_one.add_fibre(std::vector<Vec3>(fibres.points.begin() + fibres.offsets[f], fibres.points.begin() + fibres.offsets[f + 1]));
+    CHECK(bytes_equal(one_by_one.freeze(), plain.freeze()));
   }
   SUBCASE("statistics over a region") {
     DensityAccumulator acc(g);
-    acc.add_fibres(random_fibres(300, 30, 34), 2);
+    acc.add_fibres(make_curves(random_fibres(300, 30, 34)), 2);
     const DensityGrid grid = acc.freeze();
     const CellPredicate region = [](const Vec3& p) { return p.x() + 0.5 * p.z() < 0.3; };
     const DensityStatistics one = density_statistics(grid, region, 1);

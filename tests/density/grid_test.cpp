@@ -34,7 +34,7 @@ DensityGrid grid_of(const GridGeometry& g, F f) {
           v -= piece;
         }
       }
-  acc.add_fibres(fibres, 1);
+  acc.add_fibres(make_curves(fibres), 1);
   return acc.freeze();
 }
 

@@ -26,11 +26,11 @@ TEST_CASE("segments-per-cell histogram counts distinct segments per crossed cell
   // Fibre B: two segments in the same row, split at x = 2.5: cells 0..2 and 2..5 → cell 2 twice.
   // Fibre C: one segment along y through column x = 4, z = 1: cells y = 0..3 (crosses the row at
   // cell (4, 1, 1)).
-  const std::vector<std::vector<Vec3>> fibres = {
+  const Curves fibres = make_curves({
       {Vec3(0.0, 1.5, 1.5), Vec3(6.0, 1.5, 1.5)},
       {Vec3(0.0, 1.2, 1.7), Vec3(2.5, 1.2, 1.7), Vec3(6.0, 1.2, 1.7)},
       {Vec3(4.5, 0.0, 1.5), Vec3(4.5, 4.0, 1.5)},
-  };
+  });
   // Row cells: x=0,1: A,B1 → 2; x=2: A,B1,B2 → 3; x=3,5: A,B2 → 2; x=4: A,B2,C → 3.
   // Column cells other than (4,1,1): y = 0, 2, 3 → 1 each.
   const SegmentHistogram h = segment_histogram(g, fibres);

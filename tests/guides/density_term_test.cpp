@@ -88,7 +88,7 @@ DensityGrid cdm_grid(const GridGeometry& g) {
     const double a = 0.37 * i, y = 8.0 + 0.3 * i;
     fibres.push_back({Vec3(-6 * std::cos(a), y, -6 * std::sin(a)), Vec3(6 * std::cos(a), y + 2.0, 6 * std::sin(a))});
   }
-  acc.add_fibres(fibres);
+  acc.add_fibres(make_curves(fibres));
   return std::move(acc).freeze();
 }
 DensityGrid bom_grid(const GridGeometry& g) {
