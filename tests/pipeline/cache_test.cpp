@@ -3,14 +3,19 @@
 // corrupt or foreign entry is detected and recomputed.
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <optional>
 #include <regex>
 
 #include "pipeline/pipeline.h"
 #include "pipeline/stage_cache.h"
 #include "pipeline/stage_plan.h"
+#include "spec/scene_keys.h"
 #include "../support/run_hairfit.h"
 #include "../support/scratch.h"
 
@@ -266,4 +271,94 @@ TEST_CASE("a corrupt, truncated or foreign cache entry is detected, reported and
   std::ofstream(guides, std::ios::binary) << "not a cache entry at all";
   run_and_check("not a hairfit cache entry");
   for (const std::string& dir : {cache, cold, out}) fs::remove_all(dir);
+}
+
+namespace {
+
+// A value of `key` other than the scene's, within the key's range; nullopt for keys that name
+// files or folders, or lists (their changes are tested through content and by name above).
+std::optional<Scene> with_key_changed(const Scene& base, const SceneKey& key) {
+  Scene scene = base;
+  const std::string shown = key.show(base);
+  auto number = [&](double v) {
+    for (double candidate : {v * 1.25 + 0.5, v * 0.8, v - 0.5, v + 1.0, (key.lo + key.hi) / 2})
+      if (candidate != v && key.in_range(candidate) && std::isfinite(candidate))
+        return key.kind == KeyKind::integer ? std::round(candidate) : candidate;
+    return v;
+  };
+  switch (key.kind) {
+    case KeyKind::integer:
+    case KeyKind::number: {
+      const double v = std::stod(shown);
+      const double changed = number(v);
+      if (changed == v) return std::nullopt;
+      key.store(scene, {changed}, {});
+      return scene;
+    }
+    case KeyKind::boolean:
+      key.store(scene, {shown == "true" ? 0.0 : 1.0}, {});
+      return scene;
+    case KeyKind::text:
+      for (const std::string& choice : key.choices)
+        if ("\"" + choice + "\"" != shown) {
+          key.store(scene, {}, {choice});
+          return scene;
+        }
+      return std::nullopt;
+    case KeyKind::vector3: {
+      double x, y, z;
+      if (std::sscanf(shown.c_str(), "[%lf, %lf, %lf]", &x, &y, &z) != 3) return std::nullopt;
+      key.store(scene, {x + 0.1, y + 0.2, z - 0.1}, {});
+      return scene;
+    }
+    case KeyKind::pair:
+    case KeyKind::point2: {
+      double a, b;
+      if (std::sscanf(shown.c_str(), "[%lf, %lf]", &a, &b) != 2) return std::nullopt;
+      const double lo = key.kind == KeyKind::point2 ? a * 0.5 + 0.1 : number(a);
+      const double hi = key.kind == KeyKind::point2 ? b * 0.5 - 0.1 : std::max(lo, number(b));
+      key.store(scene, {lo, hi}, {});
+      return scene;
+    }
+    default:
+      return std::nullopt;
+  }
+}
+
+}  // namespace
+
+// The cache keys hash the stages' options (options_codec.h): a scene key whose value reaches a
+// stage's options but not their encoding would leave that stage's key unchanged, and a cached run
+// would return a stale value. With every effect on, changing any key must miss some stage, apart
+// from the keys no stage reads.
+TEST_CASE("with every effect on, every scene key a stage reads changes a stage's cache key") {
+  Scene all = smoke_scene();
+  all.effects.gravity = all.effects.contact = all.effects.cutting = all.effects.winding = true;
+  all.effects.density = DensityModel::continuous;
+  all.hair.flow = "relief";  // reads the growth field's keys and the relief radius
+  all.hair.whorl_radius = 3.0;
+  all.hair.parting_radius = 1.0;
+  all.preguides.immersion = "layer";
+  all.strands.contain = 0.2;
+  // Keys that name no stage's input: the scene's format and preset (a preset only sets other
+  // keys), the input files' unit (coordinates are keyed by content), the range of a length map
+  // this scene has not (the smoke inputs load a tilt map only); and below, the files read (keyed
+  // by content) and where and what is written.
+  const std::vector<std::string> unread = {"format", "preset", "units.length", "hair.length_range"};
+  int changed = 0;
+  for (const SceneKey& key : scene_keys()) {
+    if (key.name.rfind("output.", 0) == 0 || key.name.rfind("inputs.", 0) == 0 || key.name.rfind("maps.", 0) == 0) continue;
+    if (std::find(unread.begin(), unread.end(), key.name) != unread.end()) continue;
+    const std::optional<Scene> scene = with_key_changed(all, key);
+    if (!scene) continue;
+    ++changed;
+    CHECK_MESSAGE(!missed([&](Scene& s) { s = *scene; }, all).empty(), key.name << " changes no stage's cache key");
+  }
+  CHECK(changed > 60);
+}
+
+TEST_CASE("hair derived from the shell makes the roots read the volume's field") {
+  Scene shell = smoke_scene();
+  shell.hair.from_shell = true;  // as a scene without hair.length and hair.tilt parses
+  CHECK(missed([](Scene& s) { s.fields.voxel = 0.4; }, shell) == Names{"fields", "roots", "preguides", "guides", "strands"});
 }
