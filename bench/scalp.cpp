@@ -155,7 +155,7 @@ int main(int argc, char** argv) {
   o.density = 200.0;
   o.guides = 3000;
   o.seed = 1;
-  const Exec exec{threads};
+  const Exec exec{threads, {}};
   Roots roots;
   Clusters clusters;
   PreguideRoots pre;

@@ -86,9 +86,9 @@ TEST_CASE("thicker: roots under a shell thinning away from the pole tilt toward 
   o.tilt_toward = TiltToward::thicker;
   RootInputs shell;
   shell.thickness = layer_thickness(field);  // as the pipeline's roots stage passes it
-  const Roots roots = make_roots(chart, shell, o, Exec{2});
+  const Roots roots = make_roots(chart, shell, o, Exec{2, {}});
   o.tilt_toward = TiltToward::down;
-  const Roots toward_down = make_roots(chart, {}, o, Exec{2});
+  const Roots toward_down = make_roots(chart, {}, o, Exec{2, {}});
   REQUIRE(roots.pores.size() > 300);
   REQUIRE(toward_down.pores.size() == roots.pores.size());
 

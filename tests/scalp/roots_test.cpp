@@ -68,7 +68,7 @@ TEST_CASE("roots: uniform density on a head cap — count, blue-noise spacing, a
   RootOptions o;
   o.density = 40.0;
   o.seed = 11;
-  const Roots r = make_roots(ch, {}, o, Exec{2});
+  const Roots r = make_roots(ch, {}, o, Exec{2, {}});
   const double integral = o.density * surface_area(ch.mesh);  // independent: the mesh's area
   CHECK(r.expected_count == doctest::Approx(integral).epsilon(1e-12));
   CHECK(std::abs(r.pores.size() - integral) <= 0.5);
@@ -117,7 +117,7 @@ TEST_CASE("roots: density maps — integral, adaptivity, and no root on black") 
   RootOptions o;
   o.density = 200.0;
   o.seed = 5;
-  const Exec two{2};
+  const Exec two{2, {}};
   const int sides = 6 * 40;  // the hairline is a regular 240-gon of circumradius R
   const double disk_area = 0.5 * sides * radius * radius * std::sin(2 * M_PI / sides);
 
@@ -182,7 +182,7 @@ TEST_CASE("roots: deterministic for a seed and any thread count; the seed change
   o.seed = 99;
   std::string first_roots, first_clusters, first_pre;
   for (int threads : {1, 2, 4}) {
-    const Exec exec{threads};
+    const Exec exec{threads, {}};
     const Roots r = make_roots(ch, maps_of(&map, &map, &map), o, exec);
     const Clusters c = make_clusters(ch, r, o, exec);
     const PreguideRoots p = make_preguide_roots(ch, maps_of(&map, &map, &map), o, exec);
@@ -208,7 +208,7 @@ TEST_CASE("roots: make_scalp_roots equals make_roots, make_clusters and make_pre
   o.guides = 40;
   o.preguide_spacing = 0.4;
   o.seed = 5;
-  const Exec two{2};
+  const Exec two{2, {}};
   const RootInputs maps = maps_of(&map, &map, nullptr);
   const ScalpRoots together = make_scalp_roots(ch, maps, o, two);
   const Roots roots = make_roots(ch, maps, o, two);
@@ -216,7 +216,7 @@ TEST_CASE("roots: make_scalp_roots equals make_roots, make_clusters and make_pre
   CHECK(digest(together.roots).hex() == digest(roots).hex());
   CHECK(digest(together.clusters).hex() == digest(make_clusters(ch, roots, o, two)).hex());
   CHECK(digest(together.preguides).hex() == digest(make_preguide_roots(ch, maps, o, two)).hex());
-  CHECK_THROWS_AS(make_scalp_roots(ch, maps, o, Exec{0}), std::invalid_argument);
+  CHECK_THROWS_AS(make_scalp_roots(ch, maps, o, Exec{0, {}}), std::invalid_argument);
   o.preguide_spacing = 0.0;
   CHECK_THROWS_AS(make_scalp_roots(ch, maps, o, two), std::invalid_argument);
 }
@@ -262,8 +262,8 @@ TEST_CASE("clusters: a partition of all pores by randomly chosen overlapping cir
   o.density = 30.0;
   o.guides = 300;
   o.seed = 3;
-  const Roots r = make_roots(ch, {}, o, Exec{2});
-  const Clusters c = make_clusters(ch, r, o, Exec{2});
+  const Roots r = make_roots(ch, {}, o, Exec{2, {}});
+  const Clusters c = make_clusters(ch, r, o, Exec{2, {}});
   REQUIRE(c.size() == 300);
   // Partition: every pore in exactly one member list, consistent with pore_cluster.
   std::vector<int> seen(r.pores.size(), 0);
@@ -300,7 +300,7 @@ TEST_CASE("clusters: a partition of all pores by randomly chosen overlapping cir
 
   // The assignment varies with the seed only.
   RootOptions other = o;
-  CHECK(digest(make_clusters(ch, r, other, Exec{1})).hex() == digest(c).hex());
+  CHECK(digest(make_clusters(ch, r, other, Exec{1, {}})).hex() == digest(c).hex());
   other.seed = 4;
   const Clusters c2 = make_clusters(ch, r, other);
   CHECK(c2.pore_cluster != c.pore_cluster);
