@@ -62,37 +62,14 @@ struct RodEnd {
   Vec3 tangent;
 };
 
-// One forward integration from the root (as integrate_rod does it) that keeps the end state.
-template <class T>
-RodState<T> integrate_from_root(const RodModel& model, const RodDiscretisation& rod, const T* force, const T* root_moment) {
-  RodState<T> state;
-  for (int a = 0; a < 3; ++a) {
-    state.position[a] = T(0.0);
-    state.moment[a] = root_moment[a];
-  }
-  for (int a = 0; a < 9; ++a) state.frame[a] = T(model.root_frame.data()[a]);
-  integrate_rod_steps<T>(model, rod.integrator, rod.segments, 0, rod.segments, force, state, RodTrace<T>{});
-  return state;
-}
-
-double value_of(double x) { return x; }
-double value_of(const RodJet3& x) { return x.a; }
-
-template <class T>
-RodEnd end_of(const RodState<T>& state) {
-  return RodEnd{Vec3(value_of(state.position[0]), value_of(state.position[1]), value_of(state.position[2])),
-                Vec3(value_of(state.frame[6]), value_of(state.frame[7]), value_of(state.frame[8]))};
-}
-
 // Newton steps a heavy rod's solve from rest may take: its load continuation follows hair that
 // grows up as it falls over onto the head in small steps (about 260 for 22–26 cm crown hair on
 // the straight fixture).
 constexpr int kRestBudget = 1000;
 
-// The cantilever m(1; P·b̂, m(0)) = 0 (t_L = 0) at one load P: Newton on m(0) with the 3×3
-// Jacobian from jets, from a predictor. Several equilibria exist at the same load (curled rods),
-// so the loads are reached by continuation from the unloaded rod (march_load below), which keeps
-// the path on the branch connected to it.
+// The cantilever m(1; P·b̂, m(0)) = 0 (t_L = 0) at one load P, from a predictor. Several
+// equilibria exist at the same load (curled rods), so the loads are reached by continuation from
+// the unloaded rod (march_load below), which keeps the path on the branch connected to it.
 class Cantilever {
  public:
   Cantilever(const Vec3& bend, const RodDiscretisation& rod) : bend_(bend), rod_(rod) {}
@@ -118,52 +95,16 @@ class Cantilever {
       if (r.converged) at = r;
       return r.converged;
     }
-    Vec3 m0 = at.root_moment;
-    const double tolerance = 1e-10 * std::max(1.0, load);
-    auto converged = [&](const RodEnd& rod_end) {
-      at = ShootingResult{};  // one piece: the shape is one integration from m(0)
-      at.root_moment = m0;
-      at.terminal_force = force;
-      at.force_per_length = model.force_per_length;
-      at.converged = true;
-      end = rod_end;
-      return true;
-    };
-    double residual_before = 0.0, residual_last = 0.0;  // |m(1)| at the last two iterates
-    for (int iteration = 0; iteration < 10; ++iteration) {
-      ++solves;
-      // Where Newton's quadratic convergence (|r'| ≈ C·|r|², C from the last two iterates)
-      // predicts that this iterate meets the tolerance, an integration without jets checks it
-      // first: its m(1) is bit for bit the jets' value part, so the iterates are the same, and
-      // the last one needs no Jacobian (jets cost three times as much).
-      if (residual_before > 0.0 &&
-          residual_last * residual_last * (residual_last / (residual_before * residual_before)) <= tolerance) {
-        const RodState<double> state = integrate_from_root<double>(model, rod_, force.data(), m0.data());
-        const Vec3 residual(state.moment[0], state.moment[1], state.moment[2]);
-        if (!residual.allFinite()) return false;
-        if (residual.norm() <= tolerance) return converged(end_of(state));
-      }
-      RodJet3 jet_force[3], moment[3];
-      for (int k = 0; k < 3; ++k) {
-        jet_force[k] = RodJet3(force[k]);
-        moment[k] = RodJet3(m0[k], k);
-      }
-      const RodState<RodJet3> state = integrate_from_root<RodJet3>(model, rod_, jet_force, moment);
-      Vec3 residual;
-      Mat3 jacobian;
-      for (int k = 0; k < 3; ++k) {
-        residual[k] = state.moment[k].a;
-        jacobian.row(k) = state.moment[k].v.transpose();
-      }
-      if (!residual.allFinite()) return false;
-      if (residual.norm() <= tolerance) return converged(end_of(state));
-      const Vec3 step = jacobian.fullPivLu().solve(-residual);
-      if (!step.allFinite()) return false;
-      m0 += step;
-      residual_before = residual_last;
-      residual_last = residual.norm();
-    }
-    return false;
+    const SingleShot shot = shoot_single(model, rod_, force, Vec3::Zero(), at.root_moment, 1e-10 * std::max(1.0, load), 10);
+    solves += shot.integrations;
+    if (!shot.converged) return false;
+    at = ShootingResult{};  // one piece: the shape is one integration from m(0)
+    at.root_moment = shot.root_moment;
+    at.terminal_force = force;
+    at.force_per_length = model.force_per_length;
+    at.converged = true;
+    end = RodEnd{shot.end_position, shot.end_tangent};
+    return true;
   }
 
  private:

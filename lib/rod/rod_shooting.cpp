@@ -619,4 +619,75 @@ void trace_pieces(const RodModel& model, RodIntegrator integrator, int segments,
   }
 }
 
+namespace {
+
+// One forward integration from the root (as integrate_rod does it) that keeps the end state.
+template <class T>
+RodState<T> integrate_from_root(const RodModel& model, const RodDiscretisation& rod, const T* force, const T* root_moment) {
+  RodState<T> state;
+  for (int a = 0; a < 3; ++a) {
+    state.position[a] = T(0.0);
+    state.moment[a] = root_moment[a];
+  }
+  for (int a = 0; a < 9; ++a) state.frame[a] = T(model.root_frame.data()[a]);
+  integrate_rod_steps<T>(model, rod.integrator, rod.segments, 0, rod.segments, force, state, RodTrace<T>{});
+  return state;
+}
+
+double value_of(double x) { return x; }
+double value_of(const RodJet3& x) { return x.a; }
+
+template <class T>
+void keep_end(const RodState<T>& state, SingleShot& shot) {
+  shot.converged = true;
+  shot.end_position = Vec3(value_of(state.position[0]), value_of(state.position[1]), value_of(state.position[2]));
+  shot.end_tangent = Vec3(value_of(state.frame[6]), value_of(state.frame[7]), value_of(state.frame[8]));
+}
+
+}  // namespace
+
+SingleShot shoot_single(const RodModel& model, const RodDiscretisation& rod, const Vec3& terminal_force,
+                        const Vec3& terminal_torque, const Vec3& guess, double tolerance, int max_steps) {
+  SingleShot shot;
+  Vec3& m0 = shot.root_moment;
+  m0 = guess;
+  double residual_before = 0.0, residual_last = 0.0;  // |m(1) − t_L| at the last two iterates
+  for (int iteration = 0; iteration < max_steps; ++iteration) {
+    ++shot.integrations;
+    if (residual_before > 0.0 &&
+        residual_last * residual_last * (residual_last / (residual_before * residual_before)) <= tolerance) {
+      const RodState<double> state = integrate_from_root<double>(model, rod, terminal_force.data(), m0.data());
+      const Vec3 residual = Vec3(state.moment[0], state.moment[1], state.moment[2]) - terminal_torque;
+      if (!residual.allFinite()) return shot;
+      if (residual.norm() <= tolerance) {
+        keep_end(state, shot);
+        return shot;
+      }
+    }
+    RodJet3 jet_force[3], moment[3];
+    for (int k = 0; k < 3; ++k) {
+      jet_force[k] = RodJet3(terminal_force[k]);
+      moment[k] = RodJet3(m0[k], k);
+    }
+    const RodState<RodJet3> state = integrate_from_root<RodJet3>(model, rod, jet_force, moment);
+    Vec3 residual;
+    Mat3 jacobian;
+    for (int k = 0; k < 3; ++k) {
+      residual[k] = state.moment[k].a - terminal_torque[k];
+      jacobian.row(k) = state.moment[k].v.transpose();
+    }
+    if (!residual.allFinite()) return shot;
+    if (residual.norm() <= tolerance) {
+      keep_end(state, shot);
+      return shot;
+    }
+    const Vec3 step = jacobian.fullPivLu().solve(-residual);
+    if (!step.allFinite()) return shot;
+    m0 += step;
+    residual_before = residual_last;
+    residual_last = residual.norm();
+  }
+  return shot;
+}
+
 }  // namespace hairfit

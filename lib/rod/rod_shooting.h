@@ -67,6 +67,24 @@ ShootingResult shoot_root_moment(const RodModel& model, const Vec3& terminal_for
 Vec3 trace_pieces(const RodModel& model, RodIntegrator integrator, int segments, const ShootingResult& solution,
                   const RodTrace<double>& trace);
 
+// Single shooting for a light rod, where one integration from the root keeps its digits (no
+// support, loads up to about 50: m(1) depends on m(0) like exp(√load)): undamped Newton on m(0)
+// with the 3×3 Jacobian from jets, from `guess`, until |m(1) − t_L| ≤ tolerance or max_steps
+// Jacobians. Where Newton's quadratic convergence (|r'| ≈ C·|r|², C from the last two iterates)
+// predicts that an iterate meets the tolerance, an integration without jets checks it first: its
+// m(1) is bit for bit the jets' value part, so the iterates are the same, and the last one needs
+// no Jacobian (jets cost three times as much). Several equilibria exist at the same load (curled
+// rods): the caller keeps to one branch by continuing its loads from a nearby solution.
+struct SingleShot {
+  bool converged = false;           // false: a non-finite step or residual, or max_steps spent
+  Vec3 root_moment = Vec3::Zero();  // m(0): the solution when converged, else the last iterate
+  Vec3 end_position = Vec3::Zero();  // r(1) and d3(1) of the converged rod (root at the origin)
+  Vec3 end_tangent = Vec3::Zero();
+  int integrations = 0;             // forward integrations (Newton steps and checks)
+};
+SingleShot shoot_single(const RodModel& model, const RodDiscretisation& rod, const Vec3& terminal_force,
+                        const Vec3& terminal_torque, const Vec3& guess, double tolerance, int max_steps);
+
 // The number of pieces shooting uses for a load: 1 up to |f_L| + |f| ≈ 9, then ≈ √(|f_L| + |f|)/3,
 // or on a support ≈ k^¼/3 where its stiffness k makes the equations stiffer still; at most
 // min(segments, 48).

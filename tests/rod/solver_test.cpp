@@ -379,3 +379,38 @@ TEST_CASE("six-tangent jets (the guides' Jacobians, one AVX-512 pack where the C
     CHECK(differing == 0);
   }
 }
+
+TEST_CASE("single shooting: a pure terminal torque bends the rod into a circular arc, m(0) = t_L exactly") {
+  // No force: m(s) ≡ t_L, so the rod of unit bending compliance is an arc of curvature |t_L|
+  // about the torque's axis; with t_L = κ·d2 the arc bends toward d1: r(1) = ((1 − cos κ)/κ, 0,
+  // sin κ/κ) in the root frame, d3(1) = (sin κ, 0, cos κ).
+  const RodModel model = make_rod_model(Rod{}, RodRoot{});
+  RodDiscretisation rod;
+  rod.segments = 200;
+  for (double kappa : {0.3, 1.5, 3.0}) {
+    const Vec3 torque(0.0, kappa, 0.0);
+    const SingleShot shot = shoot_single(model, rod, Vec3::Zero(), torque, Vec3::Zero(), 1e-12, 10);
+    REQUIRE(shot.converged);
+    CHECK((shot.root_moment - torque).norm() < 1e-12);
+    const Vec3 end((1.0 - std::cos(kappa)) / kappa, 0.0, std::sin(kappa) / kappa);
+    CHECK((shot.end_position - end).norm() < 1e-9);
+    CHECK((shot.end_tangent - Vec3(std::sin(kappa), 0.0, std::cos(kappa))).norm() < 1e-9);
+  }
+}
+
+TEST_CASE("single shooting agrees with multiple shooting on a light cantilever, and stops on a non-finite load") {
+  const RodModel model = make_rod_model(Rod{}, RodRoot{});
+  ShootingOptions options;
+  options.segments = 64;
+  const Vec3 force(2.0, 0.5, -1.0), torque(0.3, -0.2, 0.1);
+  const ShootingResult multiple = shoot_root_moment(model, force, torque, Vec3::Zero(), options);
+  REQUIRE(multiple.converged);
+  const SingleShot shot = shoot_single(model, options, force, torque, Vec3::Zero(), 1e-10, 20);
+  REQUIRE(shot.converged);
+  CHECK((shot.root_moment - multiple.root_moment).norm() < 1e-9);
+  CHECK(shot.integrations <= 10);  // quadratic convergence from the straight rod
+  const SingleShot bad =
+      shoot_single(model, options, Vec3(std::nan(""), 0.0, 0.0), torque, Vec3::Zero(), 1e-11, 20);
+  CHECK(!bad.converged);
+  CHECK(bad.root_moment.allFinite());
+}
