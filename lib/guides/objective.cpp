@@ -324,6 +324,15 @@ void record(const ceres::Solver::Summary& summary, bool finite, bool stalled, Gu
 // Newton steps a heavy guide's first solve may take from a neighbour's pieces.
 constexpr int kNearNewtonSteps = 12;
 
+// Where a solve by multiple shooting stops when its caller sets no stall test: once 30 iterations
+// (accepted or not) have lowered the cost by less than 1 %. Each of its evaluations solves a
+// boundary-value problem on the support, and the long tails of those solves crawl: on the straight
+// fixture this takes 34.2 evaluations a guide instead of 43.1 and keeps 0.9714 of the guide nodes
+// inside instead of 0.9706; windows of 10, 15 and 20 iterations gave 0.9684, 0.9698 and 0.9709
+// (bench/results/long_hair.md). Single-shooting solves keep running to the tolerance: there the
+// same test moved the thin-shell guides by ±0.001 either way.
+constexpr StallTest kMultipleShootingStall{30, 1e-2};
+
 // A rod solved by multiple shooting: Levenberg–Marquardt over x = (f_L, t_L) from (start force,
 // zero torque) — a pre-guide's terminal torque is zero — or, when that load cannot be solved,
 // from the rod hanging under its weight alone. The first solve starts from a solved neighbour's
@@ -361,7 +370,7 @@ GuideSolve optimise_by_multiple_shooting(const GuideTargets& targets, const doub
     ceres::Problem problem;
     problem.AddResidualBlock(cost, nullptr, x);
     ceres::Solver::Summary summary;
-    const bool stalled = solve(problem, max_iterations, tolerance, stall, summary);
+    const bool stalled = solve(problem, max_iterations, tolerance, stall.iterations > 0 ? stall : kMultipleShootingStall, summary);
     bool finite = true;
     for (double v : x) finite = finite && std::isfinite(v);
     // The pieces at the accepted x (the last evaluation may have been a rejected trial).

@@ -343,3 +343,25 @@ TEST_CASE("a solve stopped at a stall is the capped solve of the same length, an
   CHECK(off.iterations == full.iterations);
   for (int i = 0; i < 6; ++i) CHECK(off.eta[i] == full.eta[i]);
 }
+
+TEST_CASE("a solve by multiple shooting given no stall test stops at the scheme's stall; one given a test keeps it") {
+  GuideTargets t = targets();
+  t.density.reset();
+  t.weights = GuideWeights{0.4, 0.2, 0.4, 0.0};
+  t.model.force_per_length = Vec3(0.0, -300.0, 0.0);  // a 10 cm rod of w = 300: multiple shooting
+  REQUIRE(rod_scheme(t.model) == RodScheme::multiple_shooting);
+  const double start[6] = {2.0, -1.0, 0.5, 0.0, 0.0, 0.0};
+  const GuideSolve plain = optimise_guide(t, start, 200, 1e-14);
+  const GuideSolve stated = optimise_guide(t, start, 200, 1e-14, StallTest{30, 1e-2});
+  CHECK(plain.scheme == RodScheme::multiple_shooting);
+  CHECK(plain.termination == "STALL");  // this rod crawls: the stall ends it (after 40 iterations)
+  CHECK(plain.termination == stated.termination);
+  CHECK(plain.iterations == stated.iterations);
+  for (int i = 0; i < 6; ++i) CHECK(plain.eta[i] == stated.eta[i]);
+  // A window longer than the iteration cap never stalls: the solve runs on to its tolerance or cap.
+  const GuideSolve unstalled = optimise_guide(t, start, 200, 1e-14, StallTest{1000, 1e-2});
+  CHECK(unstalled.termination != "STALL");
+  CHECK(unstalled.iterations > plain.iterations);
+  CHECK(unstalled.final_cost <= plain.final_cost);
+  CHECK(std::isfinite(plain.final_cost));
+}
