@@ -326,11 +326,9 @@ constexpr int kNearNewtonSteps = 12;
 
 // Where a solve by multiple shooting stops when its caller sets no stall test: once 30 iterations
 // (accepted or not) have lowered the cost by less than 1 %. Each of its evaluations solves a
-// boundary-value problem on the support, and the long tails of those solves crawl: on the straight
-// fixture this takes 34.2 evaluations a guide instead of 43.1 and keeps 0.9714 of the guide nodes
-// inside instead of 0.9706; windows of 10, 15 and 20 iterations gave 0.9684, 0.9698 and 0.9709
-// (bench/results/long_hair.md). Single-shooting solves keep running to the tolerance: there the
-// same test moved the thin-shell guides by ±0.001 either way.
+// boundary-value problem, and the long tails of those solves crawl without bringing guides back
+// inside; a shorter window stops solves that still do (bench/results/long_hair.md has the
+// windows measured). Single-shooting solves run on to the tolerance.
 constexpr StallTest kMultipleShootingStall{30, 1e-2};
 
 // A rod solved by multiple shooting: Levenberg–Marquardt over x = (f_L, t_L) from (start force,

@@ -5,10 +5,8 @@
 #include <optional>
 
 #include "core/parallel.h"
-#include <Eigen/LU>
 
 #include "guides/layer_preguide.h"
-#include "rod/rod_jet.h"
 #include "rod/rod_shooting.h"
 
 namespace hairfit {

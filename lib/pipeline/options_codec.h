@@ -2,6 +2,9 @@
 // that can change a stage's value is written, doubles bit for bit; names that only label error
 // messages are not, so a renamed input file keeps its entries.
 #pragma once
+#include <cstdint>
+#include <optional>
+
 #include "field/distance_field.h"
 #include "guides/density_term.h"
 #include "guides/guides.h"
@@ -23,5 +26,12 @@ void encode(ByteWriter& out, const DensityGridSpec& grid);
 void encode(ByteWriter& out, const GuideDensitySettings& settings);
 void encode(ByteWriter& out, const WispShape& wisp);
 void encode(ByteWriter& out, const StrandOptions& options);
+
+// An optional part of a stage's options: whether it is there, then its value.
+template <class T>
+void encode(ByteWriter& out, const std::optional<T>& part) {
+  out.put<std::uint8_t>(part.has_value());
+  if (part) encode(out, *part);
+}
 
 }  // namespace hairfit

@@ -53,7 +53,7 @@ class Runner {
 
   PipelineResult run() {
     for (const StageDescriptor* stage : stage_table()) {
-      if (!stage->present || stage->present(scene_)) run_stage(*stage);  // no trace of a stage not declared
+      if (configured_.count(stage->name)) run_stage(*stage);  // no trace of a stage the scene lacks
       if (stage->name == options_.until) break;
     }
     if (options_.write_outputs)

@@ -20,8 +20,7 @@ struct GuidesOptions {
 
 void encode(ByteWriter& out, const GuidesOptions& o) {
   encode(out, o.guides);
-  out.put<std::uint8_t>(o.density.has_value());
-  if (o.density) encode(out, *o.density);
+  encode(out, o.density);
 }
 
 std::size_t loop_items(const StageValues& v) { return v.clusters->size(); }

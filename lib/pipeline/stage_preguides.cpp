@@ -19,8 +19,7 @@ struct PreguidesOptions {
 
 void encode(ByteWriter& out, const PreguidesOptions& o) {
   encode(out, o.preguides);
-  out.put<std::uint8_t>(o.growth.has_value());
-  if (o.growth) encode(out, *o.growth);
+  encode(out, o.growth);
 }
 
 std::size_t loop_items(const StageValues& v) { return v.preguide_roots->roots.size(); }
