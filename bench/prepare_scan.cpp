@@ -4,7 +4,7 @@
 // curvature), and what the checks found. The plain and tilted
 // busts are also prepared both ways (radial and level set), the two designs side by side.
 //   cmake -S . -B build -DHAIRFIT_BENCH=ON && cmake --build build --target bench_prepare_scan
-//   build/bench/bench_prepare_scan [spacing_cm = 0.23 (about 270 000 triangles)] [threads = 0: all]
+//   build/bench/bench_prepare_scan [spacing_cm = 0.23 (about 270 000 triangles)] [threads = 0: all] [bust: all]
 #include <chrono>
 #include <cstdio>
 #include <ctime>
@@ -52,9 +52,11 @@ void run(BustStyle style, const BustScan& scan, const std::string& method, int t
 int main(int argc, char** argv) {
   const double spacing = argc > 1 ? std::atof(argv[1]) : 0.23;
   const int threads = argc > 2 ? std::atoi(argv[2]) : 0;
+  const std::string only = argc > 3 ? argv[3] : "";
   std::printf("| bust | scan triangles | --scalp | made by | wall s | CPU s | hull triangles | scalp triangles | scalp |H| p95 / max (1/cm) | checks |\n");
   std::printf("| --- | ---: | --- | --- | ---: | ---: | ---: | ---: | ---: | --- |\n");
   for (BustStyle style : all_bust_styles()) {
+    if (!only.empty() && bust_style_name(style) != only) continue;
     const BustScan scan = make_sculpted_bust(style, spacing);
     run(style, scan, "auto", threads);
     if (style == BustStyle::plain || style == BustStyle::tilted) {

@@ -145,15 +145,29 @@ Mesh with_scalp(Mesh base, const std::vector<int>& shared, const Prepared& p, bo
   return base;
 }
 
-PrepareChecks check(const Prepared& p, int threads) {
+// How far check() goes: every check, for a scalp that is kept and reported; or up to the first
+// check that fails, for a trial whose failure only decides that another method is tried (the
+// checks cost about as much as the radial scalp itself on a 270 000-triangle scan).
+enum class CheckScope { all, until_failure };
+
+std::string failures(const PrepareChecks& c);
+
+PrepareChecks check(const Prepared& p, int threads, CheckScope scope = CheckScope::all) {
   PrepareChecks c;
   const Mesh& hull = p.hull.mesh;
   const Mesh& scalp = p.scalp.scalp;
+  const bool stop_early = scope == CheckScope::until_failure;
+  // The cheap checks first: topology, the shared hairline, and the winding number at the deepest
+  // scalp vertex.
   c.hull_disk = analyse_topology(hull).is_disk();
   c.scalp_disk = analyse_topology(scalp).is_disk();
   c.hairline_shared = p.scalp.hairline.size() == p.hull.hairline.size();
   for (std::size_t k = 0; c.hairline_shared && k < p.scalp.hairline.size(); ++k)
     c.hairline_shared = scalp.positions[p.scalp.hairline[k]] == hull.positions[p.hull.hairline[k]];
+  const int deepest = static_cast<int>(std::max_element(p.scalp.thickness.begin(), p.scalp.thickness.end()) -
+                                       p.scalp.thickness.begin());
+  c.deepest_winding = winding_number(p.scalp.volume, scalp.positions[deepest]);
+  if (stop_early && !failures(c).empty()) return c;
   // Facing: just outside each scalp triangle (1e-3 cm along its normal) lies the layer, inside the
   // hull closed by the reversed scalp.
   std::vector<int> on_hull(scalp.positions.size(), -1);
@@ -166,12 +180,14 @@ PrepareChecks check(const Prepared& p, int threads) {
   });
   for (int t = 0; t < faces; ++t)
     if (inward[t] && c.scalp_inward_triangles++ == 0) c.first_inward = triangle_centroid(scalp, t);
+  if (stop_early && c.scalp_inward_triangles > 0) return c;
   // One mesh of hull, floor and scalp sharing the hairline: any crossing among them shows up as a
   // self-intersection.
   const Mesh all = with_scalp(p.scalp.volume, p.scalp.volume_vertex, p, false);
   const auto pairs = self_intersections(all, 16, threads);
   c.intersections = static_cast<int>(pairs.size());
   if (!pairs.empty()) c.first_intersection = triangle_centroid(all, pairs[0].first);
+  if (stop_early && c.intersections > 0) return c;
   const std::vector<double> curvature = mean_curvature(scalp);
   std::vector<double> under;
   for (std::size_t v = 0; v < curvature.size(); ++v)
@@ -181,9 +197,6 @@ PrepareChecks check(const Prepared& p, int threads) {
     c.curvature_p95 = under[static_cast<std::size_t>(0.95 * (under.size() - 1))];
     c.curvature_max = under.back();
   }
-  const int deepest = static_cast<int>(std::max_element(p.scalp.thickness.begin(), p.scalp.thickness.end()) -
-                                       p.scalp.thickness.begin());
-  c.deepest_winding = winding_number(p.scalp.volume, scalp.positions[deepest]);
   return c;
 }
 
@@ -243,7 +256,9 @@ Prepared prepare_scan(const Mesh& raw_scan, const std::vector<Vec3>& colors, con
                       " triangles face the head centre (it overhangs, folds or lies in tubes)";
     } else {
       p.scalp = make_scalp(p.hull, o.scalp, file);
-      p.checks = check(p, o.threads);
+      // Under `auto` a failing radial scalp is set aside for the level set, and only the first
+      // failure is named; a declared radial scalp is checked in full for the report.
+      p.checks = check(p, o.threads, o.scalp_method == "auto" ? CheckScope::until_failure : CheckScope::all);
       radial_failed = failures(p.checks);
       if (radial_failed.empty() || o.scalp_method == "radial") p.scalp_how = "radial: the hull is star-shaped about the head centre";
     }
