@@ -145,12 +145,29 @@ Mesh with_scalp(Mesh base, const std::vector<int>& shared, const Prepared& p, bo
   return base;
 }
 
+// The checks that failed, each a clause ("the hull is not a disk"), joined by "; ": empty when all
+// passed.
+std::string failures(const PrepareChecks& c) {
+  std::vector<std::string> failed;
+  if (!c.hull_disk) failed.push_back("the hull is not a disk");
+  if (!c.scalp_disk) failed.push_back("the scalp is not a disk");
+  if (c.scalp_inward_triangles)
+    failed.push_back(std::to_string(c.scalp_inward_triangles) + " scalp triangles face inward (e.g. at " +
+                     vec_text(c.first_inward) + ")");
+  if (c.intersections)
+    failed.push_back("hull, floor and scalp intersect (" + std::to_string(c.intersections) + " pairs, e.g. at " +
+                     vec_text(c.first_intersection) + ")");
+  if (!(c.deepest_winding > 0.5)) failed.push_back("the scalp is not inside the hull");
+  if (!c.hairline_shared) failed.push_back("the scalp's hairline differs from the hull's");
+  std::string text;
+  for (const std::string& f : failed) text += (text.empty() ? "" : "; ") + f;
+  return text;
+}
+
 // How far check() goes: every check, for a scalp that is kept and reported; or up to the first
 // check that fails, for a trial whose failure only decides that another method is tried (the
 // checks cost about as much as the radial scalp itself on a 270 000-triangle scan).
 enum class CheckScope { all, until_failure };
-
-std::string failures(const PrepareChecks& c);
 
 PrepareChecks check(const Prepared& p, int threads, CheckScope scope = CheckScope::all) {
   PrepareChecks c;
@@ -167,7 +184,7 @@ PrepareChecks check(const Prepared& p, int threads, CheckScope scope = CheckScop
   const int deepest = static_cast<int>(std::max_element(p.scalp.thickness.begin(), p.scalp.thickness.end()) -
                                        p.scalp.thickness.begin());
   c.deepest_winding = winding_number(p.scalp.volume, scalp.positions[deepest]);
-  if (stop_early && !failures(c).empty()) return c;
+  if (stop_early && !failures(c).empty()) return c;  // the checks not yet run read as passed
   // Facing: just outside each scalp triangle (1e-3 cm along its normal) lies the layer, inside the
   // hull closed by the reversed scalp.
   std::vector<int> on_hull(scalp.positions.size(), -1);
@@ -198,25 +215,6 @@ PrepareChecks check(const Prepared& p, int threads, CheckScope scope = CheckScop
     c.curvature_max = under.back();
   }
   return c;
-}
-
-// The checks that failed, each a clause ("the hull is not a disk"), joined by "; ": empty when all
-// passed.
-std::string failures(const PrepareChecks& c) {
-  std::vector<std::string> failed;
-  if (!c.hull_disk) failed.push_back("the hull is not a disk");
-  if (!c.scalp_disk) failed.push_back("the scalp is not a disk");
-  if (c.scalp_inward_triangles)
-    failed.push_back(std::to_string(c.scalp_inward_triangles) + " scalp triangles face inward (e.g. at " +
-                     vec_text(c.first_inward) + ")");
-  if (c.intersections)
-    failed.push_back("hull, floor and scalp intersect (" + std::to_string(c.intersections) + " pairs, e.g. at " +
-                     vec_text(c.first_intersection) + ")");
-  if (!(c.deepest_winding > 0.5)) failed.push_back("the scalp is not inside the hull");
-  if (!c.hairline_shared) failed.push_back("the scalp's hairline differs from the hull's");
-  std::string text;
-  for (const std::string& f : failed) text += (text.empty() ? "" : "; ") + f;
-  return text;
 }
 
 double max_thickness(const Prepared& p) {
