@@ -392,6 +392,11 @@ class SceneParser {
         error(location_of("maps." + name), "maps." + name + " is given but effects.maps does not list \"" +
                                                             name + "\"; add it there or remove the path");
     }
+    if (scene_.guides.point_forces > 0 && (scene_.effects.gravity || scene_.effects.contact))
+      error(location_of("guides.point_forces"),
+            "guides.point_forces act on weightless hair (solved by single shooting), but effects." +
+                std::string(scene_.effects.gravity ? "gravity" : "contact") +
+                " is declared; set guides.point_forces = 0 or leave the effect out");
     const Vec3& down = scene_.units.down;
     const Vec3& front = scene_.units.front;
     if (down.cross(front).norm() < 0.1)

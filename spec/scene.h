@@ -119,6 +119,8 @@ struct SceneGuides {
   std::string boundary = "smooth";  // smooth (C¹) | paper (eq. 9 exactly)
   double outside_penalty = 3.0;    // c_d, cm: extra cost outside the acceptable region (eq. 9)
   double boundary_width = 1.0;     // cm inside the surface over which the smooth form ramps c_d up
+  int point_forces = 0;            // interior point forces per guide (0: the paper's terminal load)
+  double point_force_weight = 1e-4;  // w5: weight of Σ|F_k|² on them
   SceneWeights weights;
 };
 

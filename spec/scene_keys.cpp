@@ -315,6 +315,13 @@ std::vector<SceneKey> build_keys() {
                         "c_d of eq. 9: extra cost of a sample outside the acceptable region."));
   keys.push_back(number("guides.boundary_width", REF(guides.boundary_width), "cm", above(0, 100), "guides",
                         "Depth inside each surface over which the smooth boundary penalty ramps c_d up."));
+  keys.push_back(integer("guides.point_forces", REF(guides.point_forces), "", closed(0, 3), "guides",
+                         "Interior point forces per guide, evenly spaced along it, optimised with the terminal "
+                         "load: the layer holding the hair along its length (thin shells). 0: the paper's six "
+                         "terminal-load parameters alone. Weightless hair only."));
+  keys.push_back(number("guides.point_force_weight", REF(guides.point_force_weight), "", closed(0, 1), "guides",
+                        "w5: weight of Σ|F_k|² over the point forces (dimensionless, F·L²/EI), so that the layer "
+                        "pushes no harder than the shape needs."));
   keys.push_back(number("guides.weights.direction", REF(guides.weights.direction), "", closed(0, 1), "guides",
                         "w1: follow the pre-guides' directions (F1, eq. 7). The four weights sum to 1 (eq. 6)."));
   keys.push_back(number("guides.weights.similarity", REF(guides.weights.similarity), "", closed(0, 1), "guides",

@@ -9,6 +9,7 @@
 
 #include "guides/objective.h"
 #include "rod/rod_jet.h"
+#include "rod/rod_point_forces.h"
 
 namespace hairfit {
 
@@ -16,22 +17,25 @@ using Jet = RodJet6;
 
 // A value tabulated in double, read at a jet point p: the value at p's scalar part, and its
 // derivative by the chain rule through the table's gradient there (STYLE.md).
-inline Jet chained(double value, const Vec3& gradient, const Jet* p) {
-  Jet out(value);
+template <int N>
+RodJet<N> chained(double value, const Vec3& gradient, const RodJet<N>* p) {
+  RodJet<N> out(value);
   out.v = gradient.x() * p[0].v + gradient.y() * p[1].v + gradient.z() * p[2].v;
   return out;
 }
 
 // A distance field's value.
 inline double field_at(const DistanceField& field, const double* p) { return field.value(Vec3(p[0], p[1], p[2])); }
-inline Jet field_at(const DistanceField& field, const Jet* p) {
+template <int N>
+RodJet<N> field_at(const DistanceField& field, const RodJet<N>* p) {
   const FieldValueGradient vg = field.value_and_gradient(Vec3(p[0].a, p[1].a, p[2].a));
   return chained(vg.value, vg.gradient, p);
 }
 
 // The grid's trilinear value (BOM occupancy) and, for jets, its exact piecewise-trilinear gradient.
 inline double density_at(const DensityGrid& grid, const double* p) { return grid.value(Vec3(p[0], p[1], p[2])); }
-inline Jet density_at(const DensityGrid& grid, const Jet* p) {
+template <int N>
+RodJet<N> density_at(const DensityGrid& grid, const RodJet<N>* p) {
   const DensityValueGradient vg = grid.value_and_gradient(Vec3(p[0].a, p[1].a, p[2].a));
   return chained(vg.value, vg.gradient, p);
 }
@@ -41,11 +45,12 @@ inline Jet density_at(const DensityGrid& grid, const Jet* p) {
 inline double density_slope(const DensityGrid& grid, const double* p, const double* t) {
   return grid.central_gradient(Vec3(p[0], p[1], p[2])).dot(Vec3(t[0], t[1], t[2]));
 }
-inline Jet density_slope(const DensityGrid& grid, const Jet* p, const Jet* t) {
+template <int N>
+RodJet<N> density_slope(const DensityGrid& grid, const RodJet<N>* p, const RodJet<N>* t) {
   const DensityGradientJacobian gj = grid.central_gradient_and_jacobian(Vec3(p[0].a, p[1].a, p[2].a));
   const Vec3 ta(t[0].a, t[1].a, t[2].a);
   const Vec3 jt = gj.jacobian.transpose() * ta;  // ∂⟨g, t⟩/∂p
-  Jet out(gj.gradient.dot(ta));
+  RodJet<N> out(gj.gradient.dot(ta));
   out.v = jt.x() * p[0].v + jt.y() * p[1].v + jt.z() * p[2].v;
   for (int a = 0; a < 3; ++a) out.v += gj.gradient[a] * t[a].v;
   return out;
@@ -153,7 +158,9 @@ class GuideCost {
         [](const GuideTargets::Neighbour& nb, std::size_t k) { return nb.darboux[k]; });
   }
 
-  int residual_count() const {
+  int residual_count() const { return shape_residual_count() + 3 * t_.point_forces; }
+  // The residuals of the shape alone (F1–F4), before the point forces' (F5).
+  int shape_residual_count() const {
     const std::size_t per_term = merged_ ? 3 : 3 * t_.neighbours.size();
     return static_cast<int>(t_.sample_nodes.size() * (2 * per_term + 2 + density_per_sample()));
   }
@@ -167,8 +174,9 @@ class GuideCost {
   }
 
   // Residuals in blocks: F1 (3 per neighbour and sample; merged: 3 per sample), F2 (the same),
-  // F3 (scalp and volume per sample), F4 (density_per_sample per sample, only with a grid).
-  // Σr² (+ merged_constant()) = Σ wᵢFᵢ exactly, with the trapezoidal rule for ∫ds.
+  // F3 (scalp and volume per sample), F4 (density_per_sample per sample, only with a grid), F5
+  // (3 per interior point force). Σr² (+ merged_constant()) = Σ wᵢFᵢ + w5·F5 exactly, with the
+  // trapezoidal rule for ∫ds. eta: (f_L, m(0), F_1 … F_K), K = targets.point_forces.
   template <typename T>
   bool operator()(const T* eta, T* residuals) const {
     const int n = t_.rod.segments + 1;
@@ -181,8 +189,13 @@ class GuideCost {
     T* frames = nodes + 3 * n;
     T* curvature = frames + 9 * n;
     T m1[3];
-    integrate_rod<T>(t_.model, t_.rod.integrator, t_.rod.segments, eta, eta + 3, m1,
-                     RodTrace<T>{nodes, frames, curvature, nullptr, is_sample_.data()});
+    const int point_forces = std::min(t_.point_forces, kPointForcesCarried<T>);
+    integrate_rod_with_point_forces<T>(t_.model, t_.rod.integrator, t_.rod.segments, eta, eta + 3, eta + 6,
+                                       point_forces, m1, RodTrace<T>{nodes, frames, curvature, nullptr, is_sample_.data()});
+    // F5 = Σ|F_k|²: the layer pushes no harder than the shape needs.
+    T* forces = residuals + shape_residual_count();
+    const T scale = T(std::sqrt(t_.point_force_weight));
+    for (int i = 0; i < 3 * point_forces; ++i) forces[i] = scale * eta[6 + i];
     return residuals_of_shape(nodes, frames, curvature, residuals);
   }
 

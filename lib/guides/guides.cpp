@@ -84,7 +84,7 @@ class FirstSolves {
     std::vector<double> weights;
     for (int j : from) weights.push_back((bases_.positions[j] - bases_.positions[b]).norm());
     weights = follow_weights(weights);
-    double start[6] = {0, 0, 0, 0, 0, 0};
+    double start[kMaxGuideLoads] = {};
     add_weighted_loads(out_, from, weights, start);
     const ShootingResult* near = from.empty() ? nullptr : &pieces_[from[0]];
     out_[b] = solve_guide(problem_, b, setup(start, near, in_round_[b] ? &pieces_[b] : nullptr));
@@ -262,7 +262,9 @@ GuideFigures guide_figures(const Guides& guides, const PreGuides& preguides, con
     f.mean_evaluations += g.evaluations;
     bool tail = true;  // on the stretch outside the volume that ends at the tip, walking back
     int tail_nodes = 0;
-    for (std::size_t i = g.shape.nodes.size(); i-- > 0;) {
+    // The root (node 0) lies on the scalp by construction, where the inside is undecided (the
+    // region's winding number is ½ there): the shares count the nodes after it.
+    for (std::size_t i = g.shape.nodes.size(); i-- > 1;) {
       const Vec3& p = g.shape.nodes[i];
       const bool head = boundary.beyond_scalp(p) > 0.0, out = boundary.beyond_volume(p) > 0.0;
       ++nodes;
@@ -306,6 +308,7 @@ Digest digest(const Guides& guides) {
   Digest d;
   for (const Guide& g : guides.items) {
     d.add(g.force).add(g.root_moment).add(g.shape.nodes);
+    for (const Vec3& f : g.point_forces) d.add(f);
     d.add(static_cast<std::int64_t>(g.converged)).add(static_cast<std::int64_t>(g.iterations));
   }
   return d;

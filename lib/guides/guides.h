@@ -41,6 +41,11 @@ struct GuideOptions {
   double outside_penalty = 3.0;   // c_d, cm
   double boundary_width = 1.0;    // cm
   GuideWeights weights;
+  // Interior point forces per guide (0–3, rod_point_forces.h): where the layer holds the hair
+  // along its length, not only at its end. 0 is the paper's terminal load alone. w5 weighs
+  // F5 = Σ|F_k|² (dimensionless forces), so that the layer pushes no harder than it must.
+  int point_forces = 0;
+  double point_force_weight = 1e-4;
   bool warm_start = true;      // start from the neighbours' loads (else straight, the paper)
   Vec3 down{0, -1, 0};
   Vec3 front{0, 0, 1};
@@ -54,6 +59,9 @@ struct Guide {
   Vec3 force = Vec3::Zero();        // f_L, dimensionless (F·L²/EI), world axes
   Vec3 root_moment = Vec3::Zero();  // m(0), dimensionless (M·L/EI)
   Vec3 terminal_torque = Vec3::Zero();  // m(L), dimensionless: the paper's t_L
+  // F_1 … F_K, dimensionless, world axes, at nodes point_force_node(k, K, segments); empty
+  // without guides.point_forces.
+  std::vector<Vec3> point_forces;
   double force_scale = 1.0;         // EI/L², dyn: multiply dimensionless forces by it for cgs
   double moment_scale = 1.0;        // EI/L, dyn·cm
   FibreShape shape;
@@ -65,7 +73,7 @@ struct Guide {
   std::string termination;  // Ceres' word for why it stopped
   double initial_cost = 0.0;
   double cost = 0.0;        // Σ wᵢ·Fᵢ at the result (as least squares: ½Σr² = ½·Σ wᵢFᵢ)
-  double f1 = 0.0, f2 = 0.0, f3 = 0.0, f4 = 0.0;  // unweighted terms at the result
+  double f1 = 0.0, f2 = 0.0, f3 = 0.0, f4 = 0.0, f5 = 0.0;  // unweighted terms at the result
   // With effects.contact: the largest support force per length the scalp exerts on the guide
   // (dyn/cm) and the share of its nodes beyond the first tenth of its length (the root's own
   // region) within the contact layer; 0 without contact.
@@ -109,7 +117,7 @@ struct GuideFigures {
   double mean_iterations = 0.0;
   int max_iterations = 0;
   double mean_evaluations = 0.0;
-  double inside_fraction = 0.0;       // share of all guide nodes in the acceptable region
+  double inside_fraction = 0.0;       // share of the guide nodes after the root in the acceptable region
   double inside_head_fraction = 0.0;  // share behind the scalp
   double outside_volume_fraction = 0.0;
   // Of those, the nodes on a guide's last stretch outside the volume, from its last node inside to

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "core/compress_least_squares.h"
+#include "core/error.h"
 #include "guides/guide_cost.h"
 #include "rod/rod_jet.h"
 #include "rod/rod_sensitivity.h"
@@ -14,41 +15,58 @@ namespace hairfit {
 
 namespace {
 
-// The optimiser's coordinates x = (f_L, μ) with m(0) = μ + c × f_L + g, where c is the chord
-// r(1) − r(0) and g = ∫(r − r(0)) ds × q the gravity moment of a reference shape (equilibrium:
+// The optimiser's coordinates x = (f_L, μ, F_1 … F_K) with m(0) = μ + c × f_L + Σ c_k × F_k + g,
+// where c is the chord r(1) − r(0), c_k = r(s_k) − r(0) the lever of point force k and
+// g = ∫(r − r(0)) ds × q the gravity moment of a reference shape (equilibrium:
 // m(0) = t_L + ∫ d3 × n ds). Near the reference shape μ ≈ t_L, so the root moment no longer
-// has to cancel the large moment of the terminal force to leave a small terminal torque. The
+// has to cancel the large moments of the forces to leave a small terminal torque. The
 // Gauss–Newton step is the same in any linear coordinates, but the damping is not: fewer guides
 // stop at the iteration cap in these coordinates (bench/results/guide_solver.md).
 struct LoadCoordinates {
   Vec3 chord = Vec3::Zero();
   Vec3 gravity_moment = Vec3::Zero();
+  int point_forces = 0;
+  Vec3 levers[kMaxPointForces];
 
-  LoadCoordinates(const RodModel& model, const RodDiscretisation& rod, const double loads[6]) {
-    const int n = rod.segments + 1;
+  LoadCoordinates(const GuideTargets& t, const double* loads) : point_forces(t.point_forces) {
+    const int n = t.rod.segments + 1;
     std::vector<double> nodes(3 * n);
     double m1[3];
-    integrate_rod<double>(model, rod.integrator, rod.segments, loads, loads + 3, m1,
-                          RodTrace<double>{nodes.data(), nullptr, nullptr, nullptr});
-    chord = Vec3(nodes[3 * (n - 1)], nodes[3 * (n - 1) + 1], nodes[3 * (n - 1) + 2]);
+    integrate_rod_with_point_forces<double>(t.model, t.rod.integrator, t.rod.segments, loads, loads + 3, loads + 6,
+                                            point_forces, m1, RodTrace<double>{nodes.data(), nullptr, nullptr, nullptr});
+    const auto node = [&](int i) { return Vec3(nodes[3 * i], nodes[3 * i + 1], nodes[3 * i + 2]); };
+    chord = node(n - 1);
+    for (int k = 0; k < point_forces; ++k) levers[k] = node(point_force_node(k + 1, point_forces, t.rod.segments));
     Vec3 mean = Vec3::Zero();  // ∫ r ds by the trapezoidal rule (r(0) = 0)
-    for (int i = 0; i < n; ++i)
-      mean += (i == 0 || i == n - 1 ? 0.5 : 1.0) / (n - 1) * Vec3(nodes[3 * i], nodes[3 * i + 1], nodes[3 * i + 2]);
-    gravity_moment = mean.cross(model.force_per_length);
+    for (int i = 0; i < n; ++i) mean += (i == 0 || i == n - 1 ? 0.5 : 1.0) / (n - 1) * node(i);
+    gravity_moment = mean.cross(t.model.force_per_length);
   }
 
   template <typename T>
   void to_loads(const T* x, T* loads) const {
+    const int count = std::min(point_forces, kPointForcesCarried<T>);
     for (int a = 0; a < 3; ++a) loads[a] = x[a];
-    const T c[3] = {T(chord.x()), T(chord.y()), T(chord.z())};
-    loads[3] = x[3] + c[1] * x[2] - c[2] * x[1] + T(gravity_moment.x());
-    loads[4] = x[4] + c[2] * x[0] - c[0] * x[2] + T(gravity_moment.y());
-    loads[5] = x[5] + c[0] * x[1] - c[1] * x[0] + T(gravity_moment.z());
+    for (int i = 6; i < 6 + 3 * count; ++i) loads[i] = x[i];
+    T m[3] = {x[3] + T(gravity_moment.x()), x[4] + T(gravity_moment.y()), x[5] + T(gravity_moment.z())};
+    add_moment(chord, x, m);
+    for (int k = 0; k < count; ++k) add_moment(levers[k], x + 6 + 3 * k, m);
+    for (int a = 0; a < 3; ++a) loads[3 + a] = m[a];
   }
   void from_loads(const double* loads, double* x) const {
     for (int a = 0; a < 3; ++a) x[a] = loads[a];
-    const Vec3 m = Vec3(loads[3], loads[4], loads[5]) - chord.cross(Vec3(loads[0], loads[1], loads[2])) - gravity_moment;
+    for (int i = 6; i < 6 + 3 * point_forces; ++i) x[i] = loads[i];
+    Vec3 m = Vec3(loads[3], loads[4], loads[5]) - chord.cross(Vec3(loads[0], loads[1], loads[2])) - gravity_moment;
+    for (int k = 0; k < point_forces; ++k) m -= levers[k].cross(Vec3(loads[6 + 3 * k], loads[7 + 3 * k], loads[8 + 3 * k]));
     for (int a = 0; a < 3; ++a) x[3 + a] = m[a];
+  }
+
+ private:
+  // m += c × f.
+  template <typename T>
+  static void add_moment(const Vec3& c, const T* f, T* m) {
+    m[0] = m[0] + T(c.y()) * f[2] - T(c.z()) * f[1];
+    m[1] = m[1] + T(c.z()) * f[0] - T(c.x()) * f[2];
+    m[2] = m[2] + T(c.x()) * f[1] - T(c.y()) * f[0];
   }
 };
 
@@ -60,7 +78,7 @@ class ReparameterisedCost {
   double merged_constant() const { return cost_.merged_constant(); }
   template <typename T>
   bool operator()(const T* x, T* residuals) const {
-    T loads[6];
+    T loads[kMaxGuideLoads];
     coordinates_.to_loads(x, loads);
     return cost_(loads, residuals);
   }
@@ -70,7 +88,8 @@ class ReparameterisedCost {
   LoadCoordinates coordinates_;
 };
 
-// The reparameterised guide cost as Ceres sees it: seven residuals in place of a few hundred.
+// The reparameterised guide cost as Ceres sees it in its N loads (6, or 6 + 3K with K point
+// forces): N + 1 residuals in place of a few hundred.
 // Where the Jacobian is asked for, the residuals and their jets are compressed
 // (compress_least_squares: the same cost, gradient, Gauss–Newton matrix and column norms), so
 // Levenberg–Marquardt takes the same steps to round-off; Ceres formed JᵀJ for its normal
@@ -78,8 +97,9 @@ class ReparameterisedCost {
 // (validating, zeroing, scaling and multiplying it), a fifth of the guide solves' instructions
 // (bench/results/guide_solver.md). Where only the cost is asked for, the
 // residuals are (0, …, 0, |r|). The residuals are the merged ones (MergedTargets: 160 in place
-// of 374 at paper scale); their constant joins the seventh residual, so Ceres sees the full cost.
-class CompressedGuideCost : public ceres::SizedCostFunction<7, 6> {
+// of 374 at paper scale); their constant joins the last residual, so Ceres sees the full cost.
+template <int N>
+class CompressedGuideCost : public ceres::SizedCostFunction<N + 1, N> {
  public:
   explicit CompressedGuideCost(const ReparameterisedCost& cost) : cost_(cost) {}
 
@@ -92,28 +112,38 @@ class CompressedGuideCost : public ceres::SizedCostFunction<7, 6> {
       if (!cost_(x, r.data())) return false;
       double squares = cost_.merged_constant();
       for (double v : r) squares += v * v;
-      std::fill(residuals, residuals + 6, 0.0);
-      residuals[6] = std::sqrt(squares);
-      return std::isfinite(residuals[6]);
+      std::fill(residuals, residuals + N, 0.0);
+      residuals[N] = std::sqrt(squares);
+      return std::isfinite(residuals[N]);
     }
-    thread_local std::vector<Jet> rj;
+    thread_local std::vector<RodJet<N>> rj;
     rj.resize(m);
-    j.resize(6 * static_cast<std::size_t>(m));
-    Jet xj[6];
-    for (int i = 0; i < 6; ++i) xj[i] = Jet(x[i], i);
+    j.resize(N * static_cast<std::size_t>(m));
+    RodJet<N> xj[N];
+    for (int i = 0; i < N; ++i) xj[i] = RodJet<N>(x[i], i);
     if (!cost_(xj, rj.data())) return false;
     for (int i = 0; i < m; ++i) {
       r[i] = rj[i].a;
-      for (int k = 0; k < 6; ++k) j[6 * i + k] = rj[i].v[k];
+      for (int k = 0; k < N; ++k) j[N * i + k] = rj[i].v[k];
     }
-    if (!compress_least_squares(m, r.data(), j.data(), residuals, jacobians[0])) return false;
-    residuals[6] = std::sqrt(residuals[6] * residuals[6] + cost_.merged_constant());
+    if (!compress_least_squares<N>(m, r.data(), j.data(), residuals, jacobians[0])) return false;
+    residuals[N] = std::sqrt(residuals[N] * residuals[N] + cost_.merged_constant());
     return true;
   }
 
  private:
   const ReparameterisedCost& cost_;
 };
+
+// The single-shooting cost of these targets' load count.
+ceres::CostFunction* compressed_guide_cost(const ReparameterisedCost& functor, int loads) {
+  switch (loads) {
+    case 6: return new CompressedGuideCost<6>(functor);
+    case 9: return new CompressedGuideCost<9>(functor);
+    case 12: return new CompressedGuideCost<12>(functor);
+    default: return new CompressedGuideCost<15>(functor);
+  }
+}
 
 // The guide objective of a rod too heavy for the initial-value form: the parameters are the
 // terminal loads (f_L, t_L) themselves, the paper's six, and every evaluation solves the
@@ -180,13 +210,15 @@ GuideTerms terms_of(const GuideTargets& targets, const std::vector<double>& r) {
   };
   const GuideWeights& w = targets.weights;
   const std::size_t f3_end = 2 * block + 2 * targets.sample_nodes.size();
+  const std::size_t f4_end = r.size() - 3 * static_cast<std::size_t>(targets.point_forces);
   const double e1 = sum_squares(0, block), e2 = sum_squares(block, 2 * block), e3 = sum_squares(2 * block, f3_end);
-  const double e4 = sum_squares(f3_end, r.size());
+  const double e4 = sum_squares(f3_end, f4_end), e5 = sum_squares(f4_end, r.size());
   terms.f1 = w.direction > 0 ? e1 / w.direction : 0.0;
   terms.f2 = w.similarity > 0 ? e2 / w.similarity : 0.0;
   terms.f3 = w.boundary > 0 ? e3 / w.boundary : 0.0;
   if (targets.density && w.density > 0) terms.f4 = e4 / w.density;
-  terms.total = e1 + e2 + e3 + e4;
+  if (targets.point_force_weight > 0) terms.f5 = e5 / targets.point_force_weight;
+  terms.total = e1 + e2 + e3 + e4 + e5;
   return terms;
 }
 
@@ -211,7 +243,7 @@ GuideTerms evaluate_guide_terms(const GuideTargets& targets, const ShootingResul
   return with_unweighted_f4(targets, solution, terms_of(targets, r));
 }
 
-GuideTerms evaluate_guide_terms(const GuideTargets& targets, const double eta[6]) {
+GuideTerms evaluate_guide_terms(const GuideTargets& targets, const double* eta) {
   GuideCost cost(targets);
   std::vector<double> r(cost.residual_count());
   cost(eta, r.data());
@@ -220,34 +252,43 @@ GuideTerms evaluate_guide_terms(const GuideTargets& targets, const double eta[6]
 
 namespace {
 
-std::vector<double> residuals_of(const GuideCost& cost, const double eta[6], std::vector<double>* jacobian) {
+template <int N>
+std::vector<double> jet_residuals_of(const GuideCost& cost, const double* eta, std::vector<double>& jacobian) {
   std::vector<double> r(cost.residual_count());
-  if (!jacobian) {
-    cost(eta, r.data());
-    return r;
-  }
-  Jet x[6];
-  for (int i = 0; i < 6; ++i) x[i] = Jet(eta[i], i);
-  std::vector<Jet> rj(r.size());
+  RodJet<N> x[N];
+  for (int i = 0; i < N; ++i) x[i] = RodJet<N>(eta[i], i);
+  std::vector<RodJet<N>> rj(r.size());
   cost(x, rj.data());
-  jacobian->assign(6 * r.size(), 0.0);
+  jacobian.assign(N * r.size(), 0.0);
   for (std::size_t i = 0; i < r.size(); ++i) {
     r[i] = rj[i].a;
-    for (int j = 0; j < 6; ++j) (*jacobian)[6 * i + j] = rj[i].v[j];
+    for (int j = 0; j < N; ++j) jacobian[N * i + j] = rj[i].v[j];
   }
+  return r;
+}
+
+std::vector<double> residuals_of(const GuideCost& cost, int loads, const double* eta, std::vector<double>* jacobian) {
+  if (jacobian) switch (loads) {
+      case 6: return jet_residuals_of<6>(cost, eta, *jacobian);
+      case 9: return jet_residuals_of<9>(cost, eta, *jacobian);
+      case 12: return jet_residuals_of<12>(cost, eta, *jacobian);
+      default: return jet_residuals_of<15>(cost, eta, *jacobian);
+    }
+  std::vector<double> r(cost.residual_count());
+  cost(eta, r.data());
   return r;
 }
 
 }  // namespace
 
-std::vector<double> guide_residuals(const GuideTargets& targets, const double eta[6], std::vector<double>* jacobian) {
-  return residuals_of(GuideCost(targets), eta, jacobian);
+std::vector<double> guide_residuals(const GuideTargets& targets, const double* eta, std::vector<double>* jacobian) {
+  return residuals_of(GuideCost(targets), targets.load_count(), eta, jacobian);
 }
 
-MergedGuideResiduals merged_guide_residuals(const GuideTargets& targets, const double eta[6]) {
+MergedGuideResiduals merged_guide_residuals(const GuideTargets& targets, const double* eta) {
   const GuideCost cost(targets, /*merged=*/true);
   MergedGuideResiduals m;
-  m.residuals = residuals_of(cost, eta, &m.jacobian);
+  m.residuals = residuals_of(cost, targets.load_count(), eta, &m.jacobian);
   m.constant = cost.merged_constant();
   return m;
 }
@@ -386,24 +427,30 @@ GuideSolve optimise_by_multiple_shooting(const GuideTargets& targets, const doub
 
 }  // namespace
 
-GuideSolve optimise_guide(const GuideTargets& targets, const double start[6], int max_iterations, double tolerance,
+GuideSolve optimise_guide(const GuideTargets& targets, const double* start, int max_iterations, double tolerance,
                           const StallTest& stall, const ShootingResult* near) {
-  if (rod_scheme(targets.model) == RodScheme::multiple_shooting)
+  if (rod_scheme(targets.model) == RodScheme::multiple_shooting) {
+    if (targets.point_forces > 0)
+      throw InputError("guides.point_forces", "interior point forces act on rods solved by single shooting; a rod on "
+                                              "the scalp as a support or this heavy is solved by multiple shooting: "
+                                              "set guides.point_forces = 0");
     return optimise_by_multiple_shooting(targets, start, max_iterations, tolerance, stall, near);
+  }
+  const int loads = targets.load_count();
   GuideSolve result;
-  std::copy(start, start + 6, result.eta);
-  const LoadCoordinates coordinates(targets.model, targets.rod, start);
-  double x[6];
+  std::copy(start, start + loads, result.eta);
+  const LoadCoordinates coordinates(targets, start);
+  double x[kMaxGuideLoads];
   coordinates.from_loads(start, x);
 
   const ReparameterisedCost functor(targets, coordinates);
   ceres::Problem problem;
-  problem.AddResidualBlock(new CompressedGuideCost(functor), nullptr, x);
+  problem.AddResidualBlock(compressed_guide_cost(functor, loads), nullptr, x);
   ceres::Solver::Summary summary;
   const bool stalled = solve(problem, max_iterations, tolerance, stall, summary, targets.density.has_value());
 
   bool finite = true;
-  for (double v : x) finite = finite && std::isfinite(v);
+  for (int i = 0; i < loads; ++i) finite = finite && std::isfinite(x[i]);
   if (finite) coordinates.to_loads(x, result.eta);  // LM only ever accepts steps that lower the cost
   record(summary, finite, stalled, result);
   return result;
@@ -411,8 +458,7 @@ GuideSolve optimise_guide(const GuideTargets& targets, const double start[6], in
 
 FibreShape solved_shape(const GuideTargets& t, const GuideSolve& s, Vec3& terminal_torque) {
   if (s.scheme == RodScheme::single_shooting)
-    return fibre_shape(t.model, t.root, t.length, t.rod, Vec3(s.eta[0], s.eta[1], s.eta[2]),
-                       Vec3(s.eta[3], s.eta[4], s.eta[5]), &terminal_torque);
+    return fibre_shape(t.model, t.root, t.length, t.rod, s.eta, t.point_forces, &terminal_torque);
   terminal_torque = s.solution.terminal_torque;
   if (s.weight_share < 1.0) return fibre_shape(carrying_share(t.model, s.weight_share), t.root, t.length, t.rod, s.solution);
   return fibre_shape(t.model, t.root, t.length, t.rod, s.solution);

@@ -8,9 +8,22 @@
 #include "density/grid.h"
 #include "guides/density_term.h"
 #include "guides/guides.h"
+#include "rod/rod_jet.h"
 #include "rod/rod_shooting.h"
 
 namespace hairfit {
+
+// A guide's loads: the paper's six (f_L, m(0)) and, with guides.point_forces, up to three interior
+// point forces F_k (rod_point_forces.h), three scalars each, after them.
+constexpr int kMaxPointForces = 3;
+constexpr int kMaxGuideLoads = 6 + 3 * kMaxPointForces;
+// The point forces a load vector of scalar T carries: (N − 6)/3 for jets with one tangent per
+// load, up to the most for double. Loops over a guide's point forces are bounded by it, so that a
+// jet's load array is never read past its end.
+template <typename T>
+constexpr int kPointForcesCarried = kMaxPointForces;
+template <int N>
+constexpr int kPointForcesCarried<ceres::Jet<double, N>> = (N - 6) / 3;
 
 // Everything one guide's objective reads; sampled at K+1 nodes of the rod (normalised arc length
 // s_k = k/K), the pre-guides at the same normalised arc lengths.
@@ -19,6 +32,11 @@ struct GuideTargets {
   Vec3 root = Vec3::Zero();
   double length = 1.0;  // cm
   RodDiscretisation rod;
+  // Interior point forces (0: the paper's terminal load alone; weightless or weighted single
+  // shooting only) and w5, the weight of F5 = Σ|F_k|² on them.
+  int point_forces = 0;
+  double point_force_weight = 0.0;
+  int load_count() const { return 6 + 3 * point_forces; }
   std::vector<int> sample_nodes;       // node index of each sample
   std::vector<double> sample_weights;  // trapezoidal Δs of each sample (sum 1)
   struct Neighbour {
@@ -56,19 +74,22 @@ struct GuideTargets {
 //        integrand, density_ceiling), u_S/u_V how far the sample lies behind the scalp/beyond the
 //        volume, H the C¹ step from 0 at the surface to 1 a density voxel beyond it: outside the
 //        acceptable region F4 is never lower than anywhere inside.
+// F5 = Σ_k |F_k|² over the interior point forces (dimensionless), weighted by w5.
 // Quadrature is the trapezoidal rule on the samples, exactly what the residuals sum to.
 struct GuideTerms {
-  double f1 = 0.0, f2 = 0.0, f3 = 0.0, f4 = 0.0;
+  double f1 = 0.0, f2 = 0.0, f3 = 0.0, f4 = 0.0, f5 = 0.0;
   double total = 0.0;       // Σ wᵢFᵢ
 };
-GuideTerms evaluate_guide_terms(const GuideTargets& targets, const double eta[6]);
+// eta: targets.load_count() loads (f_L, m(0), F_1 … F_K).
+GuideTerms evaluate_guide_terms(const GuideTargets& targets, const double* eta);
 // The same for a heavy rod's multiple-shooting solution (GuideSolve::solution).
 GuideTerms evaluate_guide_terms(const GuideTargets& targets, const ShootingResult& solution);
 
 // The residuals the optimiser sees at eta (blocks F1, F2, F3, then F4 when targets.density is
-// set), and, when `jacobian` is given, their derivatives in eta by automatic differentiation
-// (row-major, 6 per residual). For tests of the residuals and their jets.
-std::vector<double> guide_residuals(const GuideTargets& targets, const double eta[6], std::vector<double>* jacobian = nullptr);
+// set, then F5 with point forces), and, when `jacobian` is given, their derivatives in eta by
+// automatic differentiation (row-major, targets.load_count() per residual). For tests of the
+// residuals and their jets.
+std::vector<double> guide_residuals(const GuideTargets& targets, const double* eta, std::vector<double>* jacobian = nullptr);
 
 // The residuals as the optimiser sees them: the F1 and F2 residuals of all neighbours at a sample
 // merged into one residual per sample and term (their sum of squares then falls short of the full
@@ -77,10 +98,10 @@ struct MergedGuideResiduals {
   std::vector<double> residuals, jacobian;
   double constant = 0.0;
 };
-MergedGuideResiduals merged_guide_residuals(const GuideTargets& targets, const double eta[6]);
+MergedGuideResiduals merged_guide_residuals(const GuideTargets& targets, const double* eta);
 
 struct GuideSolve {
-  double eta[6] = {0, 0, 0, 0, 0, 0};  // best (f_L, m(0)), dimensionless
+  double eta[kMaxGuideLoads] = {};  // best (f_L, m(0), F_1 … F_K), dimensionless
   // The rod's scheme (rod_scheme of the targets' model). With multiple shooting the rod is
   // optimised in its terminal loads, `solution` holds the pieces its shape is traced from (one
   // integration from eta would not reproduce it), and solution.terminal_torque is t_L.
@@ -104,7 +125,8 @@ struct GuideSolve {
 // Never returns NaN: a failed solve keeps the best finite iterate (or the start).
 // `near`: for a heavy rod, the shooting pieces of a solved neighbour, from which the first solve
 // at the start loads is tried before the load continuation from rest (null: from rest only).
-GuideSolve optimise_guide(const GuideTargets& targets, const double start[6], int max_iterations, double tolerance,
+// `start`: targets.load_count() loads.
+GuideSolve optimise_guide(const GuideTargets& targets, const double* start, int max_iterations, double tolerance,
                           const StallTest& stall = {}, const ShootingResult* near = nullptr);
 
 // What a solve's scheme makes of it. The shape and m(1): one integration from (f_L, m(0)), or the

@@ -7,6 +7,7 @@
 #include "core/parallel.h"
 
 #include "guides/layer_preguide.h"
+#include "rod/rod_point_forces.h"
 #include "rod/rod_shooting.h"
 
 namespace hairfit {
@@ -32,11 +33,18 @@ FibreShape shape_of(const Vec3& root, double length, int nodes_count, const std:
 
 FibreShape fibre_shape(const RodModel& model, const Vec3& root, double length, const RodDiscretisation& rod,
                        const Vec3& force, const Vec3& root_moment, Vec3* terminal_moment) {
+  const double loads[6] = {force.x(), force.y(), force.z(), root_moment.x(), root_moment.y(), root_moment.z()};
+  return fibre_shape(model, root, length, rod, loads, 0, terminal_moment);
+}
+
+FibreShape fibre_shape(const RodModel& model, const Vec3& root, double length, const RodDiscretisation& rod,
+                       const double* loads, int point_forces, Vec3* terminal_moment) {
   const int n = rod.segments + 1;
   std::vector<double> nodes(3 * n), frames(9 * n), curvature(3 * n);
   Vec3 m1;
-  integrate_rod<double>(model, rod.integrator, rod.segments, force.data(), root_moment.data(), m1.data(),
-                        RodTrace<double>{nodes.data(), frames.data(), curvature.data(), nullptr});
+  integrate_rod_with_point_forces<double>(model, rod.integrator, rod.segments, loads, loads + 3, loads + 6,
+                                          point_forces, m1.data(),
+                                          RodTrace<double>{nodes.data(), frames.data(), curvature.data(), nullptr});
   if (terminal_moment) *terminal_moment = m1;
   return shape_of(root, length, n, nodes, frames, curvature);
 }

@@ -109,6 +109,10 @@ PreGuide solve_preguide_alone(const RootSet& roots, int i, const Boundary& bound
 // if asked, the moment m(1) that integration ends with.
 FibreShape fibre_shape(const RodModel& model, const Vec3& root, double length, const RodDiscretisation& rod,
                        const Vec3& force, const Vec3& root_moment, Vec3* terminal_moment = nullptr);
+// The same with `point_forces` interior point forces (rod_point_forces.h): loads = (f_L, m(0),
+// F_1 … F_K), 6 + 3K scalars.
+FibreShape fibre_shape(const RodModel& model, const Vec3& root, double length, const RodDiscretisation& rod,
+                       const double* loads, int point_forces, Vec3* terminal_moment = nullptr);
 
 // The same from a shooting solution, traced piece by piece when it has pieces (heavy rods).
 FibreShape fibre_shape(const RodModel& model, const Vec3& root, double length, const RodDiscretisation& rod,

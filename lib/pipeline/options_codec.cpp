@@ -16,7 +16,7 @@ static_assert(sizeof(RootOptions) == 192, "RootOptions changed: update options_c
 static_assert(sizeof(HairMaterial) == 72, "HairMaterial changed: update options_codec.cpp");
 static_assert(sizeof(RodDiscretisation) == 8, "RodDiscretisation changed: update options_codec.cpp");
 static_assert(sizeof(PreguideOptions) == 176, "PreguideOptions changed: update options_codec.cpp");
-static_assert(sizeof(GuideOptions) == 216, "GuideOptions changed: update options_codec.cpp");
+static_assert(sizeof(GuideOptions) == 232, "GuideOptions changed: update options_codec.cpp");
 static_assert(sizeof(DensityTermOptions) == 40, "DensityTermOptions changed: update options_codec.cpp");
 static_assert(sizeof(WispShape) == 32, "WispShape changed: update options_codec.cpp");
 static_assert(sizeof(StrandOptions) == 56, "StrandOptions changed: update options_codec.cpp");
@@ -95,6 +95,8 @@ void encode(ByteWriter& out, const GuideOptions& o) {
   out.put(o.boundary);
   out.put(o.outside_penalty);
   out.put(o.boundary_width);
+  out.put(o.point_forces);
+  out.put(o.point_force_weight);
   out.put(o.weights.direction);
   out.put(o.weights.similarity);
   out.put(o.weights.boundary);

@@ -13,7 +13,7 @@ static_assert(sizeof(Roots) == 192, "Roots changed: update stage_codec.cpp");
 static_assert(sizeof(Clusters) == 288, "Clusters changed: update stage_codec.cpp");
 static_assert(sizeof(PreguideRoots) == 176, "PreguideRoots changed: update stage_codec.cpp");
 static_assert(sizeof(PreGuide) == 248, "PreGuide changed: update stage_codec.cpp");
-static_assert(sizeof(Guide) == 400, "Guide changed: update stage_codec.cpp");
+static_assert(sizeof(Guide) == 432, "Guide changed: update stage_codec.cpp");
 static_assert(sizeof(Strands) == 136, "Strands changed: update stage_codec.cpp");
 static_assert(sizeof(Curves) == 96, "Curves changed: update stage_codec.cpp");
 
@@ -160,6 +160,7 @@ void members(IO& io, Guide& g) {
   io(g.force);
   io(g.root_moment);
   io(g.terminal_torque);
+  io(g.point_forces);
   io(g.force_scale);
   io(g.moment_scale);
   members(io, g.shape);
@@ -175,6 +176,7 @@ void members(IO& io, Guide& g) {
   io(g.f2);
   io(g.f3);
   io(g.f4);
+  io(g.f5);
   io(g.contact_force);
   io(g.contact_share);
 }

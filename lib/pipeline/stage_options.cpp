@@ -105,6 +105,8 @@ GuideOptions guide_options(const Scene& scene) {
                                                   : BoundaryForm::smooth;
   o.outside_penalty = scene.guides.outside_penalty;
   o.boundary_width = scene.guides.boundary_width;
+  o.point_forces = scene.guides.point_forces;
+  o.point_force_weight = scene.guides.point_force_weight;
   o.weights = GuideWeights{scene.guides.weights.direction, scene.guides.weights.similarity,
                            scene.guides.weights.boundary, scene.guides.weights.density};
   o.warm_start = scene.guides.start == "warm";

@@ -545,4 +545,13 @@ template void integrate_rod_steps<ceres::Jet<double, 3>>(const RodModel&, RodInt
 template void integrate_rod_steps<ceres::Jet<double, 6>>(const RodModel&, RodIntegrator, int, int, int, const ceres::Jet<double, 6>*,
     RodState<ceres::Jet<double, 6>>&, const RodTrace<ceres::Jet<double, 6>>&);
 
+// The guides' loads with 1, 2 or 3 interior point forces (rod_point_forces.h): 9, 12, 15 tangents.
+#define HAIRFIT_ROD_STEPS(N)                                                                          \
+  template void integrate_rod_steps<ceres::Jet<double, N>>(const RodModel&, RodIntegrator, int, int, int, \
+      const ceres::Jet<double, N>*, RodState<ceres::Jet<double, N>>&, const RodTrace<ceres::Jet<double, N>>&);
+HAIRFIT_ROD_STEPS(9)
+HAIRFIT_ROD_STEPS(12)
+HAIRFIT_ROD_STEPS(15)
+#undef HAIRFIT_ROD_STEPS
+
 }  // namespace hairfit

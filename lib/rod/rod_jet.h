@@ -4,8 +4,9 @@
 // Ceres type.
 //
 // integrate_rod<T> (rod_integrate.h) is instantiated, in rod_integrate.cpp, for exactly:
-//   double, RodJet3 (Newton on m(0) in shooting), RodJet6 (the six load parameters).
-// Any other scalar fails to link: add its instantiation there.
+//   double, RodJet3 (Newton on m(0) in shooting), RodJet6 (the six load parameters);
+// integrate_rod_steps also for RodJet<9>, RodJet<12> and RodJet<15> (the six plus 1–3 interior
+// point forces, rod_point_forces.h). Any other scalar fails to link: add its instantiation there.
 #pragma once
 #include <ceres/jet.h>
 
@@ -15,5 +16,7 @@ namespace hairfit {
 
 using RodJet3 = ceres::Jet<double, 3>;
 using RodJet6 = ceres::Jet<double, 6>;
+template <int N>
+using RodJet = ceres::Jet<double, N>;
 
 }  // namespace hairfit

@@ -32,7 +32,7 @@ Block random_block(int m, std::mt19937& rng) {
 // The three identities, relative to the size of each quantity.
 void check_equivalent(const Block& b) {
   double r7[7], j42[42];
-  REQUIRE(compress_least_squares(static_cast<int>(b.r.size()), b.r.data(), b.j.data(), r7, j42));
+  REQUIRE(compress_least_squares<6>(static_cast<int>(b.r.size()), b.r.data(), b.j.data(), r7, j42));
   const Eigen::Map<const Eigen::Matrix<double, 7, 1>> rc(r7);
   const Eigen::Map<const Eigen::Matrix<double, 7, 6, Eigen::RowMajor>> jc(j42);
   CHECK(std::abs(rc.squaredNorm() - b.r.squaredNorm()) <= 1e-12 * b.r.squaredNorm());
@@ -68,7 +68,7 @@ TEST_CASE("a rank-deficient or short block is compressed by QR with the same gua
   Block in = random_block(30, rng);
   in.r = in.j * Eigen::Matrix<double, 6, 1>(1, -2, 0.5, 3, -1, 0.25);
   double r7[7], j42[42];
-  REQUIRE(compress_least_squares(30, in.r.data(), in.j.data(), r7, j42));
+  REQUIRE(compress_least_squares<6>(30, in.r.data(), in.j.data(), r7, j42));
   CHECK(r7[6] <= 1e-6 * in.r.norm());
 }
 
@@ -77,8 +77,8 @@ TEST_CASE("a block with a non-finite entry is refused") {
   Block b = random_block(10, rng);
   double r7[7], j42[42];
   b.r[2] = NAN;
-  CHECK_FALSE(compress_least_squares(10, b.r.data(), b.j.data(), r7, j42));
+  CHECK_FALSE(compress_least_squares<6>(10, b.r.data(), b.j.data(), r7, j42));
   b.r[2] = 0.0;
   b.j(4, 3) = INFINITY;
-  CHECK_FALSE(compress_least_squares(10, b.r.data(), b.j.data(), r7, j42));
+  CHECK_FALSE(compress_least_squares<6>(10, b.r.data(), b.j.data(), r7, j42));
 }
