@@ -251,6 +251,56 @@ TEST_CASE("the optimiser's merged residuals have the full residuals' cost, gradi
   for (int i = 0; i < 18; ++i) CHECK(merged.residuals[9 * 6 + i] == full[9 * 18 + i]);
 }
 
+TEST_CASE("with interior point forces the residuals' jets are their central differences, and F5 is w5·Σ|F_k|²") {
+  GuideOptions o;
+  o.rod.segments = 24;
+  const RootSet r = roots_at({{0.4, 0.0}}, 8.0, 0.0);
+  GuideTargets t = targets_at_root(r, o, 8);
+  const PreGuide p = preguide_with_loads(r, 0, o, Vec3(2.0, 0.0, 0.0), Vec3(0.0, 1.0, 0.0));
+  GuideTargets::Neighbour nb;
+  nb.weight = 1.0;
+  for (int node : t.sample_nodes) {
+    nb.tangents.push_back(p.shape.tangents[node]);
+    nb.darboux.push_back(p.shape.darboux[node]);
+  }
+  t.neighbours.push_back(nb);
+  const Boundary b = world().boundary();
+  t.boundary = &b;
+  t.weights = GuideWeights{0.35, 0.2, 0.45, 0.0};
+  t.point_forces = 2;
+  t.point_force_weight = 0.01;
+  const double eta[12] = {0.3, -0.2, 0.1, 0.05, 0.4, -0.1, 1.5, -0.5, 0.2, -0.3, 0.8, 0.6};
+  std::vector<double> jacobian;
+  const std::vector<double> r0 = guide_residuals(t, eta, &jacobian);
+  const std::size_t m = r0.size();
+  REQUIRE(m == 9 * (2 * 3 + 2) + 6);
+  // F5: the last six residuals are √w5·F.
+  for (int i = 0; i < 6; ++i) CHECK(r0[m - 6 + i] == doctest::Approx(0.1 * eta[6 + i]).epsilon(1e-15));
+  const GuideTerms terms = evaluate_guide_terms(t, eta);
+  double f5 = 0.0;
+  for (int i = 6; i < 12; ++i) f5 += eta[i] * eta[i];
+  CHECK(terms.f5 == doctest::Approx(f5).epsilon(1e-12));
+  CHECK(terms.total == doctest::Approx(0.35 * terms.f1 + 0.2 * terms.f2 + 0.45 * terms.f3 + 0.01 * f5).epsilon(1e-12));
+  // Each column against a central difference (h = 1e-6: truncation ~1e-12, round-off ~1e-10).
+  const double h = 1e-6;
+  double worst = 0.0, scale = 0.0;
+  for (int c = 0; c < 12; ++c) {
+    double plus[12], minus[12];
+    std::copy(eta, eta + 12, plus);
+    std::copy(eta, eta + 12, minus);
+    plus[c] += h;
+    minus[c] -= h;
+    const std::vector<double> rp = guide_residuals(t, plus), rm = guide_residuals(t, minus);
+    for (std::size_t i = 0; i < m; ++i) {
+      worst = std::max(worst, std::abs((rp[i] - rm[i]) / (2.0 * h) - jacobian[12 * i + c]));
+      scale = std::max(scale, std::abs(jacobian[12 * i + c]));
+    }
+  }
+  CAPTURE(worst);
+  CHECK(scale > 0.1);
+  CHECK(worst < 1e-7 * scale);
+}
+
 TEST_CASE("a guide stopped by the iteration cap is flagged, finite, and keeps its best iterate") {
   GuideOptions o;
   o.rod.segments = 32;
