@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "rod/cayley.h"
+#include "rod/rod_point_forces.h"
 
 namespace hairfit {
 
@@ -516,17 +517,12 @@ void integrate_rod_steps(const RodModel& model, RodIntegrator integrator, int se
   steps<T, Pair2>(model, integrator, segments, first, last, terminal_force, state, trace);
 }
 
+// The rod without interior point forces: one piece.
 template <typename T>
 void integrate_rod(const RodModel& model, RodIntegrator integrator, int segments, const T* terminal_force,
                    const T* root_moment, T* terminal_moment, const RodTrace<T>& trace) {
-  RodState<T> state;
-  for (int a = 0; a < 3; ++a) {
-    state.position[a] = T(0.0);
-    state.moment[a] = root_moment[a];
-  }
-  for (int a = 0; a < 9; ++a) state.frame[a] = T(model.root_frame.data()[a]);
-  integrate_rod_steps(model, integrator, segments, 0, segments, terminal_force, state, trace);
-  for (int a = 0; a < 3; ++a) terminal_moment[a] = state.moment[a];
+  integrate_rod_with_point_forces<T>(model, integrator, segments, terminal_force, root_moment, nullptr, 0,
+                                     terminal_moment, trace);
 }
 
 template void integrate_rod<double>(const RodModel&, RodIntegrator, int, const double*, const double*, double*,

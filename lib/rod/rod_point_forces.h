@@ -20,7 +20,8 @@ inline int point_force_node(int k, int count, int segments) {
   return static_cast<int>(std::lround(static_cast<double>(k) * segments / (count + 1)));
 }
 
-// integrate_rod with `count` point forces (3·count scalars, F_1 first) at point_force_node.
+// integrate_rod with `count` point forces (3·count scalars, F_1 first; null when count is 0) at
+// point_force_node; integrate_rod is this with none.
 template <typename T>
 void integrate_rod_with_point_forces(const RodModel& model, RodIntegrator integrator, int segments,
                                      const T* terminal_force, const T* root_moment, const T* point_forces, int count,
