@@ -241,3 +241,29 @@ TEST_CASE("the reference page's preset table is the one the parser applies") {
   // Regenerate with `hairfit scene-keys --presets`.
   CHECK(page.substr(begin + open.size(), end - begin - open.size()) == scene_presets_markdown());
 }
+
+TEST_CASE("hair from the shell takes the guides' interior point forces; weighted hair and declared hair do not") {
+  const Scene shell = parse("");  // no hair.length, no hair.tilt: hair from the shell
+  CHECK(shell.hair.from_shell);
+  CHECK(shell.guides.point_forces == 3);
+  CHECK(shell.guides.samples == 32);
+  CHECK(shell.guides.outside_penalty == 10.0);
+  CHECK(shell.guides.boundary_width == 0.3);
+  // An accuracy preset keeps its own samples; a key the file sets wins.
+  CHECK(parse("preset = \"final\"\n").guides.samples == 64);
+  CHECK(parse("[guides]\npoint_forces = 1\nsamples = 12\n").guides.point_forces == 1);
+  // Weighted hair is solved by multiple shooting, which carries no point forces.
+  CHECK(parse("[effects]\ngravity = true\n").guides.point_forces == 0);
+  CHECK(parse("[effects]\ncontact = true\n").guides.point_forces == 0);
+  // Declared hair keeps the paper's six loads and the other defaults.
+  const Scene declared = parse("[hair]\nlength = 10\n");
+  CHECK(declared.guides.point_forces == 0);
+  CHECK(declared.guides.samples == 16);
+  CHECK(declared.guides.outside_penalty == 3.0);
+  // Asked for with gravity, they are refused, naming the key and the fix.
+  const std::string e = first_error("[effects]\ngravity = true\n[guides]\npoint_forces = 2\n");
+  CHECK(e.find("guides.point_forces act on weightless hair") != std::string::npos);
+  CHECK(e.find("set guides.point_forces = 0") != std::string::npos);
+  CHECK(first_error("[guides]\npoint_forces = 4\n").find("guides.point_forces = 4 is out of range; allowed: [0, 3]") !=
+        std::string::npos);
+}
