@@ -141,6 +141,10 @@ struct GuideFigures {
   double max_contact_force = 0.0;
   double contact_share = 0.0;
   int guides_in_contact = 0;
+  // With guides.point_forces: the guides the layer had to hold (a non-zero point force) and the
+  // largest point force (dyn).
+  int guides_held = 0;
+  double max_point_force = 0.0;
 };
 // `voxel` is the distance fields' voxel edge (cm).
 GuideFigures guide_figures(const Guides& guides, const PreGuides& preguides, const Boundary& boundary,

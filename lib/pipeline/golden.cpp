@@ -235,6 +235,8 @@ FigureTolerance figure_tolerance(const std::string& stage, const std::string& fi
       {"guides.outside_volume_fraction", {0.005, 0}},
       {"guides.outside_tip_fraction", {0.005, 0}},
       {"guides.guides_ending_outside", {1, 0.02}},
+      {"guides.guides_held", {1, 0.02}},
+      {"guides.max_point_force", {0, 0.05}},
       {"preguides.weight_not_followed", {1, 0.01}},
       {"preguides.flagged_tip_outside", {1, 0.01}},
       {"guides.mean_direction_mismatch", {0, 0.05}},

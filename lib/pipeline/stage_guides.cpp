@@ -67,6 +67,11 @@ void compute(StageRun& run, const GuidesOptions& options, StageReport& stage) {
     stage.add("contact_share", f.contact_share);
     stage.add("guides_in_contact", static_cast<std::int64_t>(f.guides_in_contact));
   }
+  if (o.point_forces > 0) {
+    stage.add("point_forces", static_cast<std::int64_t>(o.point_forces));
+    stage.add("guides_held", static_cast<std::int64_t>(f.guides_held));
+    stage.add("max_point_force", f.max_point_force);
+  }
   stage.add("start", std::string(o.warm_start ? "warm" : "straight"));
   FlowCrossingOptions flow;
   flow.threads = run.options.threads;
