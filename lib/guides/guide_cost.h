@@ -191,7 +191,8 @@ class GuideCost {
     T m1[3];
     const int point_forces = std::min(t_.point_forces, kPointForcesCarried<T>);
     integrate_rod_with_point_forces<T>(t_.model, t_.rod.integrator, t_.rod.segments, eta, eta + 3, eta + 6,
-                                       point_forces, m1, RodTrace<T>{nodes, frames, curvature, nullptr, is_sample_.data()});
+                                       point_forces, m1,
+                                       RodTrace<T>{nodes, frames, curvature, nullptr, is_sample_.data()});
     // F5 = Σ|F_k|²: the layer pushes no harder than the shape needs.
     T* forces = residuals + shape_residual_count();
     const T scale = T(std::sqrt(t_.point_force_weight));

@@ -112,7 +112,8 @@ GuideSolve optimise_in_stages(const GuideTargets& targets, const double* start, 
     return optimise_guide(targets, start, o.max_iterations, o.tolerance, stall, near);
   GuideTargets terminal = targets;
   terminal.point_forces = 0;
-  const GuideSolve first = optimise_guide(terminal, start, o.max_iterations, std::max(o.tolerance, kTerminalStageTolerance), stall, near);
+  const double first_tolerance = std::max(o.tolerance, kTerminalStageTolerance);
+  const GuideSolve first = optimise_guide(terminal, start, o.max_iterations, first_tolerance, stall, near);
   Vec3 torque;
   if (worst_excursion(solved_shape(terminal, first, torque), boundary) <= 0.0) return first;
   double from[kMaxGuideLoads] = {};
@@ -123,7 +124,6 @@ GuideSolve optimise_in_stages(const GuideTargets& targets, const double* start, 
   second.initial_cost = first.initial_cost;
   return second;
 }
-
 
 }  // namespace
 

@@ -33,7 +33,8 @@ struct LoadCoordinates {
     std::vector<double> nodes(3 * n);
     double m1[3];
     integrate_rod_with_point_forces<double>(t.model, t.rod.integrator, t.rod.segments, loads, loads + 3, loads + 6,
-                                            point_forces, m1, RodTrace<double>{nodes.data(), nullptr, nullptr, nullptr});
+                                            point_forces, m1,
+                                            RodTrace<double>{nodes.data(), nullptr, nullptr, nullptr});
     const auto node = [&](int i) { return Vec3(nodes[3 * i], nodes[3 * i + 1], nodes[3 * i + 2]); };
     chord = node(n - 1);
     for (int k = 0; k < point_forces; ++k) levers[k] = node(point_force_node(k + 1, point_forces, t.rod.segments));
@@ -56,7 +57,8 @@ struct LoadCoordinates {
     for (int a = 0; a < 3; ++a) x[a] = loads[a];
     for (int i = 6; i < 6 + 3 * point_forces; ++i) x[i] = loads[i];
     Vec3 m = Vec3(loads[3], loads[4], loads[5]) - chord.cross(Vec3(loads[0], loads[1], loads[2])) - gravity_moment;
-    for (int k = 0; k < point_forces; ++k) m -= levers[k].cross(Vec3(loads[6 + 3 * k], loads[7 + 3 * k], loads[8 + 3 * k]));
+    for (int k = 0; k < point_forces; ++k)
+      m -= levers[k].cross(Vec3(loads[6 + 3 * k], loads[7 + 3 * k], loads[8 + 3 * k]));
     for (int a = 0; a < 3; ++a) x[3 + a] = m[a];
   }
 
