@@ -124,3 +124,19 @@ TEST_CASE("a strongly bent rod with point forces is in global moment balance") {
     CHECK(t.moment(segments) == t.terminal_moment);
   }
 }
+
+TEST_CASE("point forces that share a node, or sit at the tip, act as their sum there") {
+  // On 2 segments, three forces land at nodes 1, 1 and 2: the same rod as one force F1 + F2 at
+  // node 1 and the terminal force f_L + F3 (the piece beyond the tip is empty).
+  const RodModel model = straight_model(tilted_frame());
+  const Vec3 f(0.4, -1.2, 0.3), m0(0.2, 0.5, -0.1);
+  const std::vector<Vec3> three = {Vec3(1.0, 0.5, -0.3), Vec3(-0.2, 0.8, 0.4), Vec3(0.6, -0.1, 0.9)};
+  REQUIRE(point_force_node(1, 3, 2) == 1);
+  REQUIRE(point_force_node(2, 3, 2) == 1);
+  REQUIRE(point_force_node(3, 3, 2) == 2);
+  const Traced a = trace(model, 2, f, m0, three);
+  const Traced b = trace(model, 2, f + three[2], m0, {three[0] + three[1]});
+  for (int i = 0; i <= 2; ++i) CHECK((a.node(i) - b.node(i)).norm() < 1e-14);
+  CHECK((a.terminal_moment - b.terminal_moment).norm() < 1e-14);
+  for (double v : a.nodes) CHECK(std::isfinite(v));
+}
