@@ -9,6 +9,7 @@
 #include "render/contact_sheet.h"
 #include "render/plot.h"
 #include "render/render_3d.h"
+#include "rod/rod_point_forces.h"
 
 namespace hairfit {
 
@@ -223,6 +224,23 @@ Image render_stage(const std::string& stage, const Scene& scene, const Inputs& i
     curves.width = 1.5;
     drawing.curves.push_back(curves);
     drawing.title = "guides: " + std::to_string(values.guides->size());
+    // Where the layer holds a guide (guides.point_forces): a dot at each non-zero point force.
+    int held = 0;
+    for (const Guide& g : values.guides->items) {
+      const int count = static_cast<int>(g.point_forces.size()), segments = static_cast<int>(g.shape.nodes.size()) - 1;
+      bool any = false;
+      for (int k = 0; k < count; ++k)
+        if (!g.point_forces[k].isZero(0.0)) {
+          points.push_back(g.shape.nodes[point_force_node(k + 1, count, segments)]);
+          any = true;
+        }
+      held += any;
+    }
+    if (!points.empty()) {
+      dots.color = Color{0.95f, 0.25f, 0.2f};
+      drawing.points.push_back(dots);
+      drawing.title += ", " + std::to_string(held) + " held by the layer (red: point forces)";
+    }
   } else if (stage == "strands") {
     curves.curves = &values.strands->fibres;  // drawn where they are
     drawing.meshes.pop_back();  // the hair hides the volume's outline
