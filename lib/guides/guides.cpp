@@ -256,10 +256,8 @@ GuideFigures guide_figures(const Guides& guides, const PreGuides& preguides, con
     f.max_contact_force = std::max(f.max_contact_force, g.contact_force);
     f.contact_share += g.contact_share;
     f.guides_in_contact += g.contact_share > 0.0;
-    double strongest = 0.0;
-    for (const Vec3& F : g.point_forces) strongest = std::max(strongest, F.norm());
-    f.guides_held += strongest > 0.0;
-    f.max_point_force = std::max(f.max_point_force, strongest * g.force_scale);
+    f.guides_held += held_by_layer(g);
+    for (const Vec3& F : g.point_forces) f.max_point_force = std::max(f.max_point_force, F.norm() * g.force_scale);
     f.failures += !g.converged;
     f.mean_iterations += g.iterations;
     f.max_iterations = std::max(f.max_iterations, g.iterations);

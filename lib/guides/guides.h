@@ -81,6 +81,13 @@ struct Guide {
   double contact_share = 0.0;
 };
 
+// Whether the layer holds a guide: one of its interior point forces is not zero.
+inline bool held_by_layer(const Guide& g) {
+  for (const Vec3& f : g.point_forces)
+    if (!f.isZero(0.0)) return true;
+  return false;
+}
+
 struct Guides {
   std::vector<Guide> items;
   int size() const { return static_cast<int>(items.size()); }

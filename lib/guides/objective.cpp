@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 #include "core/compress_least_squares.h"
 #include "core/error.h"
@@ -137,14 +138,21 @@ class CompressedGuideCost : public ceres::SizedCostFunction<N + 1, N> {
   const ReparameterisedCost& cost_;
 };
 
+// `use(std::integral_constant<int, N>{})` for a guide's N loads (6, or 6 + 3K with K point
+// forces): every jet width the guides instantiate, chosen once here.
+template <class Use>
+decltype(auto) with_load_count(int loads, Use&& use) {
+  switch (loads) {
+    case 6: return use(std::integral_constant<int, 6>{});
+    case 9: return use(std::integral_constant<int, 9>{});
+    case 12: return use(std::integral_constant<int, 12>{});
+    default: return use(std::integral_constant<int, kMaxGuideLoads>{});
+  }
+}
+
 // The single-shooting cost of these targets' load count.
 ceres::CostFunction* compressed_guide_cost(const ReparameterisedCost& functor, int loads) {
-  switch (loads) {
-    case 6: return new CompressedGuideCost<6>(functor);
-    case 9: return new CompressedGuideCost<9>(functor);
-    case 12: return new CompressedGuideCost<12>(functor);
-    default: return new CompressedGuideCost<15>(functor);
-  }
+  return with_load_count(loads, [&](auto n) -> ceres::CostFunction* { return new CompressedGuideCost<n()>(functor); });
 }
 
 // The guide objective of a rod too heavy for the initial-value form: the parameters are the
@@ -270,12 +278,8 @@ std::vector<double> jet_residuals_of(const GuideCost& cost, const double* eta, s
 }
 
 std::vector<double> residuals_of(const GuideCost& cost, int loads, const double* eta, std::vector<double>* jacobian) {
-  if (jacobian) switch (loads) {
-      case 6: return jet_residuals_of<6>(cost, eta, *jacobian);
-      case 9: return jet_residuals_of<9>(cost, eta, *jacobian);
-      case 12: return jet_residuals_of<12>(cost, eta, *jacobian);
-      default: return jet_residuals_of<15>(cost, eta, *jacobian);
-    }
+  if (jacobian)
+    return with_load_count(loads, [&](auto n) { return jet_residuals_of<n()>(cost, eta, *jacobian); });
   std::vector<double> r(cost.residual_count());
   cost(eta, r.data());
   return r;

@@ -228,13 +228,9 @@ Image render_stage(const std::string& stage, const Scene& scene, const Inputs& i
     int held = 0;
     for (const Guide& g : values.guides->items) {
       const int count = static_cast<int>(g.point_forces.size()), segments = static_cast<int>(g.shape.nodes.size()) - 1;
-      bool any = false;
       for (int k = 0; k < count; ++k)
-        if (!g.point_forces[k].isZero(0.0)) {
-          points.push_back(g.shape.nodes[point_force_node(k + 1, count, segments)]);
-          any = true;
-        }
-      held += any;
+        if (!g.point_forces[k].isZero(0.0)) points.push_back(g.shape.nodes[point_force_node(k + 1, count, segments)]);
+      held += held_by_layer(g);
     }
     if (!points.empty()) {
       dots.color = Color{0.95f, 0.25f, 0.2f};
