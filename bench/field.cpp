@@ -111,8 +111,7 @@ int main(int argc, char** argv) {
         // With the robust sign: the mesh's own generalized winding number > ½ (its tree built inside).
         const double t_robust = best_of(runs, [&] {
           const FastWindingNumber winding(mesh, HairRegion::kFirstBeta);
-          const InsideTest inside = [&winding](const Vec3& p) { return winding_above_half(winding, p); };
-          const DistanceField robust = make_distance_field(mesh, spec, threads, inside);
+          const DistanceField robust = make_distance_field(mesh, spec, threads, RobustInside{{winding_soup(mesh, winding)}});
           if (robust.band_voxels() != ours.band_voxels()) std::abort();
         });
         const double h = ours.voxel();

@@ -32,6 +32,8 @@ class FastWindingNumber {
   // The hierarchical value with another accuracy parameter (> 1) than the constructor's.
   double at_beta(const Vec3& p, double beta) const;
   WindingEstimate estimate(const Vec3& p) const;
+  // The estimate with another accuracy parameter (> 1) than the constructor's.
+  WindingEstimate estimate(const Vec3& p, double beta) const { return evaluate(p, beta * beta); }
   // The sum of every triangle's solid angle (triangle_solid_angle) over 4π, in tree order (so
   // within round-off of winding_number(mesh, p)). On the surface it is what that formula gives:
   // a triangle containing p adds 0 or ±2π as rounding falls (a closed mesh's w is 0 or 1 at a

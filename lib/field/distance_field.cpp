@@ -12,10 +12,10 @@
 #include "core/parallel.h"
 #include "core/triangle_closest.h"
 #include "field/band_scan.h"
-#include "field/band_sign.h"
 #include "field/cell_corners.h"
 #include "field/far_field.h"
 #include "field/mesh_features.h"
+#include "field/winding_signs.h"
 
 namespace hairfit {
 
@@ -101,20 +101,46 @@ void require_field_fits(const Mesh& mesh, const FieldSpec& spec) {
 
 namespace {
 
-// Signs every finite sample by the test at its node: −|v| inside, |v| outside.
-void sign_by_test(std::vector<double>& values, const GridGeometry& grid, int stride, const InsideTest& inside,
-                  int threads) {
-  const int nx = grid.dims.x(), ny = grid.dims.y();
-  parallel_for(grid.dims.z(), threads, [&](int k) {
+// Signs every band sample and every coarse node by the robust inside at its node, in one decision
+// (so that a node both grids share gets one answer).
+void sign_band_and_coarse(const field::RobustSigns& inside, const GridGeometry& grid, field::BandScan& band,
+                          field::FarField& far, int c, int threads) {
+  const int nx = grid.dims.x(), ny = grid.dims.y(), nz = grid.dims.z();
+  auto coarse_index = [&](int i, int j, int k) {
+    return i / c + int64_t(far.dims.x()) * (j / c + int64_t(far.dims.y()) * (k / c));
+  };
+  // The nodes to sign and their distances, gathered per layer in index order.
+  std::vector<std::vector<int64_t>> layer_nodes(nz);
+  std::vector<std::vector<double>> layer_distance(nz);
+  parallel_for(nz, threads, [&](int k) {
     for (int j = 0; j < ny; ++j)
       for (int i = 0; i < nx; ++i) {
-        double& v = values[grid.index(i, j, k)];
-        if (v == std::numeric_limits<double>::infinity()) continue;
-        // The node's position as the fine grid computes it, also for coarse nodes (stride > 1),
-        // so that a node both grids share gets one answer.
-        const Vec3 p = grid.origin + (grid.voxel / stride) * Vec3(double(stride) * i, double(stride) * j, double(stride) * k);
-        v = inside(p) ? -std::abs(v) : std::abs(v);
+        const int64_t n = grid.index(i, j, k);
+        const bool coarse = i % c == 0 && j % c == 0 && k % c == 0;
+        if (band.key[n] >= 0) {
+          layer_nodes[k].push_back(n), layer_distance[k].push_back(std::abs(band.value[n]));
+        } else if (coarse && std::isfinite(far.values[coarse_index(i, j, k)])) {
+          layer_nodes[k].push_back(n), layer_distance[k].push_back(std::abs(far.values[coarse_index(i, j, k)]));
+        }
       }
+  });
+  std::vector<int64_t> nodes;
+  std::vector<double> distance;
+  for (int k = 0; k < nz; ++k) {
+    nodes.insert(nodes.end(), layer_nodes[k].begin(), layer_nodes[k].end());
+    distance.insert(distance.end(), layer_distance[k].begin(), layer_distance[k].end());
+  }
+  const std::vector<std::uint8_t> in = inside.decide(nodes, distance, threads);
+  parallel_for(nz, threads, [&](int k) {
+    const auto first = std::lower_bound(nodes.begin(), nodes.end(), grid.index(0, 0, k));
+    for (auto it = first; it != nodes.end() && *it < grid.index(0, 0, k + 1); ++it) {
+      const int64_t n = *it;
+      const std::size_t q = std::size_t(it - nodes.begin());
+      const int i = int(n % nx), j = int((n / nx) % ny);
+      auto sign = [&](double& v) { v = in[q] ? -std::abs(v) : std::abs(v); };
+      if (band.key[n] >= 0) sign(band.value[n]);
+      if (i % c == 0 && j % c == 0 && k % c == 0) sign(far.values[coarse_index(i, j, k)]);
+    }
   });
 }
 
@@ -137,7 +163,7 @@ double carried_value(const field::MeshFeatures& f, const std::vector<double>& at
 
 }  // namespace
 
-DistanceField DistanceField::build(const Mesh& mesh, const FieldSpec& spec, int threads, const InsideTest& inside,
+DistanceField DistanceField::build(const Mesh& mesh, const FieldSpec& spec, int threads, const RobustInside& inside,
                                    const std::vector<double>* vertex_values, std::vector<double>* carried) {
   require_field_fits(mesh, spec);
   const FieldGridPlan plan = plan_field_grid(mesh, spec);
@@ -147,12 +173,10 @@ DistanceField DistanceField::build(const Mesh& mesh, const FieldSpec& spec, int 
   const double r = spec.band * spec.voxel;
   field::BandScan band = field::scan_band(features, grid, r, threads);
   field::FarField far = field::make_far_field(features, grid, band, r, plan.coarse_factor, threads);
-  std::optional<field::SettledSigns> signs;
-  if (inside) {
-    signs.emplace(features, r, inside, threads, &band);
-    field::sign_band(*signs, grid, band, threads);
-    const GridGeometry coarse{plan.origin, plan.coarse_factor * spec.voxel, far.dims};
-    sign_by_test(far.values, coarse, plan.coarse_factor, inside, threads);
+  std::optional<field::RobustSigns> signs;
+  if (!inside.empty()) {
+    signs.emplace(inside, grid, threads);
+    sign_band_and_coarse(*signs, grid, band, far, plan.coarse_factor, threads);
   }
   std::vector<std::uint8_t> in_band(band.value.size());
   for (std::size_t n = 0; n < in_band.size(); ++n) in_band[n] = band.key[n] >= 0;
@@ -203,12 +227,12 @@ DistanceField DistanceField::from_parts(DistanceFieldParts parts) {
   return f;
 }
 
-DistanceField make_distance_field(const Mesh& mesh, const FieldSpec& spec, int threads, const InsideTest& inside) {
+DistanceField make_distance_field(const Mesh& mesh, const FieldSpec& spec, int threads, const RobustInside& inside) {
   return DistanceField::build(mesh, spec, threads, inside, nullptr, nullptr);
 }
 
 CarriedField make_distance_field_carrying(const Mesh& mesh, const std::vector<double>& vertex_values,
-                                          const FieldSpec& spec, int threads, const InsideTest& inside) {
+                                          const FieldSpec& spec, int threads, const RobustInside& inside) {
   if (vertex_values.size() != mesh.positions.size())
     throw std::invalid_argument("make_distance_field_carrying: one value per vertex of the mesh");
   std::vector<double> carried;

@@ -11,15 +11,15 @@
 //   propagation, never below the true distance). Where that interpolant is not above the band's
 //   width, the sample is the exact distance to the nearest of the features the cell's corners are
 //   closest to, so no sample beyond the band reads less than the band's width.
-// - Sign. With an InsideTest (the robust inside, docs/design.md §2: generalized winding numbers), every
-//   band sample and every coarse node takes the sign the test gives at its own position (band
-//   samples beside faces whose sides the test settles take that answer, field/band_sign.h); a
-//   sample beyond the band takes the sign its coarse cell agrees on (its 8 corners and every band
-//   sample in it), or, where the cell does not agree, the sign flooded to it through the cell's
-//   far samples, the test deciding where signs meet. Without one, the sign is the side of the
-//   closest feature's angle-weighted pseudo-normal (Bærentzen & Aanæs 2005): behind the sheet
-//   itself, + beyond an open rim; beyond the band, the sign of the interpolated signed coarse
-//   values.
+// - Sign. With a RobustInside (docs/design.md §2: generalized winding numbers), every band sample
+//   and every coarse node takes the sign of w > ½ at its own node: decided from the winding
+//   number's exact jumps across the triangles on the grid's edges and a bound on its change that
+//   only the rims make (field/winding_signs.h), the winding number itself asked only where those
+//   do not decide. A sample beyond the band takes the sign its coarse cell agrees on (its 8
+//   corners and every band sample in it), or where the cell does not agree the robust inside's at
+//   its node. Without one, the sign is the side of the closest feature's angle-weighted
+//   pseudo-normal (Bærentzen & Aanæs 2005): behind the sheet itself, + beyond an open rim; beyond
+//   the band, the sign of the interpolated signed coarse values.
 // - No phantom surface. Where a cell's corners differ in sign although no surface can pass
 //   between them (|d_a| + |d_b| > |a − b| for every such pair of corners, as across the seam where
 //   an open mesh's inside changes in empty space), a lookup reads the interpolated magnitude with
@@ -39,6 +39,7 @@
 
 #include "core/mesh.h"
 #include "core/types.h"
+#include "field/winding_soup.h"
 
 namespace hairfit {
 
@@ -49,10 +50,6 @@ struct FieldSpec {
   double max_memory_gib = 4.0; // refuse (InputError) grids whose build needs more than this
   std::string name = "mesh";   // names the mesh (its file) in error messages
 };
-
-// Whether a point lies inside the surface (where the field is negative). Called concurrently from
-// several threads; must be a pure function of the point.
-using InsideTest = std::function<bool(const Vec3&)>;
 
 struct FieldValueGradient {
   double value = 0.0;        // cm, signed
@@ -133,12 +130,12 @@ class DistanceField {
   int64_t memory_bytes() const;
 
  private:
-  friend DistanceField make_distance_field(const Mesh&, const FieldSpec&, int, const InsideTest&);
+  friend DistanceField make_distance_field(const Mesh&, const FieldSpec&, int, const RobustInside&);
   friend CarriedField make_distance_field_carrying(const Mesh&, const std::vector<double>&, const FieldSpec&, int,
-                                                  const InsideTest&);
+                                                  const RobustInside&);
   DistanceField() = default;  // built only by make_distance_field
   // Both builders: with `vertex_values`, the carried values go to `carried`.
-  static DistanceField build(const Mesh& mesh, const FieldSpec& spec, int threads, const InsideTest& inside,
+  static DistanceField build(const Mesh& mesh, const FieldSpec& spec, int threads, const RobustInside& inside,
                              const std::vector<double>* vertex_values, std::vector<double>* carried);
   // Sets the lookup flags from the samples (every node's, band and beyond), and the geometry.
   void finish(std::vector<double> samples, std::vector<std::uint8_t> in_band, int threads);
@@ -174,7 +171,7 @@ class DistanceField {
 // voxel size that would fit). `threads` (0 = all) changes only the speed: the result is
 // bit-identical for any count.
 DistanceField make_distance_field(const Mesh& mesh, const FieldSpec& spec, int threads = 0,
-                                  const InsideTest& inside = {});
+                                  const RobustInside& inside = {});
 
 // The field, and a value given at the mesh's vertices carried to every band sample: the value at
 // the sample's closest point on the mesh, interpolated linearly over the closest face or edge
@@ -186,7 +183,7 @@ struct CarriedField {
   std::vector<double> carried;  // per node, x fastest (DistanceField's node order)
 };
 CarriedField make_distance_field_carrying(const Mesh& mesh, const std::vector<double>& vertex_values,
-                                          const FieldSpec& spec, int threads = 0, const InsideTest& inside = {});
+                                          const FieldSpec& spec, int threads = 0, const RobustInside& inside = {});
 
 // The grid make_distance_field would allocate, and the bytes its build needs at peak.
 struct FieldGridPlan {

@@ -172,14 +172,16 @@ bool ask_every_sample(const FarField& far, int64_t base, double spacing) {
 // Signs the pending far samples of every coarse cell whose corners and band samples differ: a
 // flood through the cell's far samples from the samples whose sign is known (the band's, the
 // coarse nodes', and far samples of agreeing cells), in index order; where two signs meet, where
-// nothing reaches, and in cells ask_every_sample names, the test decides. A cell
-// writes only the samples it holds (lowest index), so cells run in parallel.
-void settle_pending(const GridGeometry& grid, const FarField& far, int c, const SettledSigns& inside,
+// nothing reaches, and in cells ask_every_sample names, the robust inside decides, all such
+// samples at once. A cell writes only the samples it holds (lowest index), so cells run in
+// parallel.
+void settle_pending(const GridGeometry& grid, const FarField& far, int c, const RobustSigns& inside,
                     const std::vector<std::uint8_t>& in_band, std::vector<char>& pending, std::vector<double>& values,
                     int threads) {
   const int nx = grid.dims.x(), ny = grid.dims.y(), nz = grid.dims.z();
   const int cx = far.dims.x(), cy = far.dims.y(), cz = far.dims.z();
   auto owner = [c](int n, int cells) { return std::min(n / c, cells - 1); };
+  std::vector<std::vector<int64_t>> undecided(cz - 1);  // per layer of cells
   parallel_for(cz - 1, threads, [&](int ck) {
     const int w = c + 1, cells_x = cx - 1, cells_y = cy - 1, cells_z = cz - 1;
     std::vector<signed char> sign(w * w * w);
@@ -249,18 +251,28 @@ void settle_pending(const GridGeometry& grid, const FarField& far, int c, const 
               const int64_t n = grid.index(i0 + i, j0 + j, k0 + k);
               if (!pending[n]) continue;
               const int local = i + w * (j + w * k);
-              int s = sign[local];
-              if (seam || s == 0 || conflict[local]) s = inside.inside(grid.node(i0 + i, j0 + j, k0 + k), -1, 0) ? -1 : 1;
-              values[n] = s * std::abs(values[n]);
+              const int s = sign[local];
+              if (seam || s == 0 || conflict[local]) {
+                undecided[ck].push_back(n);
+              } else {
+                values[n] = s * std::abs(values[n]);
+              }
             }
       }
   });
+  std::vector<int64_t> nodes;
+  for (const std::vector<int64_t>& layer : undecided) nodes.insert(nodes.end(), layer.begin(), layer.end());
+  std::sort(nodes.begin(), nodes.end());
+  std::vector<double> distance(nodes.size());
+  for (std::size_t q = 0; q < nodes.size(); ++q) distance[q] = values[nodes[q]];
+  const std::vector<std::uint8_t> in = inside.decide(nodes, distance, threads);
+  for (std::size_t q = 0; q < nodes.size(); ++q) values[nodes[q]] = in[q] ? -values[nodes[q]] : values[nodes[q]];
 }
 
 }  // namespace
 
 void fill_beyond_band(const MeshFeatures& features, const GridGeometry& grid, const FarField& far, int coarse_factor, double r,
-                      const SettledSigns* inside, const std::vector<std::uint8_t>& in_band, std::vector<double>& values,
+                      const RobustSigns* inside, const std::vector<std::uint8_t>& in_band, std::vector<double>& values,
                       int threads) {
   const int c = coarse_factor;
   const int nx = grid.dims.x(), ny = grid.dims.y(), nz = grid.dims.z();

@@ -5,8 +5,8 @@
 #include <vector>
 
 #include "field/band_scan.h"
-#include "field/band_sign.h"
 #include "field/distance_field.h"
+#include "field/winding_signs.h"
 
 namespace hairfit::field {
 
@@ -28,12 +28,12 @@ FarField make_far_field(const MeshFeatures& features, const GridGeometry& grid, 
 // interpolation of its coarse cell's magnitudes, or, where that is not above r (the band's width),
 // the distance to the nearest of the features the cell's corners are closest to (never below the
 // true distance, which exceeds r there), signed as distance_field.h states it
-// (with `inside`: the sign its coarse cell agrees on, or the test's at the node, asked through the
-// settled answer of the nearest feature its cell's corners are closest to; without: the sign of
-// the interpolated signed coarse values). Deterministic for any thread count.
+// (with `inside`: the sign its coarse cell agrees on, its corners and band samples alike, or where
+// they differ the robust inside's own at the node; without: the sign of the interpolated signed
+// coarse values). Deterministic for any thread count.
 // `in_band` marks the band's samples (1), whose values are final.
 void fill_beyond_band(const MeshFeatures& features, const GridGeometry& grid, const FarField& far, int coarse_factor, double r,
-                      const SettledSigns* inside, const std::vector<std::uint8_t>& in_band, std::vector<double>& values,
+                      const RobustSigns* inside, const std::vector<std::uint8_t>& in_band, std::vector<double>& values,
                       int threads);
 
 }  // namespace hairfit::field

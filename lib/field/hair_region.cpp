@@ -32,6 +32,26 @@ bool winding_above_half(const FastWindingNumber& winding, const Vec3& p) {
   return above_half([&](double beta) { return winding.at_beta(p, beta); });
 }
 
+WindingSoup HairRegion::soup(const Mesh& hull, const Mesh& scalp) const {
+  WindingSoup s;
+  s.parts.push_back({&hull, 1});
+  if (!closed_) s.parts.push_back({&scalp, -1});
+  s.estimate = [this](const Vec3& p) {
+    WindingEstimate e = hull_.estimate(p, kCloseBeta);
+    if (closed_) return e;
+    const WindingEstimate under = scalp_.estimate(p, kCloseBeta);
+    return WindingEstimate{e.value - under.value, e.error_bound + under.error_bound};
+  };
+  s.above_half = [this](const Vec3& p) { return inside_hull(p); };
+  return s;
+}
+
+WindingSoup winding_soup(const Mesh& mesh, const FastWindingNumber& winding) {
+  return {{{&mesh, 1}},
+          [&winding](const Vec3& p) { return winding.estimate(p, HairRegion::kCloseBeta); },
+          [&winding](const Vec3& p) { return winding_above_half(winding, p); }};
+}
+
 Mesh closed_head(const Mesh& scalp) {
   const MeshTopology topology = analyse_topology(scalp);
   Mesh head = scalp;

@@ -5,6 +5,7 @@
 #pragma once
 #include "core/fast_winding.h"
 #include "core/mesh.h"
+#include "field/winding_soup.h"
 
 namespace hairfit {
 
@@ -35,6 +36,11 @@ class HairRegion {
   static constexpr double kDecisive = 0.25;
   bool hull_closed() const { return closed_; }
 
+  // The region as the fields' robust sign takes it: the hull (the meshes this region was built
+  // from, which must outlive the soup), with the scalp reversed for an open hull; estimated at
+  // β = kCloseBeta, decided by inside_hull.
+  WindingSoup soup(const Mesh& hull, const Mesh& scalp) const;
+
   const FastWindingNumber& hull_winding() const { return hull_; }
   const FastWindingNumber& scalp_winding() const { return scalp_; }
 
@@ -52,5 +58,9 @@ Mesh closed_head(const Mesh& scalp);
 // Whether the winding number of `winding`'s mesh at p exceeds ½, decided as HairRegion::inside_hull
 // decides it (the hierarchical value where it is decisive, the direct sum elsewhere).
 bool winding_above_half(const FastWindingNumber& winding, const Vec3& p);
+
+// `mesh`'s own winding number as a soup: estimated by `winding` (built over `mesh`; both must
+// outlive the soup) at β = HairRegion::kCloseBeta, decided by winding_above_half.
+WindingSoup winding_soup(const Mesh& mesh, const FastWindingNumber& winding);
 
 }  // namespace hairfit

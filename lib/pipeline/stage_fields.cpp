@@ -28,15 +28,13 @@ void compute(StageRun& run, const FieldsOptions& o, StageReport& stage) {
   // hairline, negative inside it.
   const Mesh head = closed_head(inputs.scalp.mesh);
   const FastWindingNumber head_winding(head, HairRegion::kFirstBeta, threads);
-  const InsideTest inside_head = [&head_winding](const Vec3& p) { return winding_above_half(head_winding, p); };
-  v.scalp_field = std::make_shared<const DistanceField>(
-      make_distance_field(head, o.scalp, threads, inside_head));
+  const RobustInside inside_head{{winding_soup(head, head_winding)}};
+  v.scalp_field = std::make_shared<const DistanceField>(make_distance_field(head, o.scalp, threads, inside_head));
   // The volume's inside is the region's (HairRegion) together with the head, so that its field
   // keeps its sign across the scalp, as a prepared volume's floor under the scalp makes it: the
   // acceptable region, inside the volume and not behind the scalp, is the region's shell.
   const HairRegion region(inputs.volume.mesh, inputs.scalp.mesh, inputs.volume_report.closed(), threads);
-  const DistanceField& scalp = *v.scalp_field;
-  const InsideTest inside_volume = [&region, &scalp](const Vec3& p) { return scalp.value(p) < 0.0 || region.inside_hull(p); };
+  const RobustInside inside_volume{{region.soup(inputs.volume.mesh, inputs.scalp.mesh)}, v.scalp_field.get()};
   v.volume_field = std::make_shared<const DistanceField>(
       make_distance_field(inputs.volume.mesh, o.volume, threads, inside_volume));
   Digest d;

@@ -328,8 +328,8 @@ ScalpResult make_level_set_scalp(const Hull& hull, const Mesh& skin, const Scalp
   // The distance from the hairline at each node's closest point of the scan: the hull's, 0 on the skin.
   std::vector<double> from_hairline = hull_distance;
   from_hairline.resize(both.positions.size(), 0.0);
-  const CarriedField carried = make_distance_field_carrying(
-      near, from_hairline, spec, threads, [&winding](const Vec3& p) { return winding_above_half(winding, p); });
+  const CarriedField carried =
+      make_distance_field_carrying(near, from_hairline, spec, threads, RobustInside{{winding_soup(both, winding)}});
   const DistanceField& field = carried.field;
 
   SampleGrid grid;

@@ -1,0 +1,78 @@
+// Whether a soup's winding number exceeds ½ at grid nodes, asking the winding number itself as
+// rarely as its geometry allows. Internal to lib/field.
+//
+// Between two nodes a and b of a box, along a path of grid edges inside it,
+//   w(b) = w(a) + J(a → b) + ∫ ∇w · dx,   |∫ ∇w · dx| ≤ G · |b − a|₁,
+// where J is the exact sum of the jumps on the path's edges (grid_crossings.h) and G bounds |∇w|
+// over the box (rim_bound.h). So one estimate of w at a reference node, with its rigorous error
+// bound, decides every node of the box whose w(a) + J lies farther from ½ than that bound plus
+// G·|b − a|₁. Boxes are split in eight where nodes stay undecided, down to a few nodes, which are
+// asked themselves. Away from rims G is small and one estimate settles thousands of nodes; on a
+// closed, consistently oriented surface G is 0 and w is an integer off the surface.
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "core/fast_winding.h"
+#include "core/grid_geometry.h"
+#include "field/grid_crossings.h"
+#include "field/rim_bound.h"
+#include "field/winding_soup.h"
+
+namespace hairfit::field {
+
+class GridWindingSigns {
+ public:
+  GridWindingSigns(const WindingSoup& soup, const GridGeometry& grid, int threads);
+
+  // What a decision needed: estimates at references, and nodes asked themselves.
+  struct Counts {
+    int64_t nodes = 0, references = 0, asked = 0;
+  };
+  // inside[q] = (w > ½ at node nodes[q]), for nodes given by their grid index, ascending, each
+  // with its distance to the surface (a lower bound will do: references are the nodes farthest
+  // from the surface, never nearer than kClearance voxel). Deterministic for any thread count.
+  std::vector<std::uint8_t> decide(const std::vector<int64_t>& nodes, const std::vector<double>& distance, int threads,
+                                   Counts* counts = nullptr) const;
+  static constexpr double kClearance = 1e-3;  // voxels; the lattice's snapping is 2⁻¹⁷ voxel
+  static constexpr int kTopBox = 32;          // nodes per side of the boxes decided side by side
+  static constexpr int kAsk = 4;              // a box with this many undecided nodes or fewer asks them
+
+  const GridCrossings& crossings() const { return crossings_; }
+  const RimBound& rims() const { return rims_; }
+
+ private:
+  struct Box {
+    Vec3i lo, hi;  // nodes lo … hi − 1
+  };
+  // Decides the requests `which` (indices into nodes) inside `box`.
+  void decide_box(const Box& box, std::vector<int>& which, const std::vector<int64_t>& nodes,
+                  const std::vector<double>& distance, std::vector<std::uint8_t>& inside, Counts& counts) const;
+  Vec3i node_of(int64_t n) const;
+  // J from node c to node v: along z, then y, then x.
+  int jumps(const Vec3i& c, const Vec3i& v) const;
+
+  const WindingSoup& soup_;
+  GridGeometry grid_;
+  GridCrossings crossings_;
+  RimBound rims_;
+};
+
+// The robust inside of several soups: inside where any soup's winding number exceeds ½.
+class RobustSigns {
+ public:
+  // `inside` must outlive this.
+  RobustSigns(const RobustInside& inside, const GridGeometry& grid, int threads);
+  // As GridWindingSigns::decide, for the union; each soup is asked only at the nodes that the
+  // field and the soups before it leave outside. `counts` sums over the soups.
+  std::vector<std::uint8_t> decide(const std::vector<int64_t>& nodes, const std::vector<double>& distance, int threads,
+                                   GridWindingSigns::Counts* counts = nullptr) const;
+
+ private:
+  const DistanceField* negative_in_;
+  GridGeometry grid_;
+  std::vector<std::unique_ptr<GridWindingSigns>> soups_;
+};
+
+}  // namespace hairfit::field
