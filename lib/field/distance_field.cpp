@@ -136,10 +136,10 @@ void sign_band_and_coarse(const field::RobustSigns& inside, const GridGeometry& 
     for (auto it = first; it != nodes.end() && *it < grid.index(0, 0, k + 1); ++it) {
       const int64_t n = *it;
       const std::size_t q = std::size_t(it - nodes.begin());
-      const int i = int(n % nx), j = int((n / nx) % ny);
-      auto sign = [&](double& v) { v = in[q] ? -std::abs(v) : std::abs(v); };
+      const Vec3i v = grid.indices(n);
+      auto sign = [&](double& value) { value = in[q] ? -std::abs(value) : std::abs(value); };
       if (band.key[n] >= 0) sign(band.value[n]);
-      if (i % c == 0 && j % c == 0 && k % c == 0) sign(far.values[coarse_index(i, j, k)]);
+      if (v.x() % c == 0 && v.y() % c == 0 && k % c == 0) sign(far.values[coarse_index(v.x(), v.y(), k)]);
     }
   });
 }

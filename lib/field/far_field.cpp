@@ -31,8 +31,7 @@ FarField make_far_field(const MeshFeatures& features, const GridGeometry& grid, 
   bool any_seed = false;
   for (int64_t q = 0; q < count; ++q) {
     if (near.key[q] < 0) continue;
-    const int i = int(q % nx), j = int((q / nx) % ny), k = int(q / (int64_t(nx) * ny));
-    closest[q] = closest_on_feature(features, near.key[q], node(i, j, k)).point;
+    closest[q] = closest_on_feature(features, near.key[q], coarse.node(q)).point;
     feature[q] = near.key[q];
     distance[q] = std::abs(near.value[q]);
     sign[q] = near.value[q] < 0 ? -1 : 1;

@@ -69,8 +69,9 @@ void rasterise(const int64_t v[3][3], int w, const Vec3i& dims, std::array<std::
         const int64_t q[2] = {lu * kNode, lt * kNode};
         const int s0 = edge_side(p[0], p[1], q);
         if (s0 == 0 || edge_side(p[1], p[2], q) != s0 || edge_side(p[2], p[0], q) != s0) continue;
-        // The first node of the line on the side its direction enters, stepping up:
-        // sign(n_a)·n·(P(m) − v0) = −D + m·|n_a|·kNode increases with m.
+        // Where along the line it crosses: s(m) = sign(n_a)·n·(node m − v0) = m·step − threshold
+        // grows with m, and the crossing edge leads into the first node with s > 0 (s = 0: the
+        // displacement's side decides).
         int64_t node[3];  // the line's node 0
         node[a] = 0, node[u] = lu * kNode, node[t] = lt * kNode;
         Int d0 = 0;
@@ -80,8 +81,7 @@ void rasterise(const int64_t v[3][3], int w, const Vec3i& dims, std::array<std::
         if ((first - 1) * step == threshold && tie * along_sign > 0) first -= 1;  // on the plane: the tie decides
         const Int edge = first - 1;
         if (edge < 0 || edge > dims[a] - 2) continue;
-        const int64_t line = a == 0 ? lu + int64_t(dims.y()) * lt : lu + int64_t(dims.x()) * lt;
-        out[a].push_back({line, int32_t(edge), -along_sign * w});
+        out[a].push_back({lu + int64_t(dims[u]) * lt, int32_t(edge), -along_sign * w});
       }
   }
 }
@@ -95,11 +95,8 @@ int GridCrossings::prefix(const Axis& a, int64_t first, int64_t last, int n) {
 }
 
 GridCrossings::GridCrossings(const std::vector<SoupPart>& soup, const GridGeometry& grid, int threads) : dims_(grid.dims) {
-  // Every part's triangles, in lattice coordinates, with their weights.
-  struct Lattice {
-    std::vector<std::array<int64_t, 3>> positions;
-  };
-  std::vector<Lattice> lattice(soup.size());
+  // Every part's vertices in lattice coordinates.
+  std::vector<std::vector<std::array<int64_t, 3>>> lattice(soup.size());
   const double scale = double(kNode) / grid.voxel;
   for (std::size_t s = 0; s < soup.size(); ++s)
     for (const Vec3& x : soup[s].mesh->positions) {
@@ -110,7 +107,7 @@ GridCrossings::GridCrossings(const std::vector<SoupPart>& soup, const GridGeomet
           throw std::invalid_argument("a vertex lies more than 2^24 voxels from the grid's origin");
         q[c] = int64_t(l);
       }
-      lattice[s].positions.push_back(q);
+      lattice[s].push_back(q);
     }
   // Triangles in chunks, each chunk's crossings in its own lists; sorted afterwards, so the order
   // of the chunks does not matter.
@@ -126,7 +123,7 @@ GridCrossings::GridCrossings(const std::vector<SoupPart>& soup, const GridGeomet
     for (int t = first; t < last; ++t) {
       int64_t v[3][3];
       for (int k = 0; k < 3; ++k)
-        for (int d = 0; d < 3; ++d) v[k][d] = lattice[s].positions[mesh.triangles[t][k]][d];
+        for (int d = 0; d < 3; ++d) v[k][d] = lattice[s][mesh.triangles[t][k]][d];
       rasterise(v, soup[s].weight, dims_, found[c]);
     }
   });

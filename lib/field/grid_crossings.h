@@ -30,7 +30,7 @@ class GridCrossings {
   // (the exact arithmetic's range).
   GridCrossings(const std::vector<SoupPart>& soup, const GridGeometry& grid, int threads);
 
-  // The lines along `axis` are numbered by their nodes' other two indices, the lower axis fastest.
+  // The lines along `axis` are numbered by their nodes' other two indices u < t: u + dims[u]·t.
   int64_t line(int axis, int i, int j, int k) const {
     const Vec3i& d = dims_;
     if (axis == 0) return j + int64_t(d.y()) * k;
@@ -43,6 +43,11 @@ class GridCrossings {
     const int64_t first = a.offsets[line], last = a.offsets[line + 1];
     if (first == last || from == to) return 0;
     return prefix(a, first, last, to) - prefix(a, first, last, from);
+  }
+  // The sum of the jumps stepping from node `from` to node `to` along z, then y, then x.
+  int path(const Vec3i& from, const Vec3i& to) const {
+    return along(2, line(2, from.x(), from.y(), 0), from.z(), to.z()) +
+           along(1, line(1, from.x(), 0, to.z()), from.y(), to.y()) + along(0, line(0, 0, to.y(), to.z()), from.x(), to.x());
   }
   // Grid edges with a non-zero jump, over all axes.
   int64_t size() const { return int64_t(axes_[0].edge.size() + axes_[1].edge.size() + axes_[2].edge.size()); }

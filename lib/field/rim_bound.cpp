@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <limits>
 #include <map>
-#include <unordered_map>
+
+#include "core/weld.h"
 
 namespace hairfit::field {
 
@@ -18,42 +18,25 @@ double box_distance(const Vec3& p, const Vec3& lo, const Vec3& hi) {
   return (p.cwiseMax(lo).cwiseMin(hi) - p).norm();
 }
 
-struct PositionHash {
-  std::size_t operator()(const Vec3& p) const {
-    std::size_t h = 1469598103934665603ull;
-    for (int c = 0; c < 3; ++c) {
-      std::uint64_t bits;
-      const double x = p[c] == 0.0 ? 0.0 : p[c];  // −0 and +0 are one position
-      std::memcpy(&bits, &x, sizeof bits);
-      h = (h ^ bits) * 1099511628211ull;
-    }
-    return h;
-  }
-};
-
 }  // namespace
 
 RimBound::RimBound(const std::vector<SoupPart>& soup) {
-  // One id per distinct position, in order of first appearance.
-  std::unordered_map<Vec3, int, PositionHash> id_of;
+  // Every part's vertices, one id per distinct position (the lowest index holding it).
   std::vector<Vec3> positions;
+  for (const SoupPart& part : soup) positions.insert(positions.end(), part.mesh->positions.begin(), part.mesh->positions.end());
+  const std::vector<int> id = weld_points(positions, 0.0);
   std::map<std::pair<int, int>, int> multiplicity;  // (lower id, higher id) → faces low→high minus high→low
+  int base = 0;  // the part's first vertex in `positions`
   for (const SoupPart& part : soup) {
-    std::vector<int> id(part.mesh->positions.size());
-    for (std::size_t v = 0; v < id.size(); ++v) {
-      const Vec3& p = part.mesh->positions[v];
-      const auto [it, fresh] = id_of.emplace(p, int(positions.size()));
-      if (fresh) positions.push_back(p);
-      id[v] = it->second;
-    }
     for (const Vec3i& t : part.mesh->triangles) {
-      const Vec3& a = positions[id[t[0]]];
-      if ((positions[id[t[1]]] - a).cross(positions[id[t[2]]] - a).squaredNorm() == 0.0) continue;
+      const Vec3& a = positions[t[0] + base];
+      if ((positions[t[1] + base] - a).cross(positions[t[2] + base] - a).squaredNorm() == 0.0) continue;
       for (int k = 0; k < 3; ++k) {
-        const int from = id[t[k]], to = id[t[(k + 1) % 3]];
+        const int from = id[t[k] + base], to = id[t[(k + 1) % 3] + base];
         multiplicity[{std::min(from, to), std::max(from, to)}] += from < to ? part.weight : -part.weight;
       }
     }
+    base += int(part.mesh->positions.size());
   }
   for (const auto& [edge, m] : multiplicity) {
     if (m > 0) rims_.push_back({positions[edge.first], positions[edge.second], double(m)});

@@ -19,26 +19,12 @@ constexpr double kReach = 1.0;
 GridWindingSigns::GridWindingSigns(const WindingSoup& soup, const GridGeometry& grid, int threads)
     : soup_(soup), grid_(grid), crossings_(soup.parts, grid, threads), rims_(soup.parts) {}
 
-Vec3i GridWindingSigns::node_of(int64_t n) const {
-  const int64_t nx = grid_.dims.x(), ny = grid_.dims.y();
-  return Vec3i(int(n % nx), int((n / nx) % ny), int(n / (nx * ny)));
-}
-
-int GridWindingSigns::jumps(const Vec3i& c, const Vec3i& v) const {
-  const GridCrossings& g = crossings_;
-  return g.along(2, g.line(2, c.x(), c.y(), 0), c.z(), v.z()) + g.along(1, g.line(1, c.x(), 0, v.z()), c.y(), v.y()) +
-         g.along(0, g.line(0, 0, v.y(), v.z()), c.x(), v.x());
-}
-
 void GridWindingSigns::decide_box(const Box& box, std::vector<int>& which, const std::vector<int64_t>& nodes,
                                   const std::vector<double>& distance, std::vector<std::uint8_t>& inside,
                                   Counts& counts) const {
   if (which.empty()) return;
   auto ask_each = [&] {
-    for (int q : which) {
-      const Vec3i v = node_of(nodes[q]);
-      inside[q] = soup_.above_half(grid_.node(v.x(), v.y(), v.z()));
-    }
+    for (int q : which) inside[q] = soup_.above_half(grid_.node(nodes[q]));
     counts.asked += int64_t(which.size());
   };
   const Vec3i extent = box.hi - box.lo;
@@ -54,12 +40,12 @@ void GridWindingSigns::decide_box(const Box& box, std::vector<int>& which, const
     for (int q : which)
       if (distance[q] > distance[ref]) ref = q;
     if (distance[ref] < kClearance * h) return ask_each();
-    const Vec3i c = node_of(nodes[ref]);
-    const WindingEstimate e = soup_.estimate(grid_.node(c.x(), c.y(), c.z()));
+    const Vec3i c = grid_.indices(nodes[ref]);
+    const WindingEstimate e = soup_.estimate(grid_.node(nodes[ref]));
     ++counts.references;
     for (int q : which) {
-      const Vec3i v = node_of(nodes[q]);
-      const double value = e.value + jumps(c, v);
+      const Vec3i v = grid_.indices(nodes[q]);
+      const double value = e.value + crossings_.path(c, v);
       const double slack = e.error_bound + g * h * double((v - c).cwiseAbs().sum()) + kRoundoff;
       if (value > 0.5 + slack) {
         inside[q] = 1;
@@ -77,7 +63,7 @@ void GridWindingSigns::decide_box(const Box& box, std::vector<int>& which, const
   const Vec3i mid = box.lo + (extent + Vec3i::Ones()) / 2;
   std::vector<int> part[8];
   for (int q : undecided) {
-    const Vec3i v = node_of(nodes[q]);
+    const Vec3i v = grid_.indices(nodes[q]);
     part[(v.x() >= mid.x()) + 2 * (v.y() >= mid.y()) + 4 * (v.z() >= mid.z())].push_back(q);
   }
   for (int o = 0; o < 8; ++o) {
@@ -98,7 +84,7 @@ std::vector<std::uint8_t> GridWindingSigns::decide(const std::vector<int64_t>& n
   const Vec3i boxes = (grid_.dims + Vec3i::Constant(kTopBox - 1)) / kTopBox;
   // The requests of each top box, in the nodes' order.
   auto box_of = [&](int64_t n) {
-    const Vec3i v = node_of(n) / kTopBox;
+    const Vec3i v = grid_.indices(n) / kTopBox;
     return v.x() + int64_t(boxes.x()) * (v.y() + int64_t(boxes.y()) * v.z());
   };
   const int64_t box_count = int64_t(boxes.x()) * boxes.y() * boxes.z();
@@ -117,7 +103,7 @@ std::vector<std::uint8_t> GridWindingSigns::decide(const std::vector<int64_t>& n
   parallel_for(static_cast<int>(busy.size()), threads, [&](int k) {
     const int64_t b = busy[k];
     Box box;
-    box.lo = Vec3i(int(b % boxes.x()), int((b / boxes.x()) % boxes.y()), int(b / (int64_t(boxes.x()) * boxes.y()))) * kTopBox;
+    box.lo = grid_indices(b, boxes) * kTopBox;
     box.hi = (box.lo + Vec3i::Constant(kTopBox)).cwiseMin(grid_.dims);
     std::vector<int> which(order.begin() + offsets[b], order.begin() + offsets[b + 1]);
     per_box[k].nodes = int64_t(which.size());
@@ -125,11 +111,7 @@ std::vector<std::uint8_t> GridWindingSigns::decide(const std::vector<int64_t>& n
   });
   if (counts) {
     *counts = Counts{};
-    for (const Counts& c : per_box) {
-      counts->nodes += c.nodes;
-      counts->references += c.references;
-      counts->asked += c.asked;
-    }
+    for (const Counts& c : per_box) *counts += c;
   }
   return inside;
 }
@@ -143,21 +125,23 @@ std::vector<std::uint8_t> RobustSigns::decide(const std::vector<int64_t>& nodes,
                                               int threads, GridWindingSigns::Counts* counts) const {
   std::vector<std::uint8_t> inside(nodes.size(), 0);
   if (counts) *counts = {};
-  std::vector<int> open;  // the nodes not yet inside
-  for (std::size_t q = 0; q < nodes.size(); ++q) {
-    const int64_t n = nodes[q], nx = grid_.dims.x(), ny = grid_.dims.y();
-    if (negative_in_ && negative_in_->value(grid_.node(int(n % nx), int(n / nx % ny), int(n / (nx * ny)))) < 0.0)
-      inside[q] = 1;
-    else
-      open.push_back(int(q));
+  if (negative_in_) {
+    constexpr int kChunk = 4096;
+    parallel_for(int((nodes.size() + kChunk - 1) / kChunk), threads, [&](int c) {
+      const std::size_t last = std::min(nodes.size(), std::size_t(c + 1) * kChunk);
+      for (std::size_t q = std::size_t(c) * kChunk; q < last; ++q) inside[q] = negative_in_->value(grid_.node(nodes[q])) < 0.0;
+    });
   }
+  std::vector<int> open;  // the nodes not yet inside
+  for (std::size_t q = 0; q < nodes.size(); ++q)
+    if (!inside[q]) open.push_back(int(q));
   for (const auto& soup : soups_) {
     std::vector<int64_t> ask(open.size());
     std::vector<double> clearance(open.size());
     for (std::size_t q = 0; q < open.size(); ++q) ask[q] = nodes[open[q]], clearance[q] = distance[open[q]];
     GridWindingSigns::Counts c;
     const std::vector<std::uint8_t> in = soup->decide(ask, clearance, threads, &c);
-    if (counts) counts->nodes += c.nodes, counts->references += c.references, counts->asked += c.asked;
+    if (counts) *counts += c;
     std::vector<int> still;
     for (std::size_t q = 0; q < open.size(); ++q) {
       if (in[q]) inside[open[q]] = 1;

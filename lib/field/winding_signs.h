@@ -29,6 +29,10 @@ class GridWindingSigns {
   // What a decision needed: estimates at references, and nodes asked themselves.
   struct Counts {
     int64_t nodes = 0, references = 0, asked = 0;
+    Counts& operator+=(const Counts& o) {
+      nodes += o.nodes, references += o.references, asked += o.asked;
+      return *this;
+    }
   };
   // inside[q] = (w > ½ at node nodes[q]), for nodes given by their grid index, ascending, each
   // with its distance to the surface (a lower bound will do: references are the nodes farthest
@@ -49,9 +53,6 @@ class GridWindingSigns {
   // Decides the requests `which` (indices into nodes) inside `box`.
   void decide_box(const Box& box, std::vector<int>& which, const std::vector<int64_t>& nodes,
                   const std::vector<double>& distance, std::vector<std::uint8_t>& inside, Counts& counts) const;
-  Vec3i node_of(int64_t n) const;
-  // J from node c to node v: along z, then y, then x.
-  int jumps(const Vec3i& c, const Vec3i& v) const;
 
   const WindingSoup& soup_;
   GridGeometry grid_;

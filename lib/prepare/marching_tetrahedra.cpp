@@ -4,6 +4,8 @@
 #include <array>
 #include <unordered_map>
 
+#include "core/grid_geometry.h"
+
 namespace hairfit {
 
 namespace {
@@ -31,8 +33,8 @@ double orientation(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
 }  // namespace
 
 Vec3 SampleGrid::position(std::int64_t n) const {
-  const std::int64_t i = n % dims.x(), j = (n / dims.x()) % dims.y(), k = n / (std::int64_t(dims.x()) * dims.y());
-  return position(static_cast<int>(i), static_cast<int>(j), static_cast<int>(k));
+  const Vec3i v = grid_indices(n, dims);
+  return position(v.x(), v.y(), v.z());
 }
 
 ZeroSet marching_tetrahedra(const SampleGrid& grid, const std::vector<double>& values) {

@@ -103,8 +103,7 @@ int64_t cell_of(const GridGeometry& g, const Vec3& p) {
 // Minimum of dist over a (n+1)³ lattice of the voxel, faces included.
 template <class D>
 double min_over_voxel(const GridGeometry& g, int64_t index, D dist, int n) {
-  const int i = int(index % g.dims.x()), j = int((index / g.dims.x()) % g.dims.y()), k = int(index / (int64_t(g.dims.x()) * g.dims.y()));
-  const Vec3 lo = g.node(i, j, k);
+  const Vec3 lo = g.node(index);
   double best = 1e300;
   for (int a = 0; a <= n; ++a)
     for (int b = 0; b <= n; ++b)

@@ -10,6 +10,7 @@
 #include "core/fast_winding.h"
 #include "core/random.h"
 #include "core/triangle_closest.h"
+#include "field/distance_field.h"
 #include "field/winding_signs.h"
 #include "test_meshes.h"
 
@@ -18,24 +19,15 @@ using namespace hairfit::field;
 
 namespace {
 
+// The grid a field of `m` would take at this voxel and margin.
 GridGeometry grid_around(const Mesh& m, double voxel, double margin) {
-  const auto [lo, hi] = bounding_box(m);
-  GridGeometry g;
-  g.voxel = voxel;
-  g.origin = lo - Vec3::Constant(margin);
-  for (int a = 0; a < 3; ++a) g.dims[a] = int(std::ceil((hi[a] - lo[a] + 2 * margin) / voxel)) + 1;
-  return g;
+  const FieldGridPlan plan = plan_field_grid(m, test::spec_for(voxel, 3, margin));
+  return GridGeometry{plan.origin, voxel, plan.dims};
 }
 
-// J from node c to node v along z, then y, then x (as GridWindingSigns walks it).
-int path_jumps(const GridCrossings& x, const Vec3i& c, const Vec3i& v) {
-  return x.along(2, x.line(2, c.x(), c.y(), 0), c.z(), v.z()) + x.along(1, x.line(1, c.x(), 0, v.z()), c.y(), v.y()) +
-         x.along(0, x.line(0, 0, v.y(), v.z()), c.x(), v.x());
-}
-
-// Every node more than `clear` from the surface: the direct winding number, rounded, is the sum of
-// the jumps from the grid's corner node (outside, w = 0).
-int jump_mismatches(const Mesh& mesh, const GridGeometry& grid, double clear) {
+// Every node off the surface: the direct winding number, rounded, is the sum of the jumps from
+// the grid's corner node (outside, w = 0).
+int jump_mismatches(const Mesh& mesh, const GridGeometry& grid) {
   const GridCrossings crossings({{&mesh, 1}}, grid, 2);
   const FastWindingNumber winding(mesh);
   int wrong = 0, checked = 0;
@@ -45,9 +37,8 @@ int jump_mismatches(const Mesh& mesh, const GridGeometry& grid, double clear) {
         const Vec3 p = grid.node(i, j, k);
         const double w = winding.direct(p);
         if (std::abs(w - std::round(w)) > 1e-6) continue;  // on the surface (or within round-off of it)
-        (void)clear;
         ++checked;
-        wrong += std::lround(w) != path_jumps(crossings, Vec3i::Zero(), Vec3i(i, j, k));
+        wrong += std::lround(w) != crossings.path(Vec3i::Zero(), Vec3i(i, j, k));
       }
   CHECK(checked > 1000);
   return wrong;
@@ -57,7 +48,7 @@ int jump_mismatches(const Mesh& mesh, const GridGeometry& grid, double clear) {
 
 TEST_CASE("grid jumps: a closed sphere's winding number is the sum of the jumps from outside") {
   const Mesh sphere = test::icosphere(3, 1.0);
-  CHECK(jump_mismatches(sphere, grid_around(sphere, 0.07, 0.2), 0.0) == 0);
+  CHECK(jump_mismatches(sphere, grid_around(sphere, 0.07, 0.2)) == 0);
 }
 
 TEST_CASE("grid jumps: faces on grid planes and vertices on nodes decide by the symbolic displacement") {
@@ -84,7 +75,7 @@ TEST_CASE("grid jumps: faces on grid planes and vertices on nodes decide by the 
         if (!strictly(0.5) || !strictly(0.25)) continue;
         ++checked;
         const int expected = p.cwiseAbs().maxCoeff() < 0.5 && p.cwiseAbs().maxCoeff() > 0.25;
-        wrong += path_jumps(crossings, Vec3i::Zero(), Vec3i(i, j, k)) != expected;
+        wrong += crossings.path(Vec3i::Zero(), Vec3i(i, j, k)) != expected;
         wrong += std::lround(winding.direct(p)) != expected;
       }
   CHECK(checked > 4000);
@@ -95,9 +86,9 @@ TEST_CASE("grid jumps: faces on grid planes and vertices on nodes decide by the 
     for (int j = 0; j < 17; ++j)
       for (int i = 0; i < 17; ++i) {
         const Vec3i v(i, j, k);
-        CHECK(path_jumps(crossings, Vec3i::Zero(), v) ==
-              path_jumps(crossings, Vec3i::Zero(), corner) + path_jumps(crossings, corner, v));
-        CHECK(path_jumps(crossings, centre, v) == -path_jumps(crossings, v, centre));
+        CHECK(crossings.path(Vec3i::Zero(), v) ==
+              crossings.path(Vec3i::Zero(), corner) + crossings.path(corner, v));
+        CHECK(crossings.path(centre, v) == -crossings.path(v, centre));
       }
 }
 
@@ -171,8 +162,7 @@ TEST_CASE("grid winding signs: the direct sums' decisions, and a closed surface 
     std::vector<double> distance;
     // Every fifth node, with its distance to the mesh (brute force).
     for (int64_t n = 0; n < grid.count(); n += 5) {
-      const Vec3 p = grid.node(int(n % grid.dims.x()), int(n / grid.dims.x() % grid.dims.y()),
-                               int(n / (int64_t(grid.dims.x()) * grid.dims.y())));
+      const Vec3 p = grid.node(n);
       double d2 = 1e300;
       for (const Vec3i& t : mesh.triangles) {
         const Vec3 &a = mesh.positions[t[0]], &b = mesh.positions[t[1]], &c = mesh.positions[t[2]];
@@ -186,10 +176,7 @@ TEST_CASE("grid winding signs: the direct sums' decisions, and a closed surface 
     CHECK(counts.nodes == int64_t(nodes.size()));
     int wrong = 0;
     for (std::size_t q = 0; q < nodes.size(); ++q) {
-      const int64_t n = nodes[q];
-      const Vec3 p = grid.node(int(n % grid.dims.x()), int(n / grid.dims.x() % grid.dims.y()),
-                               int(n / (int64_t(grid.dims.x()) * grid.dims.y())));
-      const double w = winding.direct(p);
+      const double w = winding.direct(grid.node(nodes[q]));
       if (std::abs(w - 0.5) < 1e-3) continue;  // on the fence: either answer
       wrong += (w > 0.5) != bool(inside[q]);
     }

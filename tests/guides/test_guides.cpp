@@ -61,6 +61,13 @@ const World& world() {
   return w;
 }
 
+// `count` root angles (polar, azimuth) on a spiral: theta0 + k·dtheta, k·dphi.
+std::vector<std::pair<double, double>> spiral(int count, double theta0, double dtheta, double dphi) {
+  std::vector<std::pair<double, double>> angles;
+  for (int k = 0; k < count; ++k) angles.emplace_back(theta0 + dtheta * k, dphi * k);
+  return angles;
+}
+
 // Roots on the sphere of radius 8 at polar angle theta (from +y) and azimuth phi.
 RootSet roots_at(const std::vector<std::pair<double, double>>& angles, double length, double tilt_toward_down) {
   RootSet r;
@@ -315,8 +322,7 @@ TEST_CASE("guides are identical for 1, 2 and 4 threads") {
   GuideOptions o;
   o.rod.segments = 24;
   o.max_iterations = 30;
-  std::vector<std::pair<double, double>> angles;
-  for (int i = 0; i < 12; ++i) angles.emplace_back(0.2 + 0.08 * i, 0.5 * i);
+  const std::vector<std::pair<double, double>> angles = spiral(12, 0.2, 0.08, 0.5);
   const RootSet r = roots_at(angles, 9.0, 0.3);
   PreGuides pre;
   for (int i = 0; i < r.size(); i += 3)
@@ -370,8 +376,7 @@ TEST_CASE("pre-guides: each one that reached its depth is a cantilever in equili
   // does not.
   PreguideOptions o;
   o.rod.segments = 48;
-  std::vector<std::pair<double, double>> angles;
-  for (int k = 0; k < 8; ++k) angles.emplace_back(0.15 + 0.11 * k, 0.7 * k);
+  const std::vector<std::pair<double, double>> angles = spiral(8, 0.15, 0.11, 0.7);
   int reached = 0;
   for (double length : {4.5, 6.0, 25.0}) {
     const RootSet r = roots_at(angles, length, 0.3);
@@ -414,8 +419,7 @@ TEST_CASE("pre-guides replaying the shared load march agree with pre-guides that
   // frame. Checked against every pre-guide following its own march in world axes.
   PreguideOptions o;
   o.rod.segments = 48;
-  std::vector<std::pair<double, double>> angles;
-  for (int k = 0; k < 10; ++k) angles.emplace_back(0.12 + 0.1 * k, 0.9 * k);
+  const std::vector<std::pair<double, double>> angles = spiral(10, 0.12, 0.1, 0.9);
   RootSet r = roots_at(angles, 5.0, 0.3);
   for (std::size_t k = 0; k < angles.size(); ++k) r.lengths[k] = 4.0 + 0.7 * k;  // 4 to 10.3 cm
   const PreGuides shared = make_preguides(r, world().boundary(), o);
@@ -465,8 +469,7 @@ TEST_CASE("layer pre-guides: rods of their own loads, inside a thin shell where 
   // the solution has a lower cost (a brute-force check of the optimum).
   PreguideOptions o;
   o.rod.segments = 32;
-  std::vector<std::pair<double, double>> angles;
-  for (int k = 0; k < 8; ++k) angles.emplace_back(0.2 + 0.12 * k, 0.7 * k);
+  const std::vector<std::pair<double, double>> angles = spiral(8, 0.2, 0.12, 0.7);
   const RootSet r = roots_at(angles, 16.0, 80.0 * M_PI / 180.0);
   const Boundary b = thin_world().boundary();
   const PreGuides tip = make_preguides(r, b, o);
@@ -518,8 +521,7 @@ TEST_CASE("interior point forces: only guides that leave the layer get them, the
   // the nodes outside fall from 21 to 1.
   PreguideOptions po;
   po.rod.segments = 32;
-  std::vector<std::pair<double, double>> angles;
-  for (int k = 0; k < 12; ++k) angles.emplace_back(0.15 + 0.08 * k, 0.55 * k);
+  const std::vector<std::pair<double, double>> angles = spiral(12, 0.15, 0.08, 0.55);
   const RootSet r = roots_at(angles, 20.0, 80.0 * M_PI / 180.0);
   const Boundary b = uneven_world().boundary();
   const PreGuides pre = make_preguides(r, b, po);
