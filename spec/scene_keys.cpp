@@ -224,9 +224,11 @@ std::vector<SceneKey> build_keys() {
                         "Tilt of the growth direction from the normal (toward hair.tilt_toward) when the tilt map is not used."));
   keys.push_back(pair("hair.tilt_range", REF(hair.tilt_range), "degrees", closed(0, 90), "roots",
                       "Tilts for black and white of the tilt map."));
-  keys.push_back(text("hair.tilt_toward", REF(hair.tilt_toward), {"down", "thicker"}, "roots",
-                      "Where the normal tilts: toward down, or up the surface gradient of the hair layer's thickness "
-                      "(depth below the volume boundary), blended with down where the layer is flat."));
+  keys.push_back(text("hair.tilt_toward", REF(hair.tilt_toward), {"down", "thicker", "hanging"}, "roots",
+                      "Where the normal tilts: toward down; up the surface gradient of the hair layer's thickness "
+                      "(depth below the volume boundary), blended with down where the layer is flat; or hanging: as "
+                      "thicker, but toward down where the layer below a root holds a hanging hair (a bob's curtain), "
+                      "whose pre-guide is then the paper's and which ends where that layer ends."));
   keys.push_back(text("hair.flow", REF(hair.flow), {"local", "field", "relief"}, "roots",
                       "Where each root's tilt points: local, its own tilt_toward direction (the paper); field, one smooth "
                       "growth field over the scalp aligned with it (Knöppel et al. 2013), so neighbouring roots grow alike; "
@@ -234,7 +236,7 @@ std::vector<SceneKey> build_keys() {
   keys.push_back(number("hair.flow_smoothing", REF(hair.flow_smoothing), "cm", above(0, 100), "roots",
                         "With hair.flow = \"field\" or \"relief\": the distance over which the growth field averages its guidance."));
   keys.push_back(number("hair.swirl", REF(hair.swirl), "degrees", closed(-90, 90), "roots",
-                        "With a growth field and tilt_toward = \"thicker\": hair that grows away from where the layer "
+                        "With a growth field and tilt_toward = \"thicker\" or \"hanging\": hair that grows away from where the layer "
                         "ends turns clockwise (seen from outside) by this, so on a cap it spirals to the crown like a whorl "
                         "instead of meeting there head on."));
   keys.push_back(point2("hair.whorl", REF(hair.whorl), "roots",

@@ -452,8 +452,8 @@ bool fitted_to_layer(const PreguideOptions& o) {
 }  // namespace
 
 PreGuide solve_preguide_alone(const RootSet& roots, int i, const Boundary& boundary, const PreguideOptions& options) {
-  return fitted_to_layer(options) ? solve_layer_preguide(roots, i, boundary, options)
-                                  : solve_preguide(roots, i, boundary, options, {});
+  return fitted_to_layer(options) && !hangs(roots, i) ? solve_layer_preguide(roots, i, boundary, options)
+                                                      : solve_preguide(roots, i, boundary, options, {});
 }
 
 PreGuides make_preguides(const RootSet& roots, const Boundary& boundary, const PreguideOptions& options,
@@ -461,9 +461,11 @@ PreGuides make_preguides(const RootSet& roots, const Boundary& boundary, const P
   PreGuides result;
   result.items.resize(roots.size());
   if (fitted_to_layer(options)) {
+    // A root that hangs (scalp/hanging.h) falls free of the skull: the paper's construction bends
+    // its tip into the layer.
     ProgressCounter progress(exec.progress);
     parallel_for(roots.size(), exec.threads, [&](int i) {
-      result.items[i] = solve_layer_preguide(roots, i, boundary, options);
+      result.items[i] = solve_preguide_alone(roots, i, boundary, options);
       progress.item_done();
     });
     return result;

@@ -21,7 +21,8 @@ namespace hairfit {
 // How a pre-guide is bent into the hair: the paper's terminal force normal to the initial axis,
 // grown until the tip is immersed (tip), or a terminal force and a root couple in that plane that
 // keep the whole rod nearest its immersion depth in the layer (layer, guides/layer_preguide.h;
-// weightless rods: under gravity the tip construction is used).
+// weightless rods: under gravity the tip construction is used). With layer, a root that hangs
+// (scalp/roots.h hangs) still takes the tip construction: it falls free of the skull.
 enum class PreguideImmersion { tip, layer };
 
 struct PreguideOptions {

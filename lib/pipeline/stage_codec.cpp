@@ -8,10 +8,10 @@ namespace hairfit {
 // kStageCodecVersion bumped); these sizes make the compiler say so instead of the cache silently
 // dropping the member. Update the number once the codec handles it.
 static_assert(sizeof(ScalpChart) == 320, "ScalpChart changed: update stage_codec.cpp");
-static_assert(sizeof(RootSet) == 168, "RootSet changed: update stage_codec.cpp");
-static_assert(sizeof(Roots) == 192, "Roots changed: update stage_codec.cpp");
-static_assert(sizeof(Clusters) == 288, "Clusters changed: update stage_codec.cpp");
-static_assert(sizeof(PreguideRoots) == 176, "PreguideRoots changed: update stage_codec.cpp");
+static_assert(sizeof(RootSet) == 192, "RootSet changed: update stage_codec.cpp");
+static_assert(sizeof(Roots) == 216, "Roots changed: update stage_codec.cpp");
+static_assert(sizeof(Clusters) == 312, "Clusters changed: update stage_codec.cpp");
+static_assert(sizeof(PreguideRoots) == 200, "PreguideRoots changed: update stage_codec.cpp");
 static_assert(sizeof(PreGuide) == 248, "PreGuide changed: update stage_codec.cpp");
 static_assert(sizeof(Guide) == 432, "Guide changed: update stage_codec.cpp");
 static_assert(sizeof(Strands) == 136, "Strands changed: update stage_codec.cpp");
@@ -66,6 +66,7 @@ void members(IO& io, RootSet& r) {
   io(r.lengths);
   io(r.chart);
   io(r.heights);
+  io(r.hang_weights);
 }
 
 template <class IO>

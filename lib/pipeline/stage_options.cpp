@@ -18,7 +18,9 @@ RootSettings root_settings(const Scene& scene) {
   o.density = scene.hair.density;
   o.tilt = scene.hair.tilt;
   if (scene.effects.uses_map("tilt")) o.tilt_range = scene.hair.tilt_range;
-  o.tilt_toward = scene.hair.tilt_toward == "thicker" ? TiltToward::thicker : TiltToward::down;
+  o.tilt_toward = scene.hair.tilt_toward == "thicker"   ? TiltToward::thicker
+                  : scene.hair.tilt_toward == "hanging" ? TiltToward::hanging
+                                                        : TiltToward::down;
   o.flow = scene.hair.flow == "field" ? FlowModel::field : scene.hair.flow == "relief" ? FlowModel::relief : FlowModel::local;
   if (o.flow != FlowModel::local) {  // the growth field's guidance
     o.flow_smoothing = scene.hair.flow_smoothing;
@@ -48,8 +50,8 @@ std::vector<std::string> root_files(const RootSettings& s) {
   return files;
 }
 
-// Tilting toward the thicker layer, and hair that suits its shell, read the volume's field.
-bool roots_read_fields(const RootSettings& s) { return s.options.tilt_toward == TiltToward::thicker || s.from_shell; }
+// Tilting toward the thicker layer or hanging, and hair that suits its shell, read the fields.
+bool roots_read_fields(const RootSettings& s) { return s.options.tilt_toward != TiltToward::down || s.from_shell; }
 
 ThicknessField layer_thickness(const DistanceField& volume) {
   return [&volume](const Vec3& p) {
@@ -61,6 +63,19 @@ ThicknessField layer_thickness(const DistanceField& volume) {
     }
     return LayerThickness{-volume.value(p), gradient};
   };
+}
+
+HangProbe hang_probe(const Boundary& boundary, const Vec3& down) {
+  HangProbe probe;
+  probe.skin = [scalp = boundary.scalp](const Vec3& p, double& distance, Vec3& gradient) {
+    const FieldValueGradient v = scalp->value_and_gradient(p);
+    distance = v.value;
+    gradient = v.gradient;
+  };
+  probe.in_volume = [volume = boundary.volume](const Vec3& p) { return volume->value(p) <= 0.0; };
+  probe.down = down.normalized();
+  probe.step = 0.5 * boundary.volume->voxel();
+  return probe;
 }
 
 HairMaterial hair_material(const Scene& scene) {

@@ -7,6 +7,8 @@
 #include "core/mesh.h"
 #include "guides/density_term.h"
 #include "guides/guides.h"
+#include "guides/boundary.h"
+#include "scalp/hanging.h"
 #include "scalp/roots.h"
 #include "spec/scene.h"
 #include "strands/strands.h"
@@ -31,6 +33,9 @@ bool roots_read_fields(const RootSettings& settings);
 // between cells: 3–6° of error in the direction of a 0.2 cm/cm slope at 0.2 cm voxels, against
 // under 1° this way; tests/scalp/growth_field_test.cpp).
 ThicknessField layer_thickness(const DistanceField& volume);
+// What the hang of hair.tilt_toward = "hanging" reads (scalp/hanging.h): the scalp field's value
+// and trilinear gradient, the volume field's side, in steps of half the volume's voxel.
+HangProbe hang_probe(const Boundary& boundary, const Vec3& down);
 HairMaterial hair_material(const Scene& scene);
 RodDiscretisation rod_discretisation(const Scene& scene);
 PreguideOptions preguide_options(const Scene& scene);

@@ -46,6 +46,11 @@ void compute(StageRun& run, const PreguidesOptions& options, StageReport& stage)
     tip_outside += !g.reached && b.beyond_volume(g.shape.nodes.back()) > 0.0;
   }
   stage.add("preguides", static_cast<std::int64_t>(v.preguides->size()));
+  if (!v.preguide_roots->roots.hang_weights.empty()) {  // hair.tilt_toward = "hanging"
+    std::int64_t hanging = 0;
+    for (int i = 0; i < v.preguide_roots->roots.size(); ++i) hanging += hangs(v.preguide_roots->roots, i);
+    stage.add("hanging", hanging);
+  }
   stage.add("reached_depth", static_cast<std::int64_t>(reached));
   stage.add("flagged", static_cast<std::int64_t>(v.preguides->size() - reached));
   // Of those, the ones whose tip ends beyond the volume: hair longer than the volume holds there.

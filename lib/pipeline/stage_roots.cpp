@@ -32,6 +32,13 @@ void compute(StageRun& run, const RootSettings& settings, StageReport& stage) {
   stage.add("preguide_roots", static_cast<std::int64_t>(f.preguide_roots));
   stage.add("min_spacing_cm", f.min_spacing);
   stage.add("mean_spacing_cm", f.mean_spacing);
+  if (o.tilt_toward == TiltToward::hanging) {  // how much of the hair hangs, and how long it is
+    const RootSet& pores = v.roots->pores;
+    double weight = 0.0, length = 0.0;
+    for (int i = 0; i < pores.size(); ++i) weight += pores.hang_weights[i], length += pores.lengths[i];
+    stage.add("hang_weight_mean", pores.size() ? weight / pores.size() : 0.0);
+    stage.add("hair_length_mean_cm", pores.size() ? length / pores.size() : 0.0);
+  }
 }
 
 void encode_value(ByteWriter& out, const StageValues& v) {

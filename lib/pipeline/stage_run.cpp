@@ -4,6 +4,7 @@
 #include "core/parallel.h"
 #include "pipeline/stage.h"
 #include "pipeline/stage_options.h"
+#include "scalp/hanging.h"
 #include "scalp/relief.h"
 
 namespace hairfit {
@@ -32,7 +33,7 @@ const StageRun::ResolvedRoots& StageRun::resolved_roots(const RootSettings& sett
   r.inputs.density = inputs.density_map;
   r.inputs.tilt = inputs.tilt_map;
   r.inputs.length = inputs.length_map;
-  if (o.tilt_toward == TiltToward::thicker) r.inputs.thickness = layer_thickness(*values.volume_field);
+  if (o.tilt_toward != TiltToward::down) r.inputs.thickness = layer_thickness(*values.volume_field);
   if (o.flow == FlowModel::relief)
     r.inputs.grain = relief_grain(*values.chart, inputs.volume.mesh, settings.relief_radius, options.threads);
   if (settings.from_shell) {  // hair that suits its shell: length and tilt from the layer
@@ -42,6 +43,9 @@ const StageRun::ResolvedRoots& StageRun::resolved_roots(const RootSettings& sett
       o.tilt = r.shell.tilt;
     }
   }
+  if (o.tilt_toward == TiltToward::hanging)  // after the length is known: the hang stops there
+    r.inputs.hangs = vertex_hangs(*values.chart, hang_probe(boundary(), values.chart->down), longest_hair(r.inputs, o),
+                                  options.threads);
   resolved_ = std::move(r);
   return *resolved_;
 }

@@ -24,6 +24,7 @@ RootSet subset(const RootSet& s, const std::vector<int>& index) {
     out.lengths.push_back(s.lengths[i]);
     out.chart.push_back(s.chart[i]);
     out.heights.push_back(s.heights[i]);
+    if (!s.hang_weights.empty()) out.hang_weights.push_back(s.hang_weights[i]);
   }
   return out;
 }

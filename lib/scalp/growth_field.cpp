@@ -5,6 +5,7 @@
 
 #include "core/parallel.h"
 #include "core/smoothstep.h"
+#include "scalp/hanging.h"
 
 namespace hairfit {
 
@@ -20,16 +21,19 @@ Vec3 tilted(const Vec3& normal, const Vec3& unit_tangent, double tilt_degrees) {
   return (std::cos(angle) * normal + std::sin(angle) * unit_tangent).normalized();
 }
 
+Vec3 down_guidance(const Vec3& normal, const Vec3& down, const Vec3& front) {
+  return down.normalized().cross(normal).norm() * tangent_toward_down(normal, down, front);
+}
+
 Vec3 growth_guidance(const Vec3& normal, const Vec3& thickness_gradient, const RootOptions& o, const Vec3& down,
                      const Vec3& front) {
-  const Vec3 toward_down = tangent_toward_down(normal, down, front);
-  const double sure_of_down = down.normalized().cross(normal).norm();
-  if (o.tilt_toward == TiltToward::down) return sure_of_down * toward_down;
+  const Vec3 toward_down = down_guidance(normal, down, front);
+  if (o.tilt_toward == TiltToward::down) return toward_down;
   const Vec3 g = thickness_gradient - thickness_gradient.dot(normal) * normal;
   const double slope = g.norm();
-  if (!(slope > 1e-12)) return sure_of_down * toward_down;  // also NaN gradients
+  if (!(slope > 1e-12)) return toward_down;  // also NaN gradients
   const double w = std::min(1.0, slope / kFlatLayerGradient);
-  return w * (g / slope) + (1.0 - w) * sure_of_down * toward_down;
+  return w * (g / slope) + (1.0 - w) * toward_down;
 }
 
 namespace {
@@ -144,10 +148,10 @@ DirectionField make_growth_field(const ScalpChart& ch, const RootInputs& in, con
   const Mesh& mesh = ch.mesh;
   const int n = static_cast<int>(mesh.positions.size());
   std::vector<double> thickness(n, 0.0);
-  if (o.tilt_toward == TiltToward::thicker)
+  if (o.tilt_toward != TiltToward::down)
     parallel_for(n, exec.threads, [&](int i) { thickness[i] = in.thickness(mesh.positions[i]).value; });
   std::vector<Vec3> guidance(n);
-  if (o.tilt_toward != TiltToward::thicker) {
+  if (o.tilt_toward == TiltToward::down) {
     for (int i = 0; i < n; ++i) guidance[i] = growth_guidance(ch.vertex_normals[i], Vec3::Zero(), o, ch.down, ch.front);
   } else {
     const std::vector<Vec3> gradient = vertex_gradients(mesh, thickness);
@@ -155,9 +159,14 @@ DirectionField make_growth_field(const ScalpChart& ch, const RootInputs& in, con
     // gradient of the distance to it takes over, fully at the end, not at all a length away.
     const std::vector<double> reach = layer_end_distance(ch, thickness, in.thickness, kLayerEndProbe);
     const std::vector<Vec3> away = vertex_gradients(mesh, reach);
+    const double hair = longest_hair(in, o);
     for (int i = 0; i < n; ++i) {
-      const Vec3 local = growth_guidance(ch.vertex_normals[i], gradient[i], o, ch.down, ch.front);
       const Vec3& normal = ch.vertex_normals[i];
+      Vec3 local = growth_guidance(normal, gradient[i], o, ch.down, ch.front);
+      if (o.tilt_toward == TiltToward::hanging) {  // where hair hangs, toward down
+        const double hanging = hang_weight(in.hangs[i], hair);
+        local = hanging * down_guidance(normal, ch.down, ch.front) + (1.0 - hanging) * local;
+      }
       const Vec3 a = turned_clockwise(away[i] - away[i].dot(normal) * normal, normal, o.swirl);
       const double urgency = std::isfinite(reach[i]) ? smoothstep(1.0 - reach[i] / o.length) : 0.0;
       guidance[i] = a.norm() > 1e-12 ? Vec3(urgency * a.normalized() + (1.0 - urgency) * local) : local;

@@ -20,10 +20,14 @@ Vec3 tangent_toward_down(const Vec3& normal, const Vec3& down, const Vec3& front
 // The normal rotated by `tilt_degrees` toward a unit tangent.
 Vec3 tilted(const Vec3& normal, const Vec3& unit_tangent, double tilt_degrees);
 
-// The tangent a root aims at, before smoothing, for TiltToward::thicker: w·ĝ + (1 − w)·t_down with
-// g the tangential part of the thickness gradient and w = min(1, |g| / kFlatLayerGradient); its
-// length (≤ 1) is how sure it is. For TiltToward::down: t_down scaled by |down × normal| (sure
-// on the sides of the head, unsure at the crown, where down says nothing).
+// The tangent toward down scaled by |down × normal|: sure on the sides of the head, unsure at the
+// crown, where down says nothing.
+Vec3 down_guidance(const Vec3& normal, const Vec3& down, const Vec3& front);
+
+// The tangent a root aims at, before smoothing, for TiltToward::thicker (and hanging, before its
+// blend): w·ĝ + (1 − w)·t_down with g the tangential part of the thickness gradient and
+// w = min(1, |g| / kFlatLayerGradient); its length (≤ 1) is how sure it is. For TiltToward::down:
+// down_guidance.
 Vec3 growth_guidance(const Vec3& normal, const Vec3& thickness_gradient, const RootOptions& options,
                      const Vec3& down, const Vec3& front);
 
@@ -40,8 +44,9 @@ std::vector<double> layer_end_distance(const ScalpChart& chart, const std::vecto
 // With FlowModel::relief, inputs.grain (one line per vertex, scalp/relief.h) then takes over by
 // its anisotropy, turned to agree with the guidance below.
 // Per scalp vertex: growth_guidance with the thickness gradient of the piecewise-linear thickness
-// the field gives at the vertices (per triangle, area-weighted at each vertex); with "thicker",
-// blended toward the direction away from the layer's end (the gradient of layer_end_distance),
+// the field gives at the vertices (per triangle, area-weighted at each vertex); with "hanging",
+// blended toward down_guidance by the vertex's hang weight (scalp/hanging.h, against the longest
+// hair); with "thicker" or "hanging", blended toward the direction away from the layer's end (the gradient of layer_end_distance),
 // turned clockwise (seen from outside) by options.swirl, by the smoothstep of 1 − distance / hair
 // length, since a hair needs its length of layer ahead of it; then the smoothest field aligned
 // with it.

@@ -9,11 +9,18 @@
 #include "core/parallel.h"
 #include "core/random.h"
 #include "scalp/growth_field.h"
+#include "scalp/hanging.h"
 #include "scalp/sample_elimination.h"
 
 namespace hairfit {
 
 namespace {
+
+// (1 − w)·a + w·b normalised, for unit a and b; b where they cancel.
+Vec3 blend_unit(const Vec3& a, const Vec3& b, double w) {
+  const Vec3 v = (1.0 - w) * a + w * b;
+  return v.norm() > 1e-9 ? Vec3(v.normalized()) : b;
+}
 
 // A map's value at a chart point; 1 when the map is not used.
 double map_value(const GreyMap* map, const Vec2& chart) { return map ? map->sample(chart_to_image(chart)) : 1.0; }
@@ -149,33 +156,45 @@ RootSet make_root_set(const ScalpChart& ch, const RootInputs& maps, const RootOp
   s.lengths.resize(n);
   s.chart.resize(n);
   s.heights.resize(n);
+  if (o.tilt_toward == TiltToward::hanging) s.hang_weights.resize(n);
   parallel_for(n, threads, [&](int i) {
     const SurfacePoint& sp = s.where[i];
     s.positions[i] = surface_position(ch, sp);
     s.normals[i] = surface_normal(ch, sp);
     s.chart[i] = chart_position(ch, sp);
     const double tilt = maps.tilt ? lerp(o.tilt_range, map_value(maps.tilt.get(), s.chart[i])) : o.tilt;
+    s.lengths[i] = maps.length ? lerp(o.length_range, map_value(maps.length.get(), s.chart[i])) : o.length;
+    double hanging = 0.0;
+    if (o.tilt_toward == TiltToward::hanging) {
+      const double hang = hang_at(ch, maps.hangs, sp);
+      hanging = s.hang_weights[i] = hang_weight(hang, s.lengths[i]);
+      s.lengths[i] = hanging_length(s.lengths[i], hang);
+    }
     if (flow) {
       const Vec3 fallback = tangent_toward_down(s.normals[i], ch.down, ch.front);
       s.directions[i] = tilted(s.normals[i], field_direction(ch.mesh, *flow, sp.triangle, sp.barycentric, s.normals[i], fallback), tilt);
+    } else if (o.tilt_toward == TiltToward::down) {
+      s.directions[i] = growth_direction(s.normals[i], ch.down, ch.front, tilt);
     } else {
-      s.directions[i] = o.tilt_toward == TiltToward::thicker
-                            ? growth_direction_toward_thicker(s.normals[i], maps.thickness(s.positions[i]).gradient, ch.down,
-                                                              ch.front, tilt)
-                            : growth_direction(s.normals[i], ch.down, ch.front, tilt);
+      // Toward the thicker layer; a hanging root turns toward down by its weight.
+      const Vec3 thicker = growth_direction_toward_thicker(s.normals[i], maps.thickness(s.positions[i]).gradient, ch.down,
+                                                           ch.front, tilt);
+      s.directions[i] = hanging > 0.0 ? blend_unit(thicker, growth_direction(s.normals[i], ch.down, ch.front, tilt), hanging)
+                                      : thicker;
     }
-    s.lengths[i] = maps.length ? lerp(o.length_range, map_value(maps.length.get(), s.chart[i])) : o.length;
     s.heights[i] = height_of(ch, s.positions[i]);
   });
   return s;
 }
 
-void check_options(const RootInputs& maps, const RootOptions& o, const Exec& exec) {
+void check_options(const ScalpChart& ch, const RootInputs& maps, const RootOptions& o, const Exec& exec) {
   if (exec.threads < 1) throw std::invalid_argument("roots: threads must be ≥ 1");
   if (!(o.density >= 0) || !std::isfinite(o.density)) throw std::invalid_argument("roots: density must be ≥ 0");
   if (!(o.oversampling >= 1)) throw std::invalid_argument("roots: oversampling must be ≥ 1");
-  if (o.tilt_toward == TiltToward::thicker && !maps.thickness)
+  if (o.tilt_toward != TiltToward::down && !maps.thickness)
     throw std::invalid_argument("roots: tilting toward the thicker layer needs the layer's thickness field");
+  if (o.tilt_toward == TiltToward::hanging && maps.hangs.size() != ch.mesh.positions.size())
+    throw std::invalid_argument("roots: hanging hair needs the hang at every scalp vertex");
 }
 
 std::vector<SurfacePoint> pick(const HugeVector<SurfacePoint>& all, const std::vector<int>& kept) {
@@ -255,8 +274,8 @@ PreguideRoots make_preguide_roots(const ScalpChart& ch, const RootInputs& maps, 
   return pre;
 }
 
-void check_preguide_options(const RootInputs& maps, const RootOptions& o, const Exec& exec) {
-  check_options(maps, o, exec);
+void check_preguide_options(const ScalpChart& ch, const RootInputs& maps, const RootOptions& o, const Exec& exec) {
+  check_options(ch, maps, o, exec);
   if (!(o.preguide_spacing > 0)) throw std::invalid_argument("roots: preguide_spacing must be > 0");
 }
 
@@ -271,19 +290,19 @@ const DirectionField* pointer(const std::optional<DirectionField>& f) { return f
 }  // namespace
 
 Roots make_roots(const ScalpChart& ch, const RootInputs& maps, const RootOptions& o, const Exec& exec) {
-  check_options(maps, o, exec);
+  check_options(ch, maps, o, exec);
   return make_roots(ch, maps, o, density_of_triangles(ch, maps.density.get(), exec.threads),
                     pointer(growth_field_for(ch, maps, o, exec)), exec.threads);
 }
 
 PreguideRoots make_preguide_roots(const ScalpChart& ch, const RootInputs& maps, const RootOptions& o, const Exec& exec) {
-  check_preguide_options(maps, o, exec);
+  check_preguide_options(ch, maps, o, exec);
   return make_preguide_roots(ch, maps, o, density_of_triangles(ch, maps.density.get(), exec.threads),
                              pointer(growth_field_for(ch, maps, o, exec)), exec.threads);
 }
 
 ScalpRoots make_scalp_roots(const ScalpChart& ch, const RootInputs& maps, const RootOptions& o, const Exec& exec) {
-  check_preguide_options(maps, o, exec);
+  check_preguide_options(ch, maps, o, exec);
   const std::vector<TriangleDensity> density = density_of_triangles(ch, maps.density.get(), exec.threads);
   const std::optional<DirectionField> flow = growth_field_for(ch, maps, o, exec);
   ScalpRoots r;
@@ -291,6 +310,14 @@ ScalpRoots make_scalp_roots(const ScalpChart& ch, const RootInputs& maps, const 
   r.clusters = make_clusters(ch, r.roots, o, exec);
   r.preguides = make_preguide_roots(ch, maps, o, density, pointer(flow), exec.threads);
   return r;
+}
+
+double longest_hair(const RootInputs& inputs, const RootOptions& o) {
+  return inputs.length ? std::max(o.length_range[0], o.length_range[1]) : o.length;
+}
+
+bool hangs(const RootSet& roots, int i) {
+  return !roots.hang_weights.empty() && roots.hang_weights[i] > kHangingPreguide;
 }
 
 Digest digest(const RootSet& s) {
@@ -302,6 +329,7 @@ Digest digest(const RootSet& s) {
   }
   d.add(s.positions).add(s.normals).add(s.directions).add(s.lengths).add(s.heights);
   for (const Vec2& c : s.chart) d.add_bytes(c.data(), 2 * sizeof(double));
+  if (!s.hang_weights.empty()) d.add(s.hang_weights);
   return d;
 }
 

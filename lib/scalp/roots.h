@@ -14,9 +14,11 @@
 namespace hairfit {
 
 
-// Which way the normal tilts at a root: toward down (the scene's default), or up the surface
-// gradient of the hair layer's thickness, so hair at a thin hairline grows into the hair mass.
-enum class TiltToward { down, thicker };
+// Which way the normal tilts at a root: toward down (the scene's default); up the surface
+// gradient of the hair layer's thickness, so hair at a thin hairline grows into the hair mass; or
+// hanging: toward down where the layer below the root holds a hanging hair, toward the thicker
+// layer elsewhere (scalp/hanging.h).
+enum class TiltToward { down, thicker, hanging };
 
 // Where the tangent a root tilts toward comes from: one smooth growth field over the scalp
 // (scalp/growth_field.h), the same field steered by the hull's grain (relief, scalp/relief.h), or
@@ -38,7 +40,8 @@ struct RootInputs {
   std::shared_ptr<const GreyMap> density;  // × RootOptions::density; 0 (black) = no hair at all
   std::shared_ptr<const GreyMap> tilt;     // black → tilt_range[0], white → tilt_range[1]
   std::shared_ptr<const GreyMap> length;   // black → length_range[0], white → length_range[1]
-  ThicknessField thickness;                // required with TiltToward::thicker
+  ThicknessField thickness;                // required with TiltToward::thicker and hanging
+  std::vector<double> hangs;               // TiltToward::hanging: per scalp vertex, up to longest_hair (scalp/hanging.h)
   std::vector<Vec3> grain;                 // FlowModel::relief: per scalp vertex (relief_grain)
 };
 
@@ -72,6 +75,7 @@ struct RootSet {
   std::vector<double> lengths;       // cm
   std::vector<Vec2> chart;           // chart coordinates (unit disk)
   std::vector<double> heights;       // [0, 1] along up: 0 lowest scalp vertex, 1 top of the head
+  std::vector<double> hang_weights;  // TiltToward::hanging: how much each root hangs, φ ∈ [0, 1]; else empty
   int size() const { return static_cast<int>(positions.size()); }
 };
 
@@ -96,6 +100,12 @@ struct PreguideRoots {
   RootSet roots;
   double spacing = 0.0;  // cm, as requested
 };
+
+// The longest hair the options give a root: the length, or the long end of the length map's range.
+double longest_hair(const RootInputs& inputs, const RootOptions& options);
+
+// Whether root i of the set hangs (TiltToward::hanging, weight above kHangingPreguide).
+bool hangs(const RootSet& roots, int i);
 
 // Pores: blue noise on the 3D surface with density options.density × density map (hairs/cm²).
 // Exactly round(∫ρ dA) roots (the integral by subdivided-triangle quadrature of the map), by

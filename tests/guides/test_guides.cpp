@@ -8,6 +8,7 @@
 #include "guides/guides.h"
 #include "guides/layer_preguide.h"
 #include "guides/objective.h"
+#include "scalp/hanging.h"
 #include "residual_differences.h"
 
 using namespace hairfit;
@@ -497,6 +498,29 @@ TEST_CASE("layer pre-guides: rods of their own loads, inside a thin shell where 
       for (int c = -10; c <= 10; ++c)
         grid_best = std::min(grid_best, layer_preguide_cost(r, i, b, o, P + 0.2 * a, mu + 0.05 * c));
     CHECK(best <= grid_best + 1e-9);
+  }
+}
+
+TEST_CASE("layer pre-guides: a root that hangs takes the paper's tip construction, the others the layer's") {
+  PreguideOptions o;
+  o.rod.segments = 32;
+  o.immersion = PreguideImmersion::layer;
+  const std::vector<std::pair<double, double>> angles = spiral(6, 0.2, 0.12, 0.7);
+  const RootSet still = roots_at(angles, 16.0, 80.0 * M_PI / 180.0);
+  RootSet hanging = still;
+  hanging.hang_weights = {0.0, 1.0, 0.5, 0.9, kHangingPreguide, 0.66};
+  const Boundary b = thin_world().boundary();
+  const PreGuides layer = make_preguides(still, b, o);
+  const PreGuides mixed = make_preguides(hanging, b, o, Exec{2, {}});
+  PreguideOptions tip = o;
+  tip.immersion = PreguideImmersion::tip;
+  for (int i = 0; i < hanging.size(); ++i) {
+    CAPTURE(i);
+    const PreGuide& expected = hangs(hanging, i) ? solve_preguide_alone(hanging, i, b, tip) : layer.items[i];
+    CHECK(hangs(hanging, i) == (hanging.hang_weights[i] > kHangingPreguide));
+    CHECK(max_node_distance(mixed.items[i].shape.nodes, expected.shape.nodes) == 0.0);
+    CHECK(mixed.items[i].force == expected.force);
+    CHECK(mixed.items[i].root_moment == expected.root_moment);
   }
 }
 

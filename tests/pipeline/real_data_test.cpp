@@ -69,12 +69,12 @@ TEST_CASE("real data: open multi-part hulls that dip under the skin run end to e
     double strands_inside;  // the least share of fibre points inside the region, by direct sums
     double guides_inside;   // the same for the guides' nodes after the root
   };
-  // Measured: short04 0.989, bob01 0.999, ponytail01 0.992 (hair that suits its shell, held in
-  // it where it skims out by under 1 cm; cutting keeps what re-enters within 1 cm). Without the
-  // containment 0.977, 0.998, 0.980.
+  // Measured: short04 0.992, bob01 0.997, ponytail01 0.993 (hair that suits its shell, held in
+  // it where it skims out by under 1 cm; cutting keeps what re-enters within 1 cm; short04 and
+  // bob01 hang, scalp/hanging.h). Without the containment, before hanging: 0.977, 0.998, 0.980.
   // Guides: the issue's 0.99, but 0.985 on ponytail01, which meets it by under 0.001 (0.9908):
   // across seeds its guides keep 0.988–0.995, so another machine's last bits could take it under.
-  for (const Case& c : {Case{"makehuman-short04", 0.98, 0.99}, Case{"makehuman-bob01", 0.998, 0.99},
+  for (const Case& c : {Case{"makehuman-short04", 0.98, 0.99}, Case{"makehuman-bob01", 0.995, 0.99},
                         Case{"makehuman-ponytail01", 0.985, 0.985}}) {
     const std::string name = c.fixture;
     INFO(name);
@@ -97,8 +97,8 @@ TEST_CASE("real data: open multi-part hulls that dip under the skin run end to e
     // points that lie within a voxel of the surface.
     CHECK(std::abs(check.inside - figure(r.report, "strands", "inside_fraction")) < 0.01);
     // The guides, by the same direct sums: the issue's target of 0.99 of their nodes after the
-    // root inside. Measured: short04 0.9945, bob01 0.9974, ponytail01 0.9902 (three interior
-    // point forces per guide). Their chords through the scalp (20, 5, 11: runs a fraction of a
+    // root inside. Measured: short04 0.9956, bob01 0.9939, ponytail01 0.9958 (three interior
+    // point forces per guide). Their chords through the scalp (26, 8, 9: runs a fraction of a
     // millimetre deep) are reported, not required to vanish: the strands lift theirs off.
     const Curves guides = r.values.guides->curves();
     const Independent guide_check = independent_check(inputs, guides);

@@ -267,3 +267,12 @@ TEST_CASE("hair from the shell takes the guides' interior point forces; weighted
   CHECK(first_error("[guides]\npoint_forces = 4\n").find("guides.point_forces = 4 is out of range; allowed: [0, 3]") !=
         std::string::npos);
 }
+
+TEST_CASE("hanging hair is a style the shell's hair keeps: the length and tilt are still derived") {
+  const Scene hanging = parse("[hair]\ntilt_toward = \"hanging\"\n");
+  CHECK(hanging.hair.tilt_toward == "hanging");
+  CHECK(hanging.hair.from_shell);
+  CHECK(hanging.preguides.immersion == "layer");  // hanging roots take the tip construction root by root
+  CHECK(parse("").hair.tilt_toward == "thicker");
+  CHECK(first_error("[hair]\ntilt_toward = \"falling\"\n").find("choose one of \"down\", \"thicker\", \"hanging\"") != std::string::npos);
+}

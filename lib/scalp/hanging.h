@@ -1,0 +1,57 @@
+// Hair that hangs (hair.tilt_toward = "hanging", issue 23). Where the hair layer goes on below a
+// root for the hair's length (the curtain of a bob, the sides of short hair), a hair falls: it
+// grows down along the skull, the paper's pre-guide bends its tip into the layer, and it ends
+// where the layer below it ends. Elsewhere (a thin cap that ends at the hairline, the gathered
+// hair of a ponytail) it grows toward the thicker layer as with "thicker". How much a root hangs
+// is read off one probe per scalp vertex:
+//
+//   the hang h: the path a falling hair takes from the root, 0.1 cm off the skin, stepping along
+//   down projected onto the skin's level surface while within kHangHug of the skin (the hair lies
+//   on the skull) and straight down beyond (it hangs free), for as long as it stays in the layer
+//   (inside the hull's region and outside the head), at most the hair's length L;
+//
+//   the weight φ = smoothstep(h / L): 1 where a hair's length of layer lies below the root, 0
+//   where none does;
+//
+//   the length L − φ·max(0, L − h): a hanging hair (φ = 1) ends where the layer below it ends.
+#pragma once
+#include <functional>
+#include <vector>
+
+#include "scalp/chart.h"
+
+namespace hairfit {
+
+// How far off the skin the hang's probe starts (cm): inside a layer a few millimetres thin.
+constexpr double kHangStart = 0.1;
+// Within this distance of the skin (cm) the probe follows the skull (measured on the MakeHuman
+// fixtures: 0.25, 0.5 and 1 cm, bench/results/thin_shells.md).
+constexpr double kHangHug = 0.5;
+// A root whose weight exceeds this hangs: its pre-guide is the paper's tip construction.
+constexpr double kHangingPreguide = 0.65;
+
+// What the probe reads: the signed distance from the skin (the scalp field, negative in the
+// head) with its gradient, and whether a point lies in the hull's region (the volume field ≤ 0).
+struct HangProbe {
+  std::function<void(const Vec3& p, double& distance, Vec3& gradient)> skin;
+  std::function<bool(const Vec3& p)> in_volume;
+  Vec3 down = Vec3(0.0, -1.0, 0.0);  // unit
+  double step = 0.1;                 // cm
+};
+
+// The hang h of a root at `root` with unit outward `normal`, up to `cap` (cm).
+double hang_length(const HangProbe& probe, const Vec3& root, const Vec3& normal, double cap);
+
+// The hang at every vertex of the scalp chart, up to `cap`.
+std::vector<double> vertex_hangs(const ScalpChart& chart, const HangProbe& probe, double cap, int threads);
+
+// φ = smoothstep(h / L); 0 for L ≤ 0.
+double hang_weight(double hang, double length);
+
+// L − φ·max(0, L − h) with φ = hang_weight(h, L).
+double hanging_length(double length, double hang);
+
+// The hang at a point of the scalp: the vertices' hangs weighted by its barycentric coordinates.
+double hang_at(const ScalpChart& chart, const std::vector<double>& hangs, const SurfacePoint& point);
+
+}  // namespace hairfit
