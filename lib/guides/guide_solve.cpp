@@ -82,6 +82,13 @@ GuideTargets make_targets(const RootSet& bases, int b, const PreGuides& preguide
   return t;
 }
 
+// Whether a solved shape folds onto itself: its ends closer than kFoldedChord of its length (a
+// hair that curls through a whole turn; MakeHuman bob01's hanging guides keep 0.3–1).
+constexpr double kFoldedChord = 0.25;
+bool folded(const FibreShape& shape, double length) {
+  return (shape.nodes.back() - shape.nodes.front()).norm() < kFoldedChord * length;
+}
+
 // How far (cm) a shape's worst node after the root lies beyond the scalp or the volume (≤ 0: none
 // does; the root lies on the scalp by construction).
 double worst_excursion(const FibreShape& shape, const Boundary& boundary) {
@@ -155,14 +162,15 @@ Guide solve_guide(const GuideProblem& problem, int b, const GuideSolveSetup& set
   GuideSolve solve = optimise_in_stages(targets, start, o, stall, near, boundary);
   g.shape = solved_shape(targets, solve, g.terminal_torque);
   // The solve can stop in a local minimum that runs through the head or out of the
-  // volume well past the boundary ramp: then the other start (straight ↔ the neighbours' loads)
-  // is tried too, and the lower cost kept, unless it is the same start (a heavy rod's solve reads
-  // only the start's force), which would repeat the same solve.
+  // volume well past the boundary ramp, or that folds the guide onto itself (where neighbouring
+  // pre-guides pull apart): then the other start (straight ↔ the neighbours' loads) is tried too,
+  // and the lower cost kept, unless it is the same start (a heavy rod's solve reads only the
+  // start's force), which would repeat the same solve.
   double other[kMaxGuideLoads] = {};
   if (std::all_of(start, start + loads, [](double v) { return v == 0.0; }))
     add_weighted_loads(preguides.items, g.neighbours, g.neighbour_weights, other);
   const bool same_start = std::equal(start, start + start_loads_read(solve.scheme), other);
-  if (!same_start && worst_excursion(g.shape, boundary) > o.boundary_width) {
+  if (!same_start && (worst_excursion(g.shape, boundary) > o.boundary_width || folded(g.shape, g.length))) {
     GuideSolve retry = optimise_in_stages(targets, other, o, stall, near, boundary);
     const int iterations = solve.iterations + retry.iterations, evaluations = solve.evaluations + retry.evaluations;
     if (retry.final_cost < solve.final_cost) {

@@ -68,8 +68,17 @@ std::vector<double> vertex_hangs(const ScalpChart& chart, const HangProbe& probe
 
 double hang_weight(double hang, double length) { return length > 0.0 ? smoothstep(hang / length) : 0.0; }
 
-double hanging_length(double length, double hang) {
-  return length - hang_weight(hang, length) * std::max(0.0, length - hang);
+double downness(const Vec3& direction, const Vec3& normal, const Vec3& down) {
+  const Vec3 toward_down = down.normalized() - down.normalized().dot(normal) * normal;  // |…| = |down × normal|
+  Vec3 along = direction - direction.dot(normal) * normal;
+  const double a = along.norm();
+  if (!(a > 1e-12)) return 0.0;
+  return std::max(0.0, (along / a).dot(toward_down));
+}
+
+double hanging_length(double length, double hang, double weight) {
+  const double shortest = std::min(length, kShortestHangingHair);
+  return std::max(shortest, length - std::clamp(weight, 0.0, 1.0) * std::max(0.0, length - hang));
 }
 
 double hang_at(const ScalpChart& chart, const std::vector<double>& hangs, const SurfacePoint& point) {

@@ -13,7 +13,9 @@
 //   the weight φ = smoothstep(h / L): 1 where a hair's length of layer lies below the root, 0
 //   where none does;
 //
-//   the length L − φ·max(0, L − h): a hanging hair (φ = 1) ends where the layer below it ends.
+//   the length L − w·max(0, L − h), at least kShortestHangingHair, with w the larger of φ and how
+//   far the root's growth points down: a hair that hangs, or grows down toward where the layer
+//   ends (at the nape of a short cut), ends where the layer below it ends instead of turning back.
 #pragma once
 #include <functional>
 #include <vector>
@@ -29,6 +31,8 @@ constexpr double kHangStart = 0.1;
 constexpr double kHangHug = 0.5;
 // A root whose weight exceeds this hangs: its pre-guide is the paper's tip construction.
 constexpr double kHangingPreguide = 0.65;
+// No hair is made shorter than this (cm) for the layer ending below it.
+constexpr double kShortestHangingHair = 1.0;
 
 // What the probe reads: the signed distance from the skin (the scalp field, negative in the
 // head) with its gradient, and whether a point lies in the hull's region (the volume field ≤ 0).
@@ -48,8 +52,12 @@ std::vector<double> vertex_hangs(const ScalpChart& chart, const HangProbe& probe
 // φ = smoothstep(h / L); 0 for L ≤ 0.
 double hang_weight(double hang, double length);
 
-// L − φ·max(0, L − h) with φ = hang_weight(h, L).
-double hanging_length(double length, double hang);
+// How far a growth direction points down at a root with unit `normal`: the cosine between its
+// tangential part and the tangent toward down, times |down × normal| (0 at the crown), at least 0.
+double downness(const Vec3& direction, const Vec3& normal, const Vec3& down);
+
+// L − w·max(0, L − h) for a weight w ∈ [0, 1], at least min(L, kShortestHangingHair).
+double hanging_length(double length, double hang, double weight);
 
 // The hang at a point of the scalp: the vertices' hangs weighted by its barycentric coordinates.
 double hang_at(const ScalpChart& chart, const std::vector<double>& hangs, const SurfacePoint& point);

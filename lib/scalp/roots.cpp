@@ -164,11 +164,10 @@ RootSet make_root_set(const ScalpChart& ch, const RootInputs& maps, const RootOp
     s.chart[i] = chart_position(ch, sp);
     const double tilt = maps.tilt ? lerp(o.tilt_range, map_value(maps.tilt.get(), s.chart[i])) : o.tilt;
     s.lengths[i] = maps.length ? lerp(o.length_range, map_value(maps.length.get(), s.chart[i])) : o.length;
-    double hanging = 0.0;
+    double hang = 0.0, hanging = 0.0;
     if (o.tilt_toward == TiltToward::hanging) {
-      const double hang = hang_at(ch, maps.hangs, sp);
+      hang = hang_at(ch, maps.hangs, sp);
       hanging = s.hang_weights[i] = hang_weight(hang, s.lengths[i]);
-      s.lengths[i] = hanging_length(s.lengths[i], hang);
     }
     if (flow) {
       const Vec3 fallback = tangent_toward_down(s.normals[i], ch.down, ch.front);
@@ -182,6 +181,8 @@ RootSet make_root_set(const ScalpChart& ch, const RootInputs& maps, const RootOp
       s.directions[i] = hanging > 0.0 ? blend_unit(thicker, growth_direction(s.normals[i], ch.down, ch.front, tilt), hanging)
                                       : thicker;
     }
+    if (o.tilt_toward == TiltToward::hanging)  // hair that hangs, or grows down, ends where the layer below ends
+      s.lengths[i] = hanging_length(s.lengths[i], hang, std::max(hanging, downness(s.directions[i], s.normals[i], ch.down)));
     s.heights[i] = height_of(ch, s.positions[i]);
   });
   return s;

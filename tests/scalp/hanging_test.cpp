@@ -112,12 +112,29 @@ TEST_CASE("hang weight and hanging length") {
   CHECK(hang_weight(L, L) == 1.0);
   CHECK(hang_weight(3.0 * L, L) == 1.0);
   CHECK(hang_weight(1.0, 0.0) == 0.0);
-  CHECK(hanging_length(L, 0.0) == L);                         // nothing hangs: its own length
-  CHECK(hanging_length(L, 0.5 * L) == 0.75 * L);              // half: L − ½·(L − L/2)
-  CHECK(hanging_length(L, L) == L);                           // the layer holds all of it
-  CHECK(hanging_length(L, 0.9 * L) < L);
-  const double near_full = hanging_length(L, 0.99 * L);       // a hanging hair ends where its layer does
-  CHECK(near_full == doctest::Approx(0.99 * L).epsilon(1e-3));
+  CHECK(hanging_length(L, 0.0, 0.0) == L);                  // nothing hangs: its own length
+  CHECK(hanging_length(L, 0.5 * L, 0.5) == 0.75 * L);       // half: L − ½·(L − L/2)
+  CHECK(hanging_length(L, L, 1.0) == L);                    // the layer holds all of it
+  CHECK(hanging_length(L, 0.3 * L, 1.0) == 0.3 * L);        // a hanging hair ends where its layer does
+  CHECK(hanging_length(L, 0.0, 1.0) == kShortestHangingHair);
+  CHECK(hanging_length(0.5, 0.0, 1.0) == 0.5);              // never longer than it was
+  CHECK(hanging_length(L, 0.2 * L, 7.0) == 0.2 * L);        // the weight is clamped to [0, 1]
+}
+
+TEST_CASE("downness: how far a growth direction points down along the skin") {
+  const Vec3 down(0, -2, 0);  // need not be unit
+  // On the side of a head (normal +x): straight down the skin is 1, across 0, up 0 (clamped).
+  const Vec3 side(1, 0, 0);
+  CHECK(downness(Vec3(0.3, -1, 0).normalized(), side, down) == doctest::Approx(1.0).epsilon(1e-15));
+  CHECK(downness(Vec3(0.3, 0, 1).normalized(), side, down) == doctest::Approx(0.0));
+  CHECK(downness(Vec3(0, 1, 0), side, down) == 0.0);
+  CHECK(downness(Vec3(0, -1, 1).normalized(), side, down) == doctest::Approx(std::sqrt(0.5)).epsilon(1e-15));
+  // At the crown down says nothing; a direction along the normal has no tangential part.
+  CHECK(downness(Vec3(1, 0, 0), Vec3(0, 1, 0), down) == 0.0);
+  CHECK(downness(side, side, down) == 0.0);
+  // Halfway down the skull (normal at 45°): the tangent toward down is only |down × n| sure.
+  const Vec3 n = Vec3(1, 1, 0).normalized();
+  CHECK(downness(Vec3(1, -1, 0).normalized(), n, down) == doctest::Approx(std::sqrt(0.5)).epsilon(1e-15));
 }
 
 namespace {
@@ -169,9 +186,19 @@ TEST_CASE("hanging roots: nothing hangs gives the thicker roots, everything hang
     REQUIRE(still.pores.size() > 100);
     CHECK(still.pores.positions == thicker.pores.positions);
     CHECK(still.pores.directions == thicker.pores.directions);
-    CHECK(still.pores.lengths == thicker.pores.lengths);
     CHECK(std::all_of(still.pores.hang_weights.begin(), still.pores.hang_weights.end(), [](double w) { return w == 0.0; }));
     CHECK(thicker.pores.hang_weights.empty());
+    // No layer below any root: a root growing down is cut to where it ends (here at once: the
+    // shortest hair), one growing up or across keeps its length.
+    int shortened = 0, kept = 0;
+    for (int i = 0; i < still.pores.size(); ++i) {
+      const double w = downness(still.pores.directions[i], still.pores.normals[i], cap.chart.down);
+      CHECK(still.pores.lengths[i] == hanging_length(10.0, 0.0, w));
+      shortened += w > 0.5, kept += w == 0.0;
+      if (w == 0.0) CHECK(still.pores.lengths[i] == 10.0);
+    }
+    CHECK(shortened > 10);
+    CHECK(kept > 10);
 
     const Roots down = make_roots(cap.chart, cap.inputs, cap_options(TiltToward::down, flow), Exec{2, {}});
     RootInputs all = cap.inputs;
@@ -192,7 +219,9 @@ TEST_CASE("hanging roots: nothing hangs gives the thicker roots, everything hang
     half.hangs.assign(cap.chart.mesh.positions.size(), 5.0);
     const Roots partly = make_roots(cap.chart, half, cap_options(TiltToward::hanging, flow), Exec{2, {}});
     for (int i = 0; i < partly.pores.size(); ++i) {
-      CHECK(partly.pores.lengths[i] == doctest::Approx(7.5).epsilon(1e-12));
+      const double w = std::max(0.5, downness(partly.pores.directions[i], partly.pores.normals[i], cap.chart.down));
+      CHECK(partly.pores.lengths[i] == doctest::Approx(10.0 - 5.0 * w).epsilon(1e-9));
+      CHECK(partly.pores.lengths[i] <= 7.5 + 1e-9);
       CHECK(partly.pores.hang_weights[i] == doctest::Approx(0.5).epsilon(1e-12));
       CHECK(!hangs(partly.pores, i));
     }
