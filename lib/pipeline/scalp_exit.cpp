@@ -6,6 +6,10 @@ namespace hairfit {
 
 namespace {
 
+// Where the layer is thinner than kHeadExitClearance, the nearer levels a point moved out of the
+// head may take instead (cm): no nearer than a chord of 0.7 cm sags over a head of 5 cm radius.
+constexpr double kThinLayerLevels[] = {0.025, 0.0125};
+
 // The repair's test counts chords that pass within this much (barycentric) of a triangle, or end
 // within this share of their length of it, as crossing it, so that a chord it leaves is clear of
 // the scalp by more than round-off: the exact count then finds it clear too, also after the
@@ -41,15 +45,24 @@ std::function<Vec3(const Vec3&)> into_volume(const DistanceField& volume, double
 // lying along the scalp has its points that far out, so the straight segments between them
 // seldom dip under it. Most points are well in front of the scalp, which the field's side() tells
 // without interpolating (reported as +infinity).
-HeadExit scalp_exit(const DistanceField& scalp, const TriangleGrid* scalp_triangles, int outward) {
-  HeadExit exit = [&scalp](const Vec3& p, double& value_at_p) {
+HeadExit scalp_exit(const DistanceField& scalp, const TriangleGrid* scalp_triangles, int outward,
+                    const DistanceField* volume) {
+  HeadExit exit = [&scalp, volume](const Vec3& p, double& value_at_p) {
     if (scalp.side(p) > 0) {
       value_at_p = std::numeric_limits<double>::infinity();
       return p;
     }
     value_at_p = scalp.value(p);  // = value_and_gradient(p).value; the gradient only when it is near
     if (!(value_at_p < kHeadExitClearance)) return p;
-    return to_level(scalp, p, kHeadExitClearance, 1.0);
+    const Vec3 out = to_level(scalp, p, kHeadExitClearance, 1.0);
+    if (!volume || !(volume->value(out) > 0.0)) return out;
+    // The layer in front of the scalp is thinner than the clearance here: nearer the scalp, where
+    // the layer holds the point, if it does so within kThinLayerLevels.
+    for (double level : kThinLayerLevels) {
+      const Vec3 q = value_at_p >= level ? p : to_level(scalp, p, level, 1.0);  // never moved inward
+      if (!(volume->value(q) > 0.0)) return q;
+    }
+    return out;
   };
   if (scalp_triangles) {
     exit.clearance = [&scalp](const Vec3& p) { return scalp.distance_lower_bound(p); };

@@ -12,8 +12,11 @@ namespace hairfit {
 // With `scalp_triangles` (the scalp the field closes under its floor; `outward` turns its
 // triangles' normals out of the head, ScalpChart::outward), chords are tested exactly wherever
 // the field's lower bound on the distance at their ends does not rule a crossing out. Both must
-// outlive the result.
-HeadExit scalp_exit(const DistanceField& scalp, const TriangleGrid* scalp_triangles = nullptr, int outward = 1);
+// outlive the result. With `volume` (fibres held in the layer, strands.contain), where the layer
+// in front of the scalp is thinner than the clearance a point stops nearer the scalp, where the
+// layer holds it (at half or a quarter of the clearance), if it does anywhere.
+HeadExit scalp_exit(const DistanceField& scalp, const TriangleGrid* scalp_triangles = nullptr, int outward = 1,
+                    const DistanceField* volume = nullptr);
 
 // The clearance (cm) inside the volume that contained points move to.
 constexpr double kVolumeClearance = 0.05;

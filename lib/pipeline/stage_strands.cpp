@@ -43,7 +43,8 @@ void compute(StageRun& run, const StrandsOptions& o, StageReport& stage) {
   StrandSurroundings around;
   around.volume = volume_distance;
   around.volume_quick = volume_quick;
-  around.out_of_head = scalp_exit(*v.scalp_field, &scalp_triangles, v.chart->outward);
+  around.out_of_head =
+      scalp_exit(*v.scalp_field, &scalp_triangles, v.chart->outward, o.contain > 0.0 ? v.volume_field.get() : nullptr);
   if (o.contain > 0.0) around.out_of_head.into_volume = into_volume(*v.volume_field, o.contain);
   GrownStrands grown = make_strands(v.guides->curves(), run.pores(), o.strands, around, run.exec(),
                                     std::move(run.deposited_fibres));

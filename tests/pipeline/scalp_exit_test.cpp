@@ -1,0 +1,64 @@
+// The strands stage's head exit (pipeline/scalp_exit.h) on exact planes: a point behind the
+// scalp moves out to the clearance, and, with the volume given, nearer the scalp where the layer
+// in front of it is thinner than that.
+#include <doctest/doctest.h>
+
+#include "field/distance_field.h"
+#include "pipeline/scalp_exit.h"
+
+using namespace hairfit;
+
+namespace {
+
+// The closed box [lo, hi], its triangles facing out.
+Mesh box(const Vec3& lo, const Vec3& hi) {
+  Mesh m;
+  for (int k = 0; k < 8; ++k) m.positions.emplace_back(k & 1 ? hi.x() : lo.x(), k & 2 ? hi.y() : lo.y(), k & 4 ? hi.z() : lo.z());
+  const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  for (const auto& q : quads) {
+    m.triangles.emplace_back(q[0], q[1], q[2]);
+    m.triangles.emplace_back(q[0], q[2], q[3]);
+  }
+  return m;
+}
+
+// The head: the box below z = 0, so that near the top face's centre the scalp field reads z.
+const DistanceField& head() {
+  static const DistanceField f = make_distance_field(box(Vec3(-2, -2, -1), Vec3(2, 2, 0)), FieldSpec{0.05, 4, 0.3, 1.0, "scalp"}, 2);
+  return f;
+}
+
+// The hair volume, the head and a layer `t` thick over it: the field reads z − t there.
+DistanceField volume(double t) { return make_distance_field(box(Vec3(-2, -2, -1), Vec3(2, 2, t)), FieldSpec{0.05, 4, 0.3, 1.0, "volume"}, 2); }
+
+double moved_to(const HeadExit& exit, double z) {
+  double scalp = 0.0;
+  return exit(Vec3(0.1, -0.2, z), scalp).z();
+}
+
+}  // namespace
+
+TEST_CASE("the head exit keeps the clearance, and where the layer is thinner, stops where the layer holds the point") {
+  REQUIRE(head().value(Vec3(0.1, -0.2, 0.3)) == doctest::Approx(0.3).epsilon(1e-12));  // exact on a plane
+  // Without the volume: always the clearance.
+  CHECK(moved_to(scalp_exit(head()), -0.01) == doctest::Approx(kHeadExitClearance).epsilon(1e-9));
+  const struct {
+    double layer, from, to;
+  } cases[] = {
+      {0.2, -0.01, kHeadExitClearance},  // a layer thicker than the clearance
+      {0.03, -0.01, 0.025},              // half the clearance is inside a 0.3 mm layer
+      {0.02, -0.01, 0.0125},             // a quarter inside a 0.2 mm one
+      {0.01, -0.01, kHeadExitClearance}, // none holds it: the head wins, as without the volume
+      {0.04, 0.03, 0.03},                // in the layer already, nearer than the clearance: stays
+      {0.02, 0.015, 0.015},
+  };
+  for (const auto& c : cases) {
+    CAPTURE(c.layer);
+    CAPTURE(c.from);
+    const DistanceField v = volume(c.layer);
+    CHECK(moved_to(scalp_exit(head(), nullptr, 1, &v), c.from) == doctest::Approx(c.to).epsilon(1e-9));
+  }
+  // A point in front of the clearance is left alone.
+  const DistanceField v = volume(0.02);
+  CHECK(moved_to(scalp_exit(head(), nullptr, 1, &v), 0.07) == 0.07);
+}
