@@ -192,6 +192,7 @@ void members(IO& io, Strands& s) {
   members(io, s.fibres);
   io(s.cut);
   io(s.cut_count);
+  io(s.cut_at_scalp);
   io(s.scalp_crossings);
 }
 

@@ -87,6 +87,8 @@ void compute(StageRun& run, const StrandsOptions& o, StageReport& stage) {
   // Segments whose chord crosses the scalp's triangles (exact tests): those the lift could not
   // clear, a first segment whose root lies behind a neighbouring triangle's plane.
   stage.add("scalp_crossings", static_cast<std::int64_t>(v.strands->scalp_crossings));
+  // Fibres ended before a chord the keep-out pass could not lift off the scalp (also in "cut").
+  stage.add("cut_at_scalp", static_cast<std::int64_t>(v.strands->cut_at_scalp));
   CoverageOptions cover;
   cover.threads = threads;
   const Coverage coverage = strand_coverage(

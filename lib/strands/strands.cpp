@@ -144,13 +144,19 @@ void keep_out(const HeadExit& out_of_head, const Vec3* root_normal, Vec3* points
 // fibres never enter the head; only those that do pay for field lookups inside the length solve.
 // `in_head` (if given) receives FibrePointSides::in_head of each point of the result (−1 at the
 // root and throughout a moved fibre). `grown`: `points` already hold fibre_along's result.
-// Returns how many of the result's chords still cross the scalp by HeadExit::chord_crossing (0
-// without it): none on the fast path, whose every chord that test passed.
-int fibre_kept_out(const GuideTrack& track, const Vec3& pore, double length, double wisp_extent,
+// The chords of a fibre that still cross the scalp by HeadExit::chord_crossing after the keep-out
+// pass: how many, and the first (k: points k − 1 → k; 0 if none). None without that test, and
+// none on the fast path, whose every chord passed it.
+struct ChordsLeft {
+  int count = 0;
+  int first = 0;
+};
+
+ChordsLeft fibre_kept_out(const GuideTrack& track, const Vec3& pore, double length, double wisp_extent,
                    const std::vector<WispStation>& stations, const HeadExit& out_of_head, const Vec3* root_normal,
                    Vec3* points, WispPoint* layout, std::int8_t* in_head = nullptr, bool grown = false) {
   if (!grown) fibre_along(track, pore, length, wisp_extent, stations, nullptr, points, layout);
-  if (!out_of_head) return 0;
+  if (!out_of_head) return {};
   const int n = static_cast<int>(stations.size());
   if (in_head) in_head[0] = -1;
   const bool chords = static_cast<bool>(out_of_head.chord_crossing);
@@ -169,15 +175,16 @@ int fibre_kept_out(const GuideTrack& track, const Vec3& pore, double length, dou
       const FibreAdjust keep = [&](Vec3* fibre, int m) { keep_out(out_of_head, root_normal, fibre, m); };
       fibre_along(track, pore, length, wisp_extent, stations, &keep, points, layout);
       if (in_head) std::fill(in_head, in_head + n, std::int8_t(-1));
-      int left = 0;
+      ChordsLeft left;
       ChordCrossing hit;
-      for (int j = 1; chords && j < n; ++j) left += chord_crosses(out_of_head, points[j - 1], points[j], j == 1, hit);
+      for (int j = 1; chords && j < n; ++j)
+        if (chord_crosses(out_of_head, points[j - 1], points[j], j == 1, hit) && left.count++ == 0) left.first = j;
       return left;
     }
     if (in_head) in_head[i] = std::isnan(value) ? -1 : value < 0.0;
     clearance_before = clearance;
   }
-  return 0;
+  return {};
 }
 
 }  // namespace
@@ -237,6 +244,7 @@ GrownStrands make_strands(const Curves& guides, const Pores& pores, const Strand
   std::vector<std::uint32_t> kept(count, static_cast<std::uint32_t>(n));
   std::vector<char> cut(count, 0);
   std::vector<int> crossing(count, 0);
+  std::vector<char> at_scalp(count, 0);
   ProgressCounter progress(exec.progress);
   parallel_for(count, exec.threads, [&](int i) {
     thread_local Scratch scratch;
@@ -244,16 +252,28 @@ GrownStrands make_strands(const Curves& guides, const Pores& pores, const Strand
     Vec3* points = out.points.data() + n * i;
     std::int8_t* head = in_head ? in_head->data() + n * i : nullptr;
     const Vec3* root_normal = pores.normals.empty() ? nullptr : &pores.normals[i];
-    crossing[i] = fibre_kept_out(tracks[pores.guide[i]], pores.positions[i], pores.lengths[i], extent[pores.guide[i]],
-                                 stations, out_of_head, root_normal, points, scratch.layout.data(), head, pre_grown);
+    const ChordsLeft left = fibre_kept_out(tracks[pores.guide[i]], pores.positions[i], pores.lengths[i],
+                                           extent[pores.guide[i]], stations, out_of_head, root_normal, points,
+                                           scratch.layout.data(), head, pre_grown);
+    // A chord the keep-out pass leaves through the scalp (where both its ends lie clear of the
+    // head, as at the scalp's rim, it has nothing to move) ends the fibre before it: the hair
+    // stops at the skin. One from the root cannot be cut away: it and the rest are counted.
+    if (left.first >= 2) {
+      kept[i] = static_cast<std::uint32_t>(left.first);
+      cut[i] = true;
+      at_scalp[i] = true;
+    } else {
+      crossing[i] = left.count;
+    }
     if (cutting) {
       scratch.distances.resize(n);
       if (head) scratch.before_cut.assign(points, points + n);
       bool was_cut = false;
       double outside_length;
-      kept[i] = static_cast<std::uint32_t>(cut_in_place(points, n, scratch.distances.data(), volume, options.cut_threshold,
-                                                         options.cut_tips, volume_quick, was_cut, outside_length));
-      cut[i] = was_cut;
+      kept[i] = static_cast<std::uint32_t>(cut_in_place(points, kept[i], scratch.distances.data(), volume,
+                                                         options.cut_threshold, options.cut_tips, volume_quick, was_cut,
+                                                         outside_length));
+      cut[i] = cut[i] || was_cut;
       if (outside_volume)
         for (std::size_t k = 0; k < kept[i]; ++k) (*outside_volume)[n * i + k] = scratch.distances[k] > 0.0;
       if (head && was_cut)  // the side holds where the kept point is the point it was asked about
@@ -279,7 +299,8 @@ GrownStrands make_strands(const Curves& guides, const Pores& pores, const Strand
       if (v) v->resize(out.offsets[count]);
   }
   out.guide.assign(pores.guide.begin(), pores.guide.end());
-  for (int i = 0; i < count; ++i) strands.cut_count += cut[i], strands.scalp_crossings += crossing[i];
+  for (int i = 0; i < count; ++i)
+    strands.cut_count += cut[i], strands.cut_at_scalp += at_scalp[i], strands.scalp_crossings += crossing[i];
   strands.cut = std::move(cut);
   return result;
 }

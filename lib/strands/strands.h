@@ -29,8 +29,11 @@ struct Strands {
   Curves fibres;            // one per pore, in pore order; fibres.guide = the pore's guide
   std::vector<char> cut;    // per fibre: was it cut
   int cut_count = 0;
-  // With HeadExit::chord_crossing: the fibre segments left crossing or touching the scalp by it
-  // (a cut end is part of a chord already tested, so cutting adds none).
+  // With HeadExit::chord_crossing: fibres cut before a chord the keep-out pass left through the
+  // scalp (counted in cut_count too), and the fibre segments left crossing or touching it, which
+  // only a fibre whose first chord crosses keeps (a cut end is part of a chord already tested, so
+  // cutting adds none).
+  int cut_at_scalp = 0;
   long long scalp_crossings = 0;
 };
 

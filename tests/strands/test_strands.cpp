@@ -1,5 +1,6 @@
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -485,4 +486,62 @@ TEST_CASE("fibres held in a thin layer: points that skim out of the volume move 
     CHECK(std::fabs(polyline_length(held) - length) <= 1e-6 * length);
   });
   CHECK(left_before > 20);  // the case exercises the containment
+}
+
+TEST_CASE("a fibre whose chord the keep-out pass cannot lift off the scalp ends before that chord") {
+  // A scalp sheet at y = 2 that the head exit does not see (both sides read clear of the head, as
+  // at a real scalp's rim) and whose crossings cannot be lifted: the crossed plane's normal runs
+  // along x, so lifting moves a chord's end sideways and it still crosses. Fibres rising along
+  // the bent guide through y = 2 are cut before their first crossing chord; no segment crossing
+  // the sheet is left, and the count says how many were cut there.
+  Curves guides;
+  guides.add(bent_guide(), 0);
+  Pores pores;
+  Random r(12, RandomStage::test, 1);
+  for (int i = 0; i < 60; ++i) {
+    pores.positions.push_back(Vec3(r.uniform(-0.3, 0.3), 0.0, r.uniform(-0.3, 0.3)));
+    pores.lengths.push_back(i % 3 == 0 ? r.uniform(0.8, 1.5) : r.uniform(4, 8));  // a third stay below the sheet
+    pores.guide.push_back(0);
+  }
+  HeadExit exit = [](const Vec3& p, double& scalp) {
+    scalp = std::numeric_limits<double>::infinity();
+    return p;
+  };
+  exit.chord_crossing = [](const Vec3& a, const Vec3& b, bool, ChordCrossing& first) {
+    if ((a.y() < 2.0) == (b.y() < 2.0)) return false;
+    first.t = (2.0 - a.y()) / (b.y() - a.y());
+    first.point = a + first.t * (b - a);
+    first.normal = Vec3(1, 0, 0);
+    return true;
+  };
+  StrandOptions o;
+  o.wisp.points = 16;
+  StrandSurroundings plain, against_sheet;
+  against_sheet.out_of_head = exit;
+  const Strands loose = make_strands(guides, pores, o, plain, Exec{2, {}}).strands;
+  Strands reference;
+  for (int threads : {1, 3}) {
+    const Strands s = make_strands(guides, pores, o, against_sheet, Exec{threads, {}}).strands;
+    CHECK(s.scalp_crossings == 0);
+    int reaching = 0;
+    for (std::size_t f = 0; f < s.fibres.count(); ++f) {
+      CAPTURE(f);
+      const auto begin = s.fibres.points.begin() + s.fibres.offsets[f], end = s.fibres.points.begin() + s.fibres.offsets[f + 1];
+      const std::vector<Vec3> fibre(begin, end);
+      const std::vector<Vec3> whole(loose.fibres.points.begin() + loose.fibres.offsets[f],
+                                    loose.fibres.points.begin() + loose.fibres.offsets[f + 1]);
+      CHECK(fibre.front() == pores.positions[f]);
+      for (const Vec3& p : fibre) CHECK(p.y() < 2.0);
+      const bool reaches = std::any_of(whole.begin(), whole.end(), [](const Vec3& p) { return p.y() >= 2.0; });
+      reaching += reaches;
+      CHECK(s.cut[f] == reaches);
+      if (!reaches) CHECK(fibre == whole);  // untouched where the sheet is not met
+    }
+    CHECK(reaching > 20);
+    CHECK(reaching < 60);
+    CHECK(s.cut_at_scalp == reaching);
+    CHECK(s.cut_count == reaching);
+    if (threads == 1) reference = s;
+    else CHECK(s.fibres.points == reference.fibres.points);
+  }
 }
