@@ -59,7 +59,11 @@ HeadExit scalp_exit(const DistanceField& scalp, const TriangleGrid* scalp_triang
     // The layer in front of the scalp is thinner than the clearance here: nearer the scalp, where
     // the layer holds the point, if it does so within kThinLayerLevels.
     for (double level : kThinLayerLevels) {
-      const Vec3 q = value_at_p >= level ? p : to_level(scalp, p, level, 1.0);  // never moved inward
+      if (value_at_p >= level) {  // never moved inward: p itself, and no lower level does better
+        if (!(volume->value(p) > 0.0)) return p;
+        break;
+      }
+      const Vec3 q = to_level(scalp, p, level, 1.0);
       if (!(volume->value(q) > 0.0)) return q;
     }
     return out;
