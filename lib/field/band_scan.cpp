@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <utility>
 
 #include "core/parallel.h"
 
@@ -34,15 +35,17 @@ constexpr int kSlab = 16;  // z-layers per parallel work item (fixed: results mu
 // unit ball. The maximiser is dir itself, its projection onto one facet, an extreme ray, or 0.
 struct Cone {
   const std::vector<Vec3>& g;
-  Vec3 axis;                // zero for a 3-D cone
-  std::vector<Vec3> rays;   // its extreme rays (computed once)
+  Vec3 axis;                 // zero for a 3-D cone
+  std::vector<Vec3>& rays;   // its extreme rays (computed once, into the caller's scratch)
 
   bool valid(const Vec3& u) const {
     for (const Vec3& q : g)
       if (q.dot(u) > 1e-12) return false;
     return true;
   }
-  Cone(const std::vector<Vec3>& constraints, const Vec3& plane_axis) : g(constraints), axis(plane_axis) {
+  Cone(const std::vector<Vec3>& constraints, const Vec3& plane_axis, std::vector<Vec3>& scratch)
+      : g(constraints), axis(plane_axis), rays(scratch) {
+    rays.clear();
     auto ray = [&](const Vec3& w) {
       const double l = w.norm();
       if (l < 1e-12) return;
@@ -76,8 +79,8 @@ struct Cone {
 // Bounding box of {base segment} ⊕ (cone ∩ ball of radius r).
 template <typename R>
 void cone_box(const Vec3& a, const Vec3& b, const std::vector<Vec3>& g, const Vec3& axis, double r, double pad,
-              R& region) {
-  const Cone cone(g, axis);
+              R& region, std::vector<Vec3>& rays) {
+  const Cone cone(g, axis, rays);
   for (int d = 0; d < 3; ++d) {
     const Vec3 e = Vec3::Unit(d);
     region.hi[d] = std::max(a[d], b[d]) + r * cone.support(e) + pad;
@@ -93,9 +96,10 @@ struct EdgeGeometry {
 
 // The polyhedron of feature `id` (faces, then edges, then vertices): its half-spaces into
 // `planes` (cleared first) and, when `region` is given, its bounding box. Cheap except for the
-// box of edges and vertices, so boxes are computed once and planes again in every slab.
+// box of edges and vertices, so boxes are computed once and planes again in every slab. `g` and
+// `rays` are scratch (g keeps the cone's constraints).
 void make_region(const MeshFeatures& f, const EdgeGeometry& eg, int id, double r, double pad,
-                 std::vector<Plane>& planes, Region* region, std::vector<Vec3>& g) {
+                 std::vector<Plane>& planes, Region* region, std::vector<Vec3>& g, std::vector<Vec3>& rays) {
   const int nf = static_cast<int>(f.faces.size());
   const int ne = static_cast<int>(f.edges.size());
   planes.clear();
@@ -145,7 +149,7 @@ void make_region(const MeshFeatures& f, const EdgeGeometry& eg, int id, double r
     if (region) {
       region->kind = Kind::edge;
       region->feature = e;
-      cone_box(a, b, g, t, r, pad, *region);
+      cone_box(a, b, g, t, r, pad, *region, rays);
     }
   } else {
     // Vertex: the cone {(x−v)·u_j ≤ 0} over its incident edge directions u_j.
@@ -160,10 +164,103 @@ void make_region(const MeshFeatures& f, const EdgeGeometry& eg, int id, double r
     if (region) {
       region->kind = Kind::vertex;
       region->feature = v;
-      cone_box(p, p, g, Vec3::Zero(), r, pad, *region);
+      cone_box(p, p, g, Vec3::Zero(), r, pad, *region, rays);
     }
   }
 }
+
+// Which rows of a face's or an edge's region can hold band samples, slice by slice. Both are
+// needles: a face's region is its prism {q + s·n : q in the face grown by the pad, |s| ≤ r + pad},
+// 2r long and a triangle wide; an edge's is its thin wedge of normals, up to r long and as wide as
+// the wedge opens at r. A tilted needle's index box is mostly empty, and the box alone would send
+// every (b, c) row of it to the per-row plane test. Each needle lies in {q + s·axis : q in a box,
+// s in [s_min, s_max]}; in the slice x_c = z that confines s by the box's extent along c, and x_b
+// to the box's extent along b plus s·axis_b. The rows found are a superset of those holding
+// samples within r of the feature, in a few operations per slice.
+struct NeedleRows {
+  bool bounded = false;    // false: every row of the box (a region these bounds do not fit)
+  double low[3], high[3];  // the box, grown by the margin
+  Vec3 axis;
+  double s_min = 0.0, s_max = 0.0;
+
+  // A face's prism. The side planes, each moved out by the pad, meet at corners moved by
+  // pad·|o + o'|/(1 + o·o') (o, o': the two sides' outward normals), unbounded only for a face
+  // with an angle near 0, which keeps its box.
+  static NeedleRows face(const MeshFeatures& f, int face, double r, double pad, double slack) {
+    NeedleRows out;
+    const Vec3 p[3] = {f.vertices[f.faces[face][0]], f.vertices[f.faces[face][1]], f.vertices[f.faces[face][2]]};
+    const Vec3& n = f.face_normals[face];
+    Vec3 side[3];
+    for (int k = 0; k < 3; ++k) side[k] = (p[(k + 1) % 3] - p[k]).cross(n).normalized();
+    double grow = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 &o = side[k], &o_before = side[(k + 2) % 3];
+      const double cosine = 1.0 + o.dot(o_before);
+      if (!(cosine > 1e-6)) return out;
+      grow = std::max(grow, pad * (o + o_before).norm() / cosine);
+    }
+    out.axis = n;
+    out.s_min = -(r + pad);
+    out.s_max = r + pad;
+    for (int d = 0; d < 3; ++d) {
+      out.low[d] = std::min({p[0][d], p[1][d], p[2][d]}) - grow - slack;
+      out.high[d] = std::max({p[0][d], p[1][d], p[2][d]}) + grow + slack;
+    }
+    out.bounded = n.allFinite() && std::isfinite(grow);
+    return out;
+  }
+
+  // An edge a → a + len·t between two faces whose in-plane directions away from it are d1, d2.
+  // Its normals form the wedge {u ⊥ t : u·d1 ≤ 0, u·d2 ≤ 0}, of half-angle θ about the bisector
+  // m = −(d1 + d2)/|d1 + d2| (sin θ = √((1 + d1·d2)/2)); on a flat edge (d2 = −d1) it is the whole
+  // line through ±(t × d1). A sample u within r of the edge and inside the pad-moved planes has
+  // −r ≤ u·m ≤ r, u·m ≥ −pad/sin θ, and |u·(t × m)| ≤ (pad + r·sin θ)/cos θ. Sharp edges
+  // (θ > 60°), border and non-manifold edges keep their box.
+  static NeedleRows edge(const Vec3& a, const Vec3& t, double len, const std::vector<Vec3>& d, double r, double pad,
+                         double slack) {
+    NeedleRows out;
+    if (d.size() != 2) return out;
+    const double cos_between = std::clamp(d[0].dot(d[1]), -1.0, 1.0);
+    const double sin_half = std::sqrt(0.5 * (1.0 + cos_between)), cos_half = std::sqrt(0.5 * (1.0 - cos_between));
+    if (!(cos_half > 0.5)) return out;
+    const Vec3 sum = d[0] + d[1];
+    const double sum_norm = sum.norm();
+    out.axis = sum_norm > 1e-12 ? Vec3(-sum / sum_norm) : Vec3(t.cross(d[0]).normalized());
+    const Vec3 across = t.cross(out.axis);
+    out.s_min = sin_half > 0.0 ? std::max(-r, -pad / sin_half) : -r;
+    out.s_max = r;
+    if (sum_norm <= 1e-12) out.s_min = -r;  // the flat edge's line goes both ways
+    const double width = (pad + r * sin_half) / cos_half;
+    const Vec3 b = a + len * t;
+    for (int k = 0; k < 3; ++k) {
+      const double grow = width * std::abs(across[k]) + pad * std::abs(t[k]) + slack;
+      out.low[k] = std::min(a[k], b[k]) - grow;
+      out.high[k] = std::max(a[k], b[k]) + grow;
+    }
+    out.bounded = out.axis.allFinite() && std::isfinite(width);
+    return out;
+  }
+
+  // The range of b indices (first > last when none) in the slice x_c = z, within [lo, hi].
+  std::pair<int, int> rows(int b, int c, double z, const GridGeometry& grid, int lo, int hi, double slack) const {
+    if (!bounded) return {lo, hi};
+    double s0 = s_min - slack, s1 = s_max + slack;
+    if (axis[c] != 0.0) {
+      const double u = (z - high[c]) / axis[c], v = (z - low[c]) / axis[c];
+      s0 = std::max(s0, std::min(u, v) - slack);
+      s1 = std::min(s1, std::max(u, v) + slack);
+    } else if (z < low[c] || z > high[c]) {
+      return {1, 0};
+    }
+    if (s0 > s1) return {1, 0};
+    const double b0 = low[b] + std::min(s0 * axis[b], s1 * axis[b]) - slack;
+    const double b1 = high[b] + std::max(s0 * axis[b], s1 * axis[b]) + slack;
+    const double h = grid.voxel;
+    const double first = std::ceil((b0 - grid.origin[b]) / h), last = std::floor((b1 - grid.origin[b]) / h);
+    return {static_cast<int>(std::max(double(lo), std::min(first, double(hi) + 1))),
+            static_cast<int>(std::min(double(hi), std::max(last, double(lo) - 1)))};
+  }
+};
 
 }  // namespace
 
@@ -188,6 +285,7 @@ FeaturePoint closest_on_feature(const MeshFeatures& f, int key, const Vec3& p) {
 BandScan scan_band(const MeshFeatures& f, const GridGeometry& grid, double r, int threads) {
   const double h = grid.voxel;
   const double pad = 1e-9 * h;  // covers round-off in the plane tests; far below the 1e-6 budget
+  const double slack = 1e-6 * h;  // row bounds are widened by this, far beyond their round-off
   const int nf = static_cast<int>(f.faces.size());
   const int ne = static_cast<int>(f.edges.size());
   const int nregions = nf + ne + static_cast<int>(f.vertices.size());
@@ -213,10 +311,10 @@ BandScan scan_band(const MeshFeatures& f, const GridGeometry& grid, double r, in
   constexpr int kBlock = 4096;
   parallel_for((nregions + kBlock - 1) / kBlock, threads, [&](int block) {
     std::vector<Plane> planes;
-    std::vector<Vec3> g;
+    std::vector<Vec3> g, rays;
     Region reg;
     for (int id = block * kBlock; id < std::min(nregions, (block + 1) * kBlock); ++id) {
-      make_region(f, eg, id, r, pad, planes, &reg, g);
+      make_region(f, eg, id, r, pad, planes, &reg, g, rays);
       Box& b = boxes[id];
       for (int d = 0; d < 3; ++d) {
         const double lo = std::ceil((reg.lo[d] - grid.origin[d]) / h);
@@ -244,13 +342,13 @@ BandScan scan_band(const MeshFeatures& f, const GridGeometry& grid, double r, in
   const int nx = grid.dims.x(), ny = grid.dims.y();
   parallel_for(nslabs, threads, [&](int slab) {
     std::vector<Plane> planes;
-    std::vector<Vec3> g;
+    std::vector<Vec3> g, rays;
     const int k_begin = slab * kSlab;
     const int k_end = std::min(grid.dims.z() - 1, k_begin + kSlab - 1);
     for (int s = slab_count[slab]; s < slab_count[slab + 1]; ++s) {
       const int id = slab_regions[s];
       const Box& box = boxes[id];
-      make_region(f, eg, id, r, pad, planes, nullptr, g);
+      make_region(f, eg, id, r, pad, planes, nullptr, g, rays);
       const Kind kind = id < nf ? Kind::face : id < nf + ne ? Kind::edge : Kind::vertex;
       const int feature = id < nf ? id : id < nf + ne ? id - nf : id - nf - ne;
       // Rows run along the box's longest axis (fewest rows); chosen from the whole box, not the
@@ -286,10 +384,16 @@ BandScan scan_band(const MeshFeatures& f, const GridGeometry& grid, double r, in
         key = nf + ne + feature;
       }
 
+      NeedleRows needle;
+      if (kind == Kind::face)
+        needle = NeedleRows::face(f, feature, r, pad, slack);
+      else if (kind == Kind::edge)
+        needle = NeedleRows::edge(f.vertices[f.edges[feature].first], eg.dirs[feature], eg.lengths[feature], g, r, pad, slack);
       int idx[3];
       for (idx[c] = lo[c]; idx[c] <= hi[c]; ++idx[c]) {
         const double zc = grid.origin[c] + h * idx[c];
-        for (idx[b] = lo[b]; idx[b] <= hi[b]; ++idx[b]) {
+        const auto [b_first, b_last] = needle.rows(b, c, zc, grid, lo[b], hi[b], slack);
+        for (idx[b] = b_first; idx[b] <= b_last; ++idx[b]) {
           const double yb = grid.origin[b] + h * idx[b];
           double t_lo = -kInfinity, t_hi = kInfinity;  // the index box clips the row
           for (size_t q = 0; q < planes.size(); ++q) {

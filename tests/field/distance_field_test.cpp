@@ -152,6 +152,47 @@ TEST_CASE("raw mesh with a hole, duplicates, zero-area triangles and a flipped p
   CHECK(wrong == 0);
 }
 
+TEST_CASE("wide bands around tilted sheets, flat and nearly flat edges and slivers: no band sample missed") {
+  // The band scan visits only the rows of each face's and edge's region that its needle bounds
+  // allow. Here faces are much smaller than the band is wide and tilted against the grid, edges
+  // are exactly flat, flat to within 1e-9 cm, and folded sharply, and slivers have angles down to
+  // 1e-7 rad: every sample within the band must still be found, with its exact distance.
+  Random random(7, RandomStage::roots, 0);
+  Mesh sheet;
+  const Vec3 u = Vec3(1, 0.3, -0.2).normalized(), v = u.cross(Vec3(0.2, 1, 0.5)).normalized(), n = u.cross(v);
+  const int cells = 9;
+  for (int j = 0; j <= cells; ++j)
+    for (int i = 0; i <= cells; ++i) {
+      const double lift = i > cells / 2 ? 1e-9 * random.uniform(-1, 1) : 0.0;  // half flat, half nearly flat
+      const double fold = j == cells ? 0.3 : 0.0;                            // one sharply folded row
+      sheet.positions.push_back(0.06 * (i * u + j * v) + (lift + fold) * n);
+    }
+  for (int j = 0; j < cells; ++j)
+    for (int i = 0; i < cells; ++i) {
+      const int a = j * (cells + 1) + i, b = a + 1, c = a + cells + 1, d = c + 1;
+      sheet.triangles.push_back({a, b, d});
+      sheet.triangles.push_back({a, d, c});
+    }
+  // Slivers: a fan of needles from one point, the last ones with angles of 1e-4 … 1e-7 rad.
+  const int apex = static_cast<int>(sheet.positions.size());
+  sheet.positions.push_back(Vec3(0.1, -0.2, 0.3));
+  for (double angle : {0.3, 1e-4, 1e-7}) {
+    const int first = static_cast<int>(sheet.positions.size());
+    sheet.positions.push_back(sheet.positions[apex] + 0.5 * Vec3(0.3, 1, 0.4).normalized());
+    sheet.positions.push_back(sheet.positions[apex] + 0.5 * (Vec3(0.3, 1, 0.4).normalized() + angle * Vec3(0.7, 0, -0.1)));
+    sheet.triangles.push_back({apex, first, first + 1});
+  }
+  for (double band : {3.0, 9.0}) {
+    CAPTURE(band);
+    const DistanceField f = make_distance_field(sheet, spec_for(0.05, band, 0.3), 2);
+    const BandCheck c = check_band(sheet, f, 1);
+    CHECK(c.band_voxels > 1000);
+    CHECK(c.max_error <= 1e-6 * f.voxel());
+    CHECK(c.missing == 0);
+    CHECK(c.spurious == 0);
+  }
+}
+
 TEST_CASE("carried values: a vertex value read at each band sample's closest point, as brute force reads it") {
   // A linear function of the position is reproduced exactly by the interpolation over any face or
   // edge, so the carried value at a sample is that function at its closest point. The brute force
