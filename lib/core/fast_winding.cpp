@@ -112,23 +112,34 @@ FastWindingNumber::FastWindingNumber(const Mesh& mesh, double beta, int threads)
   far_roundoff_ = 8.0 + 256.0 / kappa;
 
   // Zero-area triangles have solid angle 0 from everywhere off them: they are left out.
+  const int n = static_cast<int>(mesh.triangles.size());
+  std::vector<Summary> summaries(n);
+  std::vector<char> kept(n, 0);
+  threads = resolve_thread_count(threads);
+  parallel_for((n + 4095) / 4096, threads, [&](int block) {
+    for (int i = block * 4096; i < std::min(n, (block + 1) * 4096); ++i) {
+      const Vec3i& f = mesh.triangles[i];
+      Summary& t = summaries[i];
+      const Vec3 &a = mesh.positions[f[0]], &b = mesh.positions[f[1]], &c = mesh.positions[f[2]];
+      t.corners = {a, b, c};
+      t.triangle.vector_area = 0.5 * (b - a).cross(c - a);
+      if (t.triangle.vector_area == Vec3::Zero()) continue;
+      const Vec3 g = (a + b + c) / 3.0, da = a - g, db = b - g, dc = c - g;
+      t.triangle.ball.centre = g;
+      t.extent.area = t.triangle.vector_area.norm();
+      // ∫ (x − g)(x − g)ᵀ dA = a/12 Σ_i (v_i − g)(v_i − g)ᵀ over a triangle.
+      t.extent.second = t.extent.area / 12.0 * (da.squaredNorm() + db.squaredNorm() + dc.squaredNorm());
+      // Enlarged by a few ulps so that the ball holds every vertex despite rounding.
+      t.extent.radius = std::max({da.norm(), db.norm(), dc.norm()}) * (1.0 + 8.0 * kUnitRoundoff);
+      t.triangle.ball.radius2 = t.extent.radius * t.extent.radius;
+      kept[i] = 1;
+    }
+  });
   std::vector<Summary> all;
-  for (const Vec3i& f : mesh.triangles) {
-    Summary t;
-    const Vec3 &a = mesh.positions[f[0]], &b = mesh.positions[f[1]], &c = mesh.positions[f[2]];
-    t.corners = {a, b, c};
-    t.triangle.vector_area = 0.5 * (b - a).cross(c - a);
-    if (t.triangle.vector_area == Vec3::Zero()) continue;
-    const Vec3 g = (a + b + c) / 3.0, da = a - g, db = b - g, dc = c - g;
-    t.triangle.ball.centre = g;
-    t.extent.area = t.triangle.vector_area.norm();
-    // ∫ (x − g)(x − g)ᵀ dA = a/12 Σ_i (v_i − g)(v_i − g)ᵀ over a triangle.
-    t.extent.second = t.extent.area / 12.0 * (da.squaredNorm() + db.squaredNorm() + dc.squaredNorm());
-    // Enlarged by a few ulps so that the ball holds every vertex despite rounding.
-    t.extent.radius = std::max({da.norm(), db.norm(), dc.norm()}) * (1.0 + 8.0 * kUnitRoundoff);
-    t.triangle.ball.radius2 = t.extent.radius * t.extent.radius;
-    all.push_back(t);
-  }
+  all.reserve(n);
+  for (int i = 0; i < n; ++i)
+    if (kept[i]) all.push_back(summaries[i]);
+  std::vector<Summary>().swap(summaries);
   if (all.empty()) return;
 
   std::vector<int> order(all.size());
@@ -158,6 +169,9 @@ FastWindingNumber::FastWindingNumber(const Mesh& mesh, double beta, int threads)
   parallel_for(static_cast<int>(subtrees.size()), resolve_thread_count(threads), [&](int k) {
     build_subtree(all, order, subtrees[k].lo, subtrees[k].hi, subtrees[k].index);
   });
+  triangles_.reserve(order.size());
+  triangle_extents_.reserve(order.size());
+  corners_.reserve(order.size());
   for (int i : order) {
     triangles_.push_back(all[i].triangle);
     triangle_extents_.push_back(all[i].extent);
@@ -182,6 +196,7 @@ int FastWindingNumber::build_node(const std::vector<Summary>& all, std::vector<i
   const Vec3 centre = weighted / extent.area;
   terms.normal = Vec3::Zero();
   terms.moment = Mat3::Zero();
+  double radius2 = 0.0;
   for (int i = lo; i < hi; ++i) {
     const Summary& t = all[order[i]];
     const Vec3 offset = t.triangle.ball.centre - centre;
@@ -189,9 +204,11 @@ int FastWindingNumber::build_node(const std::vector<Summary>& all, std::vector<i
     terms.moment += t.triangle.vector_area * offset.transpose();
     extent.second += t.extent.second + t.extent.area * offset.squaredNorm();  // parallel axes
     for (const Vec3* v : {&t.corners.a, &t.corners.b, &t.corners.c})
-      extent.radius = std::max(extent.radius, (*v - centre).norm());
+      radius2 = std::max(radius2, (*v - centre).squaredNorm());
   }
-  extent.radius *= 1.0 + 8.0 * kUnitRoundoff;
+  // The largest distance to a corner: sqrt is monotone and correctly rounded, so the root of the
+  // largest square is the largest root.
+  extent.radius = std::sqrt(radius2) * (1.0 + 8.0 * kUnitRoundoff);
   terms.trace = terms.moment.trace();
   node.ball = {centre, extent.radius * extent.radius};
 
