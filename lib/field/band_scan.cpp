@@ -1,6 +1,7 @@
 #include "field/band_scan.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -19,13 +20,6 @@ struct Plane {
 };
 
 enum class Kind : uint8_t { face, edge, vertex };
-
-// The polyhedron a feature scan-converts: its half-spaces and a bounding box.
-struct Region {
-  Vec3 lo, hi;
-  int feature = 0;  // index within its kind
-  Kind kind = Kind::face;
-};
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 constexpr int kSlab = 16;  // z-layers per parallel work item (fixed: results must not depend on threads); a region
@@ -76,16 +70,16 @@ struct Cone {
   }
 };
 
-// Bounding box of {base segment} ⊕ (cone ∩ ball of radius r).
-template <typename R>
-void cone_box(const Vec3& a, const Vec3& b, const std::vector<Vec3>& g, const Vec3& axis, double r, double pad,
-              R& region, std::vector<Vec3>& rays) {
+// The largest u·(±x), u·(±y), u·(±z) over u in the cone ∩ unit ball, in that order: a region
+// {base segment} ⊕ (cone ∩ ball of radius r) spans the segment's box grown by r times these.
+std::array<double, 6> cone_supports(const std::vector<Vec3>& g, const Vec3& axis, std::vector<Vec3>& rays) {
   const Cone cone(g, axis, rays);
+  std::array<double, 6> out;
   for (int d = 0; d < 3; ++d) {
-    const Vec3 e = Vec3::Unit(d);
-    region.hi[d] = std::max(a[d], b[d]) + r * cone.support(e) + pad;
-    region.lo[d] = std::min(a[d], b[d]) - r * cone.support(-e) - pad;
+    out[2 * d] = cone.support(Vec3::Unit(d));
+    out[2 * d + 1] = cone.support(-Vec3::Unit(d));
   }
+  return out;
 }
 
 // Unit direction and length of every edge (a → b).
@@ -94,12 +88,24 @@ struct EdgeGeometry {
   std::vector<double> lengths;
 };
 
+EdgeGeometry edge_geometry(const MeshFeatures& f) {
+  const int ne = static_cast<int>(f.edges.size());
+  EdgeGeometry eg;
+  eg.dirs.resize(ne);
+  eg.lengths.resize(ne);
+  for (int e = 0; e < ne; ++e) {
+    const Vec3 d = f.vertices[f.edges[e].second] - f.vertices[f.edges[e].first];
+    eg.lengths[e] = d.norm();
+    eg.dirs[e] = d / eg.lengths[e];
+  }
+  return eg;
+}
+
 // The polyhedron of feature `id` (faces, then edges, then vertices): its half-spaces into
-// `planes` (cleared first) and, when `region` is given, its bounding box. Cheap except for the
-// box of edges and vertices, so boxes are computed once and planes again in every slab. `g` and
-// `rays` are scratch (g keeps the cone's constraints).
+// `planes` (cleared first), and for an edge or a vertex its cone's constraints into `g`. Rebuilt
+// in every slab a region meets, which is cheaper than storing them.
 void make_region(const MeshFeatures& f, const EdgeGeometry& eg, int id, double r, double pad,
-                 std::vector<Plane>& planes, Region* region, std::vector<Vec3>& g, std::vector<Vec3>& rays) {
+                 std::vector<Plane>& planes, std::vector<Vec3>& g) {
   const int nf = static_cast<int>(f.faces.size());
   const int ne = static_cast<int>(f.edges.size());
   planes.clear();
@@ -114,18 +120,6 @@ void make_region(const MeshFeatures& f, const EdgeGeometry& eg, int id, double r
     }
     planes.push_back({n, n.dot(p[0]) + r + pad});
     planes.push_back({-n, -n.dot(p[0]) + r + pad});
-    if (region) {
-      region->kind = Kind::face;
-      region->feature = id;
-      region->lo = region->hi = p[0];
-      for (int k = 0; k < 3; ++k)
-        for (double s : {-r, r}) {
-          region->lo = region->lo.cwiseMin(p[k] + s * n);
-          region->hi = region->hi.cwiseMax(p[k] + s * n);
-        }
-      region->lo.array() -= pad;
-      region->hi.array() += pad;
-    }
   } else if (id < nf + ne) {
     // Edge: the segment's slab, cut by the half-spaces {(x−a)·d_f ≤ 0} of each adjacent face
     // (d_f: in-plane direction from the edge into f); a point whose closest point is inside
@@ -146,11 +140,6 @@ void make_region(const MeshFeatures& f, const EdgeGeometry& eg, int id, double r
       g.push_back(d);
       planes.push_back({d, d.dot(a) + pad});
     }
-    if (region) {
-      region->kind = Kind::edge;
-      region->feature = e;
-      cone_box(a, b, g, t, r, pad, *region, rays);
-    }
   } else {
     // Vertex: the cone {(x−v)·u_j ≤ 0} over its incident edge directions u_j.
     const int v = id - nf - ne;
@@ -161,11 +150,40 @@ void make_region(const MeshFeatures& f, const EdgeGeometry& eg, int id, double r
       g.push_back(u);
       planes.push_back({u, u.dot(p) + pad});
     }
-    if (region) {
-      region->kind = Kind::vertex;
-      region->feature = v;
-      cone_box(p, p, g, Vec3::Zero(), r, pad, *region, rays);
-    }
+  }
+}
+
+// The bounding box of region `id` at radius r: a face's prism from its corners, an edge's or a
+// vertex's from its cone's unit supports.
+void region_box(const MeshFeatures& f, const RegionSupports& supports, int id, double r, double pad, Vec3& lo,
+                Vec3& hi) {
+  const int nf = static_cast<int>(f.faces.size());
+  const int ne = static_cast<int>(f.edges.size());
+  if (id < nf) {
+    const Vec3& n = f.face_normals[id];
+    lo = hi = f.vertices[f.faces[id][0]];
+    for (int k = 0; k < 3; ++k)
+      for (double s : {-r, r}) {
+        lo = lo.cwiseMin(f.vertices[f.faces[id][k]] + s * n);
+        hi = hi.cwiseMax(f.vertices[f.faces[id][k]] + s * n);
+      }
+    lo.array() -= pad;
+    hi.array() += pad;
+    return;
+  }
+  Vec3 a, b;
+  const std::array<double, 6>* support;
+  if (id < nf + ne) {
+    a = f.vertices[f.edges[id - nf].first];
+    b = f.vertices[f.edges[id - nf].second];
+    support = &supports.edges[id - nf];
+  } else {
+    a = b = f.vertices[id - nf - ne];
+    support = &supports.vertices[id - nf - ne];
+  }
+  for (int d = 0; d < 3; ++d) {
+    hi[d] = std::max(a[d], b[d]) + r * (*support)[2 * d] + pad;
+    lo[d] = std::min(a[d], b[d]) - r * (*support)[2 * d + 1] - pad;
   }
 }
 
@@ -282,21 +300,37 @@ FeaturePoint closest_on_feature(const MeshFeatures& f, int key, const Vec3& p) {
   return {f.vertices[v], f.vertex_normals[v]};
 }
 
-BandScan scan_band(const MeshFeatures& f, const GridGeometry& grid, double r, int threads) {
+RegionSupports region_supports(const MeshFeatures& f, int threads) {
+  const int ne = static_cast<int>(f.edges.size()), nv = static_cast<int>(f.vertices.size());
+  EdgeGeometry eg = edge_geometry(f);
+  RegionSupports out;
+  out.edges.resize(ne);
+  out.vertices.resize(nv);
+  constexpr int kBlock = 4096;
+  parallel_for((ne + nv + kBlock - 1) / kBlock, threads, [&](int block) {
+    std::vector<Plane> planes;
+    std::vector<Vec3> g, rays;
+    const int nf = static_cast<int>(f.faces.size());
+    for (int k = block * kBlock; k < std::min(ne + nv, (block + 1) * kBlock); ++k) {
+      make_region(f, eg, nf + k, 1.0, 0.0, planes, g);
+      if (k < ne)
+        out.edges[k] = cone_supports(g, eg.dirs[k], rays);
+      else
+        out.vertices[k - ne] = cone_supports(g, Vec3::Zero(), rays);
+    }
+  });
+  return out;
+}
+
+BandScan scan_band(const MeshFeatures& f, const RegionSupports& supports, const GridGeometry& grid, double r,
+                   int threads) {
   const double h = grid.voxel;
   const double pad = 1e-9 * h;  // covers round-off in the plane tests; far below the 1e-6 budget
   const double slack = 1e-6 * h;  // row bounds are widened by this, far beyond their round-off
   const int nf = static_cast<int>(f.faces.size());
   const int ne = static_cast<int>(f.edges.size());
   const int nregions = nf + ne + static_cast<int>(f.vertices.size());
-  EdgeGeometry eg;
-  eg.dirs.resize(ne);
-  eg.lengths.resize(ne);
-  for (int e = 0; e < ne; ++e) {
-    const Vec3 d = f.vertices[f.edges[e].second] - f.vertices[f.edges[e].first];
-    eg.lengths[e] = d.norm();
-    eg.dirs[e] = d / eg.lengths[e];
-  }
+  const EdgeGeometry eg = edge_geometry(f);
 
   BandScan out;
   out.value.assign(grid.count(), kInfinity);
@@ -310,15 +344,13 @@ BandScan scan_band(const MeshFeatures& f, const GridGeometry& grid, double r, in
   std::unique_ptr<Box[]> boxes(new Box[nregions]);
   constexpr int kBlock = 4096;
   parallel_for((nregions + kBlock - 1) / kBlock, threads, [&](int block) {
-    std::vector<Plane> planes;
-    std::vector<Vec3> g, rays;
-    Region reg;
+    Vec3 low, high;
     for (int id = block * kBlock; id < std::min(nregions, (block + 1) * kBlock); ++id) {
-      make_region(f, eg, id, r, pad, planes, &reg, g, rays);
+      region_box(f, supports, id, r, pad, low, high);
       Box& b = boxes[id];
       for (int d = 0; d < 3; ++d) {
-        const double lo = std::ceil((reg.lo[d] - grid.origin[d]) / h);
-        const double hi = std::floor((reg.hi[d] - grid.origin[d]) / h);
+        const double lo = std::ceil((low[d] - grid.origin[d]) / h);
+        const double hi = std::floor((high[d] - grid.origin[d]) / h);
         b.lo[d] = static_cast<int>(std::max(0.0, std::min(lo, double(grid.dims[d]))));
         b.hi[d] = static_cast<int>(std::min(double(grid.dims[d] - 1), std::max(hi, -1.0)));
       }
@@ -342,13 +374,13 @@ BandScan scan_band(const MeshFeatures& f, const GridGeometry& grid, double r, in
   const int nx = grid.dims.x(), ny = grid.dims.y();
   parallel_for(nslabs, threads, [&](int slab) {
     std::vector<Plane> planes;
-    std::vector<Vec3> g, rays;
+    std::vector<Vec3> g;
     const int k_begin = slab * kSlab;
     const int k_end = std::min(grid.dims.z() - 1, k_begin + kSlab - 1);
     for (int s = slab_count[slab]; s < slab_count[slab + 1]; ++s) {
       const int id = slab_regions[s];
       const Box& box = boxes[id];
-      make_region(f, eg, id, r, pad, planes, nullptr, g, rays);
+      make_region(f, eg, id, r, pad, planes, g);
       const Kind kind = id < nf ? Kind::face : id < nf + ne ? Kind::edge : Kind::vertex;
       const int feature = id < nf ? id : id < nf + ne ? id - nf : id - nf - ne;
       // Rows run along the box's longest axis (fewest rows); chosen from the whole box, not the

@@ -3,6 +3,7 @@
 // polyhedron that contains the part of its Voronoi region within distance r, and writes the exact
 // distance to that feature into the voxels inside, keeping the smallest. Internal to lib/field.
 #pragma once
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -19,9 +20,19 @@ struct BandScan {
   int64_t band_voxels = 0;
 };
 
+// How far each edge's and vertex's region reaches per unit radius: the largest u·(±x), u·(±y),
+// u·(±z) over the unit vectors u of its cone of normals, in that order. A region of radius r spans
+// its feature's box grown by r times these, so one computation serves every scan of a mesh (the
+// band's and the far field's coarse one).
+struct RegionSupports {
+  std::vector<std::array<double, 6>> edges, vertices;
+};
+RegionSupports region_supports(const MeshFeatures& features, int threads);
+
 // Exact signed distances for every node within distance r (cm) of the mesh. Deterministic for
 // any thread count: work is split into fixed z-slabs and the minimum is order-independent.
-BandScan scan_band(const MeshFeatures& features, const GridGeometry& grid, double r, int threads);
+BandScan scan_band(const MeshFeatures& features, const RegionSupports& supports, const GridGeometry& grid, double r,
+                   int threads);
 
 // The closest point of feature `key` to p, and the pseudo-normal that signs the distance there.
 struct FeaturePoint {

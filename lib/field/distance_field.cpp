@@ -171,8 +171,9 @@ DistanceField DistanceField::build(const Mesh& mesh, const FieldSpec& spec, int 
   const field::MeshFeatures features = field::extract_features(mesh, spec.name);
   GridGeometry grid{plan.origin, spec.voxel, plan.dims};
   const double r = spec.band * spec.voxel;
-  field::BandScan band = field::scan_band(features, grid, r, threads);
-  field::FarField far = field::make_far_field(features, grid, band, r, plan.coarse_factor, threads);
+  const field::RegionSupports supports = field::region_supports(features, threads);
+  field::BandScan band = field::scan_band(features, supports, grid, r, threads);
+  field::FarField far = field::make_far_field(features, supports, grid, band, r, plan.coarse_factor, threads);
   std::optional<field::RobustSigns> signs;
   if (!inside.empty()) {
     signs.emplace(inside, grid, threads);
@@ -198,7 +199,6 @@ DistanceField DistanceField::build(const Mesh& mesh, const FieldSpec& spec, int 
   std::vector<int32_t>().swap(band.key);
   field::fill_beyond_band(features, grid, far, plan.coarse_factor, r, signs ? &*signs : nullptr, in_band, band.value,
                           threads);
-
   DistanceField out;
   out.origin_ = plan.origin;
   out.h_ = spec.voxel;
