@@ -28,7 +28,6 @@ MeshTopology analyse_topology(const Mesh& mesh) {
   struct HalfEdge {
     int low, high;
     bool forward;  // runs low → high
-    bool operator<(const HalfEdge& o) const { return low != o.low ? low < o.low : high < o.high; }
   };
   std::vector<HalfEdge> half_edges;
   half_edges.reserve(3 * mesh.triangles.size());
@@ -43,7 +42,19 @@ MeshTopology analyse_topology(const Mesh& mesh) {
       parent[find_root(parent, a)] = find_root(parent, b);
     }
   }
-  std::sort(half_edges.begin(), half_edges.end());
+  // Sorted by a counting sort on the low vertex, then by the high one within each vertex's few.
+  {
+    std::vector<int> start(n + 1, 0);
+    for (const HalfEdge& h : half_edges) ++start[h.low + 1];
+    for (int v = 0; v < n; ++v) start[v + 1] += start[v];
+    std::vector<HalfEdge> sorted(half_edges.size());
+    std::vector<int> fill(start.begin(), start.end() - 1);
+    for (const HalfEdge& h : half_edges) sorted[fill[h.low]++] = h;
+    for (int v = 0; v < n; ++v)
+      std::sort(sorted.begin() + start[v], sorted.begin() + start[v + 1],
+                [](const HalfEdge& x, const HalfEdge& y) { return x.high < y.high; });
+    half_edges = std::move(sorted);
+  }
   struct EdgeUse {
     int low, high;
     int count = 0;

@@ -20,17 +20,68 @@ std::string vec_text(const Vec3& v) {
   return text;
 }
 
-// Triangles (indices into `tris`) sharing each undirected edge.
-std::unordered_map<long long, std::vector<int>> edge_triangles(const std::vector<Vec3i>& tris) {
-  std::unordered_map<long long, std::vector<int>> edges;
-  for (int t = 0; t < static_cast<int>(tris.size()); ++t)
-    for (int k = 0; k < 3; ++k) edges[edge_key(tris[t][k], tris[t][(k + 1) % 3])].push_back(t);
-  return edges;
-}
+// The triangles (indices into `tris`) sharing each triangle side's undirected edge, in increasing
+// order: sides(t, k) lists those of side k (t[k] → t[k + 1]) of triangle t, t itself included.
+// Built by a counting sort on each edge's lower vertex, so it costs no allocation per edge.
+class EdgeTriangles {
+ public:
+  explicit EdgeTriangles(const std::vector<Vec3i>& tris) : corners_(tris) {
+    int n = 0;
+    for (const Vec3i& t : tris) n = std::max(n, t.maxCoeff() + 1);
+    struct Side {
+      int low, high, triangle, side;
+    };
+    std::vector<int> start(n + 1, 0);
+    for (const Vec3i& t : tris)
+      for (int k = 0; k < 3; ++k) ++start[std::min(t[k], t[(k + 1) % 3]) + 1];
+    for (int v = 0; v < n; ++v) start[v + 1] += start[v];
+    std::vector<Side> sorted(3 * tris.size());
+    std::vector<int> fill(start.begin(), start.end() - 1);
+    for (int t = 0; t < static_cast<int>(tris.size()); ++t)
+      for (int k = 0; k < 3; ++k) {
+        const int a = tris[t][k], b = tris[t][(k + 1) % 3];
+        sorted[fill[std::min(a, b)]++] = {std::min(a, b), std::max(a, b), t, k};
+      }
+    for (int v = 0; v < n; ++v)  // within a lower vertex: by the higher one, then by triangle
+      std::sort(sorted.begin() + start[v], sorted.begin() + start[v + 1], [](const Side& x, const Side& y) {
+        return x.high != y.high ? x.high < y.high : x.triangle < y.triangle;
+      });
+    group_of_.resize(3 * tris.size());
+    for (std::size_t i = 0; i < sorted.size(); ++i) {
+      if (i == 0 || sorted[i].low != sorted[i - 1].low || sorted[i].high != sorted[i - 1].high)
+        group_start_.push_back(static_cast<int>(i));
+      group_of_[3 * sorted[i].triangle + sorted[i].side] = static_cast<int>(group_start_.size()) - 1;
+      triangles_.push_back(sorted[i].triangle);
+    }
+    group_start_.push_back(static_cast<int>(sorted.size()));
+  }
+  struct Range {
+    const int *first, *last;
+    const int* begin() const { return first; }
+    const int* end() const { return last; }
+  };
+  Range sides(int t, int k) const {
+    const int g = group_of_[3 * t + k];
+    return {triangles_.data() + group_start_[g], triangles_.data() + group_start_[g + 1]};
+  }
+  // The same for the side of triangle t (as built) that joins a and b, either way round; for a
+  // caller that reorders the triangles' corners as it goes.
+  Range sharing(int t, int a, int b) const {
+    for (int k = 0; k < 3; ++k) {
+      const int p = corners_[t][k], q = corners_[t][(k + 1) % 3];
+      if ((p == a && q == b) || (p == b && q == a)) return sides(t, k);
+    }
+    return {nullptr, nullptr};
+  }
+
+ private:
+  std::vector<Vec3i> corners_;
+  std::vector<int> group_of_, group_start_, triangles_;
+};
 
 // Connected parts through shared edges: part id per triangle, ids in order of first triangle.
 std::vector<int> edge_parts(const std::vector<Vec3i>& tris, int& count) {
-  const auto edges = edge_triangles(tris);
+  const EdgeTriangles edges(tris);
   std::vector<int> part(tris.size(), -1);
   count = 0;
   for (int seed = 0; seed < static_cast<int>(tris.size()); ++seed) {
@@ -42,7 +93,7 @@ std::vector<int> edge_parts(const std::vector<Vec3i>& tris, int& count) {
       const int t = queue.front();
       queue.pop();
       for (int k = 0; k < 3; ++k)
-        for (int u : edges.at(edge_key(tris[t][k], tris[t][(k + 1) % 3])))
+        for (int u : edges.sides(t, k))
           if (part[u] < 0) part[u] = count, queue.push(u);
     }
     ++count;
@@ -113,7 +164,7 @@ double loop_length(const Mesh& mesh, const std::vector<int>& loop) {
 // Makes neighbouring triangles traverse their shared edge in opposite directions (breadth first
 // from triangle 0); throws if the surface cannot be oriented.
 void orient_consistently(Mesh& mesh, const std::string& file) {
-  const auto edges = edge_triangles(mesh.triangles);
+  const EdgeTriangles edges(mesh.triangles);
   std::vector<char> done(mesh.triangles.size(), 0);
   auto direction = [](const Vec3i& t, int a, int b) {
     for (int k = 0; k < 3; ++k) {
@@ -130,7 +181,7 @@ void orient_consistently(Mesh& mesh, const std::string& file) {
     queue.pop();
     for (int k = 0; k < 3; ++k) {
       const int a = mesh.triangles[t][k], b = mesh.triangles[t][(k + 1) % 3];
-      for (int u : edges.at(edge_key(a, b))) {
+      for (int u : edges.sharing(t, a, b)) {
         if (u == t) continue;
         const bool same = direction(mesh.triangles[u], a, b) == 1;
         if (!done[u]) {
@@ -218,6 +269,7 @@ Hull cut_hull(const Mesh& scan_mesh, const SelectionField& field, const HullOpti
   // From here on, "the scan" is the clipped scan: whole scan triangles and the parts the hairline cuts.
   const Clipped clipped = clip_at_level_set(scan_mesh, field, options.clip);
   const Mesh& scan = clipped.mesh;
+  TH.lap("clip");
   hull.cut_triangles = clipped.cut_triangles;
   hull.snapped_vertices = clipped.snapped_vertices;
   std::vector<int> kept(scan.triangles.size());
@@ -260,6 +312,7 @@ Hull cut_hull(const Mesh& scan_mesh, const SelectionField& field, const HullOpti
     if (shaved == 0 || round > 8) break;
   }
 
+  TH.lap("parts");
   // The hull's own vertex numbering, in scan order.
   std::vector<int> local(scan.positions.size(), -1);
   for (int t : kept)
@@ -276,7 +329,9 @@ Hull cut_hull(const Mesh& scan_mesh, const SelectionField& field, const HullOpti
     hull.scan_triangle.push_back(clipped.scan_triangle[t]);
     hull.kept_area += area_of(scan, f);
   }
+  TH.lap("numbering");
   MeshTopology topo = analyse_topology(hull.mesh);
+  TH.lap("topology1");
   if (!topo.nonmanifold_vertices.empty())
     throw InputError(file, "the scan is non-manifold inside the hair region (an edge shared by 3 or more triangles near " +
                                vec_text(hull.mesh.positions[topo.nonmanifold_vertices[0]]) + "); repair the scan");
@@ -284,7 +339,9 @@ Hull cut_hull(const Mesh& scan_mesh, const SelectionField& field, const HullOpti
     throw InputError(file, "the hair selection covers a closed surface (the whole scan?), so there is no hairline; "
                            "select only the hair");
   orient_consistently(hull.mesh, file);
+  TH.lap("orient");
   topo = analyse_topology(hull.mesh);
+  TH.lap("topology2");
 
   // The hairline is the longest boundary loop; the others are holes, filled by a fan about their
   // centroid when short enough.
@@ -328,6 +385,7 @@ Hull cut_hull(const Mesh& scan_mesh, const SelectionField& field, const HullOpti
                                " with one hairline: it has handles, e.g. a strand bridging to the head); cut the "
                                "bridges from the scan or adjust the selection");
   hull.hairline = topo.boundary_loops[0];
+  TH.lap("holes+topology3");
 
   // Outward: the hull faces away from the centre of the sphere fitted to it.
   hull.centre = fit_sphere_centre(hull.mesh.positions);
@@ -341,6 +399,7 @@ Hull cut_hull(const Mesh& scan_mesh, const SelectionField& field, const HullOpti
     for (Vec3i& f : hull.mesh.triangles) std::swap(f[1], f[2]);
     std::reverse(hull.hairline.begin(), hull.hairline.end());
   }
+  TH.lap("centre");
   return hull;
 }
 

@@ -143,6 +143,27 @@ TEST_CASE("a hole in the scanned hair is filled and near-duplicate seam vertices
   CHECK(prepare_scan(seamed, {}, unwelded, "bust.obj").hull.mesh.triangles.size() < 0.6 * welded.hull.mesh.triangles.size());
 }
 
+TEST_CASE("a scan whose triangles run both ways round gives the same hull, every triangle facing out") {
+  // Raw scans mix windings. Every third triangle reversed (and a whole patch on the crown) must
+  // give the hull of the clean scan, consistently oriented and facing out. (The hairline's cut
+  // points may differ in the last bits, where an edge is interpolated from its other end.)
+  const BustScan scan = make_bust(kShape);
+  Mesh mixed = scan.mesh;
+  const Vec3 crown = kShape.radius(kShape.cap_axis()) * kShape.cap_axis();
+  for (int t = 0; t < static_cast<int>(mixed.triangles.size()); ++t) {
+    Vec3i& f = mixed.triangles[t];
+    const Vec3 centroid = (mixed.positions[f[0]] + mixed.positions[f[1]] + mixed.positions[f[2]]) / 3.0;
+    if (t % 3 == 0 || (centroid - crown).norm() < 2.0) std::swap(f[1], f[2]);
+  }
+  const Prepared clean = prepare_scan(scan.mesh, {}, cap_options(), "bust.obj");
+  const Prepared p = prepare_scan(mixed, {}, cap_options(), "bust.obj");
+  CHECK(analyse_topology(p.hull.mesh).orientation_consistent);
+  CHECK(inward_triangles(p.hull.mesh, p.hull.centre).empty());
+  REQUIRE(p.hull.mesh.triangles.size() == clean.hull.mesh.triangles.size());
+  CHECK(p.hull.kept_area == doctest::Approx(clean.hull.kept_area).epsilon(1e-12));
+  CHECK(p.hull.hairline.size() == clean.hull.hairline.size());
+}
+
 TEST_CASE("the scalp: a disk with the hull's hairline, inside it, skull-like and smooth") {
   const BustScan scan = make_bust(kShape);
   PrepareOptions o = cap_options();
