@@ -5,7 +5,7 @@
 // busts are also prepared both ways (radial and level set), the two designs side by side.
 //   cmake -S . -B build -DHAIRFIT_BENCH=ON && cmake --build build --target bench_prepare_scan
 //   build/bench/bench_prepare_scan [spacing_cm = 0.23 (about 270 000 triangles)] [threads = 0: all] [bust: all]
-//                                  [runs = 1]
+//                                  [runs = 1] [folder: also write each bust's scan there, OBJ with colours]
 // With several runs the times are their medians (this host's wall times vary by ±25 % from run
 // to run), and the other columns come from the last run (every run gives the same result).
 #include <algorithm>
@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "io/obj_mesh.h"
 #include "prepare/prepare.h"
 #include "prepare/sculpted_bust.h"
 
@@ -68,11 +69,13 @@ int main(int argc, char** argv) {
   const int threads = argc > 2 ? std::atoi(argv[2]) : 0;
   const std::string only = argc > 3 && std::string(argv[3]) != "all" ? argv[3] : "";
   const int runs = argc > 4 ? std::max(1, std::atoi(argv[4])) : 1;
+  const std::string folder = argc > 5 ? argv[5] : "";
   std::printf("| bust | scan triangles | --scalp | made by | wall s | CPU s | hull triangles | scalp triangles | scalp |H| p95 / max (1/cm) | checks |\n");
   std::printf("| --- | ---: | --- | --- | ---: | ---: | ---: | ---: | ---: | --- |\n");
   for (BustStyle style : all_bust_styles()) {
     if (!only.empty() && bust_style_name(style) != only) continue;
     const BustScan scan = make_sculpted_bust(style, spacing);
+    if (!folder.empty()) write_obj_mesh(folder + "/" + bust_style_name(style) + ".obj", scan.mesh, {}, scan.colors);
     run(style, scan, "auto", threads, runs);
     if (style == BustStyle::plain || style == BustStyle::tilted) {
       run(style, scan, "radial", threads, runs);

@@ -4,6 +4,7 @@
 //   [--scalp auto|radial|level-set] [--scalp-voxel H] [--threads N]
 // From one raw scan to a ready-to-run scene: DIR/volume.obj, DIR/scalp.obj, DIR/scene.toml and
 // DIR/prepare.json (lib/prepare/prepare.h).
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -94,7 +95,7 @@ int command_prepare(const Arguments& argv) {
   if (o.scalp_method != "auto" && o.scalp_method != "radial" && o.scalp_method != "level-set")
     throw UsageError{"--scalp must be auto, radial or level-set"};
   o.scalp.voxel = args.number("scalp-voxel", o.scalp.voxel);
-  if (!(o.scalp.voxel >= 0.0)) throw UsageError{"--scalp-voxel must be a length ≥ 0 in cm (0: min(0.25, T / 6))"};
+  if (!(o.scalp.voxel >= 0.0)) throw UsageError{"--scalp-voxel must be a length ≥ 0 in cm (0: min(0.3, T / 6))"};
   const double threads = args.number("threads", 0.0);
   if (!(threads >= 0.0 && threads == std::floor(threads))) throw UsageError{"--threads must be a whole number ≥ 0"};
   o.threads = static_cast<int>(threads);
@@ -103,10 +104,18 @@ int command_prepare(const Arguments& argv) {
   if (!(o.hull.max_hole >= 0.0)) throw UsageError{"--max-hole must be a share ≥ 0 of the hairline's length"};
 
   const std::string scan = args.positionals()[0];
+  using Clock = std::chrono::steady_clock;
+  const auto seconds_since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
+  const Clock::time_point start = Clock::now();
   const LoadedMesh loaded = load_obj_mesh(scan);
+  const double read_seconds = seconds_since(start);
+  const Clock::time_point prepare_start = Clock::now();
   const Prepared p = prepare_scan(loaded.mesh, loaded.colors, o, scan);
+  const double prepare_seconds = seconds_since(prepare_start);
   const std::string dir = *args.text("out");
+  const Clock::time_point write_start = Clock::now();
   write_prepared(p, scan, o, dir);
+  const double write_seconds = seconds_since(write_start);
 
   double max_thickness = 0.0;
   for (double t : p.scalp.thickness) max_thickness = std::max(max_thickness, t);
@@ -122,6 +131,9 @@ int command_prepare(const Arguments& argv) {
   std::printf("  checks   disks, outward, inside (winding %.3f), no intersections, shared hairline: passed\n",
               p.checks.deepest_winding);
   std::printf("  wrote    %s/volume.obj, scalp.obj, scene.toml, prepare.json\n", dir.c_str());
+  // Wall clock, printed only (prepare.json stays the same for the same scan and options).
+  std::printf("  time     %.2f s: reading the scan %.2f s, preparing %.2f s, writing %.2f s\n",
+              seconds_since(start), read_seconds, prepare_seconds, write_seconds);
   std::printf("  next     hairfit render %s/scene.toml --stage cut; hairfit run %s/scene.toml\n", dir.c_str(), dir.c_str());
   return 0;
 }
