@@ -95,7 +95,7 @@ int command_prepare(const Arguments& argv) {
   if (o.scalp_method != "auto" && o.scalp_method != "radial" && o.scalp_method != "level-set")
     throw UsageError{"--scalp must be auto, radial or level-set"};
   o.scalp.voxel = args.number("scalp-voxel", o.scalp.voxel);
-  if (!(o.scalp.voxel >= 0.0)) throw UsageError{"--scalp-voxel must be a length ≥ 0 in cm (0: min(0.3, T / 6))"};
+  if (!(o.scalp.voxel >= 0.0)) throw UsageError{"--scalp-voxel must be a length ≥ 0 in cm (0: min(0.25, T / 6))"};
   const double threads = args.number("threads", 0.0);
   if (!(threads >= 0.0 && threads == std::floor(threads))) throw UsageError{"--threads must be a whole number ≥ 0"};
   o.threads = static_cast<int>(threads);

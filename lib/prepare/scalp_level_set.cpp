@@ -275,7 +275,7 @@ std::vector<double> hairline_distance_at_nodes(const SampleGrid& grid, const Dis
 
 }  // namespace
 
-double level_set_voxel(const ScalpOptions& o) { return o.voxel > 0.0 ? o.voxel : std::min(0.3, o.crown_thickness / 6.0); }
+double level_set_voxel(const ScalpOptions& o) { return o.voxel > 0.0 ? o.voxel : std::min(0.25, o.crown_thickness / 6.0); }
 
 ScalpResult make_level_set_scalp(const Hull& hull, const Mesh& skin, const ScalpOptions& o, const std::string& file,
                                  int threads) {

@@ -30,7 +30,7 @@ struct ScalpOptions {
   double crown_thickness = 2.0;  // cm of hair over the skull away from the hairline (T)
   double ramp = 3.0;             // cm from the hairline over which the thickness grows
   int smoothing_passes = 40;     // Jacobi passes of ρ (λ = ½), hairline fixed (radial)
-  double voxel = 0.0;            // cm: the level set's grid; 0 takes min(0.3, T / 6)
+  double voxel = 0.0;            // cm: the level set's grid; 0 takes min(0.25, T / 6)
 };
 
 struct ScalpResult {
