@@ -269,7 +269,6 @@ Hull cut_hull(const Mesh& scan_mesh, const SelectionField& field, const HullOpti
   // From here on, "the scan" is the clipped scan: whole scan triangles and the parts the hairline cuts.
   const Clipped clipped = clip_at_level_set(scan_mesh, field, options.clip);
   const Mesh& scan = clipped.mesh;
-  TH.lap("clip");
   hull.cut_triangles = clipped.cut_triangles;
   hull.snapped_vertices = clipped.snapped_vertices;
   std::vector<int> kept(scan.triangles.size());
@@ -312,7 +311,6 @@ Hull cut_hull(const Mesh& scan_mesh, const SelectionField& field, const HullOpti
     if (shaved == 0 || round > 8) break;
   }
 
-  TH.lap("parts");
   // The hull's own vertex numbering, in scan order.
   std::vector<int> local(scan.positions.size(), -1);
   for (int t : kept)
@@ -329,9 +327,7 @@ Hull cut_hull(const Mesh& scan_mesh, const SelectionField& field, const HullOpti
     hull.scan_triangle.push_back(clipped.scan_triangle[t]);
     hull.kept_area += area_of(scan, f);
   }
-  TH.lap("numbering");
   MeshTopology topo = analyse_topology(hull.mesh);
-  TH.lap("topology1");
   if (!topo.nonmanifold_vertices.empty())
     throw InputError(file, "the scan is non-manifold inside the hair region (an edge shared by 3 or more triangles near " +
                                vec_text(hull.mesh.positions[topo.nonmanifold_vertices[0]]) + "); repair the scan");
@@ -339,9 +335,7 @@ Hull cut_hull(const Mesh& scan_mesh, const SelectionField& field, const HullOpti
     throw InputError(file, "the hair selection covers a closed surface (the whole scan?), so there is no hairline; "
                            "select only the hair");
   orient_consistently(hull.mesh, file);
-  TH.lap("orient");
   topo = analyse_topology(hull.mesh);
-  TH.lap("topology2");
 
   // The hairline is the longest boundary loop; the others are holes, filled by a fan about their
   // centroid when short enough.
@@ -385,7 +379,6 @@ Hull cut_hull(const Mesh& scan_mesh, const SelectionField& field, const HullOpti
                                " with one hairline: it has handles, e.g. a strand bridging to the head); cut the "
                                "bridges from the scan or adjust the selection");
   hull.hairline = topo.boundary_loops[0];
-  TH.lap("holes+topology3");
 
   // Outward: the hull faces away from the centre of the sphere fitted to it.
   hull.centre = fit_sphere_centre(hull.mesh.positions);
@@ -399,7 +392,6 @@ Hull cut_hull(const Mesh& scan_mesh, const SelectionField& field, const HullOpti
     for (Vec3i& f : hull.mesh.triangles) std::swap(f[1], f[2]);
     std::reverse(hull.hairline.begin(), hull.hairline.end());
   }
-  TH.lap("centre");
   return hull;
 }
 
