@@ -8,6 +8,8 @@
 #include <numeric>
 #include <queue>
 
+#include "core/vertex_sort.h"
+
 namespace hairfit {
 
 namespace {
@@ -42,19 +44,8 @@ MeshTopology analyse_topology(const Mesh& mesh) {
       parent[find_root(parent, a)] = find_root(parent, b);
     }
   }
-  // Sorted by a counting sort on the low vertex, then by the high one within each vertex's few.
-  {
-    std::vector<int> start(n + 1, 0);
-    for (const HalfEdge& h : half_edges) ++start[h.low + 1];
-    for (int v = 0; v < n; ++v) start[v + 1] += start[v];
-    std::vector<HalfEdge> sorted(half_edges.size());
-    std::vector<int> fill(start.begin(), start.end() - 1);
-    for (const HalfEdge& h : half_edges) sorted[fill[h.low]++] = h;
-    for (int v = 0; v < n; ++v)
-      std::sort(sorted.begin() + start[v], sorted.begin() + start[v + 1],
-                [](const HalfEdge& x, const HalfEdge& y) { return x.high < y.high; });
-    half_edges = std::move(sorted);
-  }
+  sort_by_vertex(half_edges, n, [](const HalfEdge& h) { return h.low; },
+                 [](const HalfEdge& x, const HalfEdge& y) { return x.high < y.high; });
   struct EdgeUse {
     int low, high;
     int count = 0;

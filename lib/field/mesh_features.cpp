@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/vertex_sort.h"
 
 namespace hairfit::field {
 
@@ -86,9 +87,8 @@ MeshFeatures extract_features(const Mesh& mesh, const std::string& name) {
       if (a != b) uses.push_back({std::min(a, b), std::max(a, b), face});
     }
   }
-  std::sort(uses.begin(), uses.end(), [](const EdgeUse& x, const EdgeUse& y) {
-    return x.a != y.a ? x.a < y.a : x.b != y.b ? x.b < y.b : x.face < y.face;
-  });
+  sort_by_vertex(uses, static_cast<int>(f.vertices.size()), [](const EdgeUse& u) { return u.a; },
+                 [](const EdgeUse& x, const EdgeUse& y) { return x.b != y.b ? x.b < y.b : x.face < y.face; });
   f.edge_face_offsets.push_back(0);
   for (size_t i = 0; i < uses.size(); ++i) {
     if (i == 0 || uses[i].a != uses[i - 1].a || uses[i].b != uses[i - 1].b) {

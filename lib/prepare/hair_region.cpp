@@ -9,6 +9,7 @@
 #include <unordered_map>
 
 #include "core/error.h"
+#include "core/vertex_sort.h"
 
 namespace hairfit {
 
@@ -31,21 +32,17 @@ class EdgeTriangles {
     struct Side {
       int low, high, triangle, side;
     };
-    std::vector<int> start(n + 1, 0);
-    for (const Vec3i& t : tris)
-      for (int k = 0; k < 3; ++k) ++start[std::min(t[k], t[(k + 1) % 3]) + 1];
-    for (int v = 0; v < n; ++v) start[v + 1] += start[v];
-    std::vector<Side> sorted(3 * tris.size());
-    std::vector<int> fill(start.begin(), start.end() - 1);
+    std::vector<Side> sorted;
+    sorted.reserve(3 * tris.size());
     for (int t = 0; t < static_cast<int>(tris.size()); ++t)
       for (int k = 0; k < 3; ++k) {
         const int a = tris[t][k], b = tris[t][(k + 1) % 3];
-        sorted[fill[std::min(a, b)]++] = {std::min(a, b), std::max(a, b), t, k};
+        sorted.push_back({std::min(a, b), std::max(a, b), t, k});
       }
-    for (int v = 0; v < n; ++v)  // within a lower vertex: by the higher one, then by triangle
-      std::sort(sorted.begin() + start[v], sorted.begin() + start[v + 1], [](const Side& x, const Side& y) {
-        return x.high != y.high ? x.high < y.high : x.triangle < y.triangle;
-      });
+    // By the lower vertex, then the higher one, then the triangle.
+    sort_by_vertex(sorted, n, [](const Side& s) { return s.low; }, [](const Side& x, const Side& y) {
+      return x.high != y.high ? x.high < y.high : x.triangle < y.triangle;
+    });
     group_of_.resize(3 * tris.size());
     for (std::size_t i = 0; i < sorted.size(); ++i) {
       if (i == 0 || sorted[i].low != sorted[i - 1].low || sorted[i].high != sorted[i - 1].high)
