@@ -207,7 +207,7 @@ Sheet sheet(const SampleGrid& grid, const std::vector<double>& values, const std
 // skin, which leaves creases a voxel wide where the two meet at an angle. A move is kept only
 // while the vertex stays between ½ and 1½ times its depth below the scan (so it neither nears the
 // hull nor sinks to the floor, at 2 to 4 times the scalp's depth).
-void relax(Sheet& s, const DistanceField& field, double crown, double epsilon, int passes) {
+void relax(Sheet& s, const DistanceField& field, double crown, double epsilon, int passes, int threads) {
   const int n = static_cast<int>(s.mesh.positions.size());
   std::vector<char> fixed(n, 0);
   for (int v : s.inner) fixed[v] = 1;
@@ -216,15 +216,18 @@ void relax(Sheet& s, const DistanceField& field, double crown, double epsilon, i
   std::vector<Vec3> previous;
   for (int pass = 0; pass < passes; ++pass) {
     previous = s.mesh.positions;
-    for (int v = 0; v < n; ++v) {
-      if (fixed[v] || next[v].empty()) continue;
-      Vec3 mean = Vec3::Zero();
-      for (int k : next[v]) mean += previous[k];
-      const double weight = 0.5 * std::pow(std::max(0.0, (s.thickness[v] - epsilon) / (crown - epsilon)), 2);
-      const Vec3 moved = previous[v] + weight * (mean / static_cast<double>(next[v].size()) - previous[v]);
-      const double depth = -field.value(previous[v]), depth_moved = -field.value(moved);
-      if (depth_moved >= 0.5 * depth && depth_moved <= 1.5 * depth) s.mesh.positions[v] = moved;
-    }
+    constexpr int kBlock = 1024;  // each vertex reads only `previous`: any split gives the same result
+    parallel_for((n + kBlock - 1) / kBlock, threads, [&](int block) {
+      for (int v = block * kBlock; v < std::min(n, (block + 1) * kBlock); ++v) {
+        if (fixed[v] || next[v].empty()) continue;
+        Vec3 mean = Vec3::Zero();
+        for (int k : next[v]) mean += previous[k];
+        const double weight = 0.5 * std::pow(std::max(0.0, (s.thickness[v] - epsilon) / (crown - epsilon)), 2);
+        const Vec3 moved = previous[v] + weight * (mean / static_cast<double>(next[v].size()) - previous[v]);
+        const double depth = -field.value(previous[v]), depth_moved = -field.value(moved);
+        if (depth_moved >= 0.5 * depth && depth_moved <= 1.5 * depth) s.mesh.positions[v] = moved;
+      }
+    });
   }
 }
 
@@ -354,7 +357,7 @@ ScalpResult make_level_set_scalp(const Hull& hull, const Mesh& skin, const Scalp
   std::vector<Vec3> hairline;
   for (int v : hull.hairline) hairline.push_back(mesh.positions[v]);
   Sheet scalp = sheet(grid, scalp_value, thickness, epsilon, hairline, hairline, true, "scalp", file);
-  relax(scalp, field, T, epsilon, o.smoothing_passes);
+  relax(scalp, field, T, epsilon, o.smoothing_passes, threads);
   // The floor joins the scalp's piece where it ends, not the hairline: within those 1.5 voxels
   // of it the volume's floor is the scalp's strip (reversed), and the two strips can never cross.
   std::vector<Vec3> scalp_end;
