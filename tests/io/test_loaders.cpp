@@ -59,6 +59,28 @@ TEST_CASE("OBJ: quads are triangulated, units scaled, duplicates welded, degener
   CHECK(surface_area(m.mesh) == doctest::Approx(100.0));  // 10 × 10 cm
 }
 
+TEST_CASE("OBJ: welded duplicates keep the order of first appearance and the first one's colour") {
+  // Vertices 1, 4 and 6 are one point (6 written as -0), 2 and 5 another; the welded vertices run
+  // in the order their first copies appear, each with its first copy's colour.
+  const fs::path p = write("dupes.obj",
+                           "v 1 0 0 1 0 0\nv 0 1 0 0 1 0\nv 0 0 1 0 0 1\nv 1 0 0 0.5 0.5 0.5\n"
+                           "v 0 1 0 0.2 0.2 0.2\nv 1 -0 0 0.9 0.9 0.9\nv 0 0 2 1 1 0\n"
+                           "f 1 2 3\nf 4 5 7\nf 6 3 5\n");
+  const LoadedMesh m = load_obj_mesh(p);
+  CHECK(m.welded_duplicates == 3);
+  REQUIRE(m.mesh.positions.size() == 4);
+  CHECK(m.mesh.positions[0] == Vec3(1, 0, 0));
+  CHECK(m.mesh.positions[1] == Vec3(0, 1, 0));
+  CHECK(m.mesh.positions[2] == Vec3(0, 0, 1));
+  CHECK(m.mesh.positions[3] == Vec3(0, 0, 2));
+  REQUIRE(m.colors.size() == 4);
+  CHECK(m.colors[0] == Vec3(1, 0, 0));
+  CHECK(m.colors[1] == Vec3(0, 1, 0));
+  REQUIRE(m.mesh.triangles.size() == 3);
+  CHECK(m.mesh.triangles[1] == Vec3i(0, 1, 3));
+  CHECK(m.mesh.triangles[2] == Vec3i(0, 2, 1));
+}
+
 TEST_CASE("OBJ: negative (relative) indices") {
   const LoadedMesh m = load_obj_mesh(write("rel.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\n"));
   CHECK(m.mesh.triangles.size() == 1);
