@@ -148,23 +148,27 @@ FastWindingNumber::FastWindingNumber(const Mesh& mesh, double beta, int threads)
   nodes_.resize(node_count);
   node_terms_.resize(node_count);
   node_extents_.resize(node_count);
-  // The top levels one by one, down to subtrees of at most 1/16 of the triangles, which are then
-  // built side by side: every node's place follows from the sizes alone.
+  // The top levels one level at a time (the nodes of a level split disjoint ranges, so they are
+  // built side by side), down to subtrees of at most 1/16 of the triangles, which are then built
+  // side by side: every node's place follows from the sizes alone.
   struct Range {
     int lo, hi, index;
   };
-  std::vector<Range> pending{{0, static_cast<int>(order.size()), 0}}, subtrees;
+  std::vector<Range> level{{0, static_cast<int>(order.size()), 0}}, subtrees;
   const int small = std::max(kLeafSize, static_cast<int>(order.size()) / 16);
-  while (!pending.empty()) {
-    const Range r = pending.back();
-    pending.pop_back();
-    if (r.hi - r.lo <= small) {
-      subtrees.push_back(r);
-      continue;
+  while (!level.empty()) {
+    std::vector<Range> split;
+    for (const Range& r : level) (r.hi - r.lo <= small ? subtrees : split).push_back(r);
+    std::vector<int> mids(split.size());
+    parallel_for(static_cast<int>(split.size()), threads, [&](int k) {
+      mids[k] = build_node(all, order, split[k].lo, split[k].hi, split[k].index);
+    });
+    level.clear();
+    for (std::size_t k = 0; k < split.size(); ++k) {
+      const Range& r = split[k];
+      level.push_back({r.lo, mids[k], r.index + 1});
+      level.push_back({mids[k], r.hi, r.index + 1 + subtree_size(mids[k] - r.lo)});
     }
-    const int mid = build_node(all, order, r.lo, r.hi, r.index);
-    pending.push_back({mid, r.hi, r.index + 1 + subtree_size(mid - r.lo)});
-    pending.push_back({r.lo, mid, r.index + 1});
   }
   parallel_for(static_cast<int>(subtrees.size()), resolve_thread_count(threads), [&](int k) {
     build_subtree(all, order, subtrees[k].lo, subtrees[k].hi, subtrees[k].index);
