@@ -228,7 +228,8 @@ struct NeedleRows {
     return out;
   }
 
-  // An edge a → a + len·t between two faces whose in-plane directions away from it are d1, d2.
+  // An edge a → a + len·t between two faces, d1 and d2 the directions from it into each face (in
+  // the face's plane, ⊥ t).
   // Its normals form the wedge {u ⊥ t : u·d1 ≤ 0, u·d2 ≤ 0}, of half-angle θ about the bisector
   // m = −(d1 + d2)/|d1 + d2| (sin θ = √((1 + d1·d2)/2)); on a flat edge (d2 = −d1) it is the whole
   // line through ±(t × d1). A sample u within r of the edge and inside the pad-moved planes has
