@@ -116,8 +116,8 @@ FastWindingNumber::FastWindingNumber(const Mesh& mesh, double beta, int threads)
   std::vector<Summary> summaries(n);
   std::vector<char> kept(n, 0);
   threads = resolve_thread_count(threads);
-  parallel_for((n + 4095) / 4096, threads, [&](int block) {
-    for (int i = block * 4096; i < std::min(n, (block + 1) * 4096); ++i) {
+  parallel_for_ranges(n, 4096, threads, [&](int begin, int end) {
+    for (int i = begin; i < end; ++i) {
       const Vec3i& f = mesh.triangles[i];
       Summary& t = summaries[i];
       const Vec3 &a = mesh.positions[f[0]], &b = mesh.positions[f[1]], &c = mesh.positions[f[2]];

@@ -156,4 +156,9 @@ void parallel_for(int count, int threads, const std::function<void(int)>& body) 
   if (error) std::rethrow_exception(error);
 }
 
+void parallel_for_ranges(int count, int block, int threads, const std::function<void(int, int)>& body) {
+  parallel_for((count + block - 1) / block, threads,
+               [&](int k) { body(k * block, std::min(count, (k + 1) * block)); });
+}
+
 }  // namespace hairfit

@@ -10,6 +10,11 @@ namespace hairfit {
 // After SIGINT or SIGTERM no new item starts and Interrupted is thrown (core/interrupt.h).
 void parallel_for(int count, int threads, const std::function<void(int)>& body);
 
+// Calls body(begin, end) for consecutive ranges of at most `block` items covering [0, count), as
+// parallel_for calls its items: for loops whose items are too cheap for a call each, or that want
+// scratch space per range.
+void parallel_for_ranges(int count, int block, int threads, const std::function<void(int, int)>& body);
+
 // The number of threads to use when the user asked for `requested` (0 = all hardware threads).
 int resolve_thread_count(int requested);
 

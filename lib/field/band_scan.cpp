@@ -307,12 +307,11 @@ RegionSupports region_supports(const MeshFeatures& f, int threads) {
   RegionSupports out;
   out.edges.resize(ne);
   out.vertices.resize(nv);
-  constexpr int kBlock = 4096;
-  parallel_for((ne + nv + kBlock - 1) / kBlock, threads, [&](int block) {
+  parallel_for_ranges(ne + nv, 4096, threads, [&](int begin, int end) {
     std::vector<Plane> planes;
     std::vector<Vec3> g, rays;
     const int nf = static_cast<int>(f.faces.size());
-    for (int k = block * kBlock; k < std::min(ne + nv, (block + 1) * kBlock); ++k) {
+    for (int k = begin; k < end; ++k) {
       make_region(f, eg, nf + k, 1.0, 0.0, planes, g);
       if (k < ne)
         out.edges[k] = cone_supports(g, eg.dirs[k], rays);
@@ -343,10 +342,9 @@ BandScan scan_band(const MeshFeatures& f, const RegionSupports& supports, const 
     int lo[3], hi[3];
   };
   std::unique_ptr<Box[]> boxes(new Box[nregions]);
-  constexpr int kBlock = 4096;
-  parallel_for((nregions + kBlock - 1) / kBlock, threads, [&](int block) {
+  parallel_for_ranges(nregions, 4096, threads, [&](int begin, int end) {
     Vec3 low, high;
-    for (int id = block * kBlock; id < std::min(nregions, (block + 1) * kBlock); ++id) {
+    for (int id = begin; id < end; ++id) {
       region_box(f, supports, id, r, pad, low, high);
       Box& b = boxes[id];
       for (int d = 0; d < 3; ++d) {

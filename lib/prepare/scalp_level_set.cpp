@@ -216,9 +216,9 @@ void relax(Sheet& s, const DistanceField& field, double crown, double epsilon, i
   std::vector<Vec3> previous;
   for (int pass = 0; pass < passes; ++pass) {
     previous = s.mesh.positions;
-    constexpr int kBlock = 1024;  // each vertex reads only `previous`: any split gives the same result
-    parallel_for((n + kBlock - 1) / kBlock, threads, [&](int block) {
-      for (int v = block * kBlock; v < std::min(n, (block + 1) * kBlock); ++v) {
+    // Each vertex reads only `previous`: any split gives the same result.
+    parallel_for_ranges(n, 1024, threads, [&](int begin, int end) {
+      for (int v = begin; v < end; ++v) {
         if (fixed[v] || next[v].empty()) continue;
         Vec3 mean = Vec3::Zero();
         for (int k : next[v]) mean += previous[k];

@@ -85,6 +85,25 @@ TEST_CASE("parallel_for visits each index once, for any thread count") {
   parallel_for(0, 4, [](int) { FAIL("no item expected"); });
 }
 
+TEST_CASE("parallel_for_ranges covers [0, count) once, in consecutive ranges of at most the block") {
+  for (int threads : {1, 3})
+    for (int count : {0, 1, 7, 4096, 10001}) {
+      CAPTURE(threads);
+      CAPTURE(count);
+      std::vector<int> seen(count, 0), range_of(count, -1);
+      parallel_for_ranges(count, 1000, threads, [&](int begin, int end) {
+        CHECK(begin % 1000 == 0);
+        CHECK(end - begin <= 1000);
+        CHECK(end == std::min(count, begin + 1000));
+        for (int i = begin; i < end; ++i) ++seen[i], range_of[i] = begin;
+      });
+      for (int i = 0; i < count; ++i) {
+        CHECK(seen[i] == 1);
+        CHECK(range_of[i] == i / 1000 * 1000);
+      }
+    }
+}
+
 TEST_CASE("parallel_for inside a loop body, and from two threads at once, still visits each index once") {
   // The worker pool serves one loop at a time; a loop that finds it busy runs on threads of its own.
   std::vector<std::vector<int>> hits(8, std::vector<int>(300, 0));
