@@ -170,7 +170,7 @@ FastWindingNumber::FastWindingNumber(const Mesh& mesh, double beta, int threads)
       level.push_back({mids[k], r.hi, r.index + 1 + subtree_size(mids[k] - r.lo)});
     }
   }
-  parallel_for(static_cast<int>(subtrees.size()), resolve_thread_count(threads), [&](int k) {
+  parallel_for(static_cast<int>(subtrees.size()), threads, [&](int k) {
     build_subtree(all, order, subtrees[k].lo, subtrees[k].hi, subtrees[k].index);
   });
   triangles_.reserve(order.size());
