@@ -82,29 +82,10 @@ std::array<double, 6> cone_supports(const std::vector<Vec3>& g, const Vec3& axis
   return out;
 }
 
-// Unit direction and length of every edge (a → b).
-struct EdgeGeometry {
-  std::vector<Vec3> dirs;
-  std::vector<double> lengths;
-};
-
-EdgeGeometry edge_geometry(const MeshFeatures& f) {
-  const int ne = static_cast<int>(f.edges.size());
-  EdgeGeometry eg;
-  eg.dirs.resize(ne);
-  eg.lengths.resize(ne);
-  for (int e = 0; e < ne; ++e) {
-    const Vec3 d = f.vertices[f.edges[e].second] - f.vertices[f.edges[e].first];
-    eg.lengths[e] = d.norm();
-    eg.dirs[e] = d / eg.lengths[e];
-  }
-  return eg;
-}
-
 // The polyhedron of feature `id` (faces, then edges, then vertices): its half-spaces into
 // `planes` (cleared first), and for an edge or a vertex its cone's constraints into `g`. Rebuilt
 // in every slab a region meets, which is cheaper than storing them.
-void make_region(const MeshFeatures& f, const EdgeGeometry& eg, int id, double r, double pad,
+void make_region(const MeshFeatures& f, const ScanRegions& regions, int id, double r, double pad,
                  std::vector<Plane>& planes, std::vector<Vec3>& g) {
   const int nf = static_cast<int>(f.faces.size());
   const int ne = static_cast<int>(f.edges.size());
@@ -127,7 +108,7 @@ void make_region(const MeshFeatures& f, const EdgeGeometry& eg, int id, double r
     const int e = id - nf;
     const Vec3& a = f.vertices[f.edges[e].first];
     const Vec3& b = f.vertices[f.edges[e].second];
-    const Vec3& t = eg.dirs[e];
+    const Vec3& t = regions.edge_dirs[e];
     planes.push_back({-t, -t.dot(a) + pad});
     planes.push_back({t, t.dot(b) + pad});
     for (int i = f.edge_face_offsets[e]; i < f.edge_face_offsets[e + 1]; ++i) {
@@ -146,7 +127,7 @@ void make_region(const MeshFeatures& f, const EdgeGeometry& eg, int id, double r
     const Vec3& p = f.vertices[v];
     for (int i = f.vertex_edge_offsets[v]; i < f.vertex_edge_offsets[v + 1]; ++i) {
       const int e = f.vertex_edges[i];
-      const Vec3 u = f.edges[e].first == v ? eg.dirs[e] : Vec3(-eg.dirs[e]);
+      const Vec3 u = f.edges[e].first == v ? regions.edge_dirs[e] : Vec3(-regions.edge_dirs[e]);
       g.push_back(u);
       planes.push_back({u, u.dot(p) + pad});
     }
@@ -155,7 +136,7 @@ void make_region(const MeshFeatures& f, const EdgeGeometry& eg, int id, double r
 
 // The bounding box of region `id` at radius r: a face's prism from its corners, an edge's or a
 // vertex's from its cone's unit supports.
-void region_box(const MeshFeatures& f, const RegionSupports& supports, int id, double r, double pad, Vec3& lo,
+void region_box(const MeshFeatures& f, const ScanRegions& regions, int id, double r, double pad, Vec3& lo,
                 Vec3& hi) {
   const int nf = static_cast<int>(f.faces.size());
   const int ne = static_cast<int>(f.edges.size());
@@ -176,10 +157,10 @@ void region_box(const MeshFeatures& f, const RegionSupports& supports, int id, d
   if (id < nf + ne) {
     a = f.vertices[f.edges[id - nf].first];
     b = f.vertices[f.edges[id - nf].second];
-    support = &supports.edges[id - nf];
+    support = &regions.edge_supports[id - nf];
   } else {
     a = b = f.vertices[id - nf - ne];
-    support = &supports.vertices[id - nf - ne];
+    support = &regions.vertex_supports[id - nf - ne];
   }
   for (int d = 0; d < 3; ++d) {
     hi[d] = std::max(a[d], b[d]) + r * (*support)[2 * d] + pad;
@@ -301,28 +282,34 @@ FeaturePoint closest_on_feature(const MeshFeatures& f, int key, const Vec3& p) {
   return {f.vertices[v], f.vertex_normals[v]};
 }
 
-RegionSupports region_supports(const MeshFeatures& f, int threads) {
+ScanRegions scan_regions(const MeshFeatures& f, int threads) {
   const int ne = static_cast<int>(f.edges.size()), nv = static_cast<int>(f.vertices.size());
-  EdgeGeometry eg = edge_geometry(f);
-  RegionSupports out;
-  out.edges.resize(ne);
-  out.vertices.resize(nv);
+  ScanRegions out;
+  out.edge_dirs.resize(ne);
+  out.edge_lengths.resize(ne);
+  for (int e = 0; e < ne; ++e) {
+    const Vec3 d = f.vertices[f.edges[e].second] - f.vertices[f.edges[e].first];
+    out.edge_lengths[e] = d.norm();
+    out.edge_dirs[e] = d / out.edge_lengths[e];
+  }
+  out.edge_supports.resize(ne);
+  out.vertex_supports.resize(nv);
   parallel_for_ranges(ne + nv, 4096, threads, [&](int begin, int end) {
     std::vector<Plane> planes;
     std::vector<Vec3> g, rays;
     const int nf = static_cast<int>(f.faces.size());
     for (int k = begin; k < end; ++k) {
-      make_region(f, eg, nf + k, 1.0, 0.0, planes, g);
+      make_region(f, out, nf + k, 1.0, 0.0, planes, g);
       if (k < ne)
-        out.edges[k] = cone_supports(g, eg.dirs[k], rays);
+        out.edge_supports[k] = cone_supports(g, out.edge_dirs[k], rays);
       else
-        out.vertices[k - ne] = cone_supports(g, Vec3::Zero(), rays);
+        out.vertex_supports[k - ne] = cone_supports(g, Vec3::Zero(), rays);
     }
   });
   return out;
 }
 
-BandScan scan_band(const MeshFeatures& f, const RegionSupports& supports, const GridGeometry& grid, double r,
+BandScan scan_band(const MeshFeatures& f, const ScanRegions& regions, const GridGeometry& grid, double r,
                    int threads) {
   const double h = grid.voxel;
   const double pad = 1e-9 * h;  // covers round-off in the plane tests; far below the 1e-6 budget
@@ -330,7 +317,6 @@ BandScan scan_band(const MeshFeatures& f, const RegionSupports& supports, const 
   const int nf = static_cast<int>(f.faces.size());
   const int ne = static_cast<int>(f.edges.size());
   const int nregions = nf + ne + static_cast<int>(f.vertices.size());
-  const EdgeGeometry eg = edge_geometry(f);
 
   BandScan out;
   out.value.assign(grid.count(), kInfinity);
@@ -345,7 +331,7 @@ BandScan scan_band(const MeshFeatures& f, const RegionSupports& supports, const 
   parallel_for_ranges(nregions, 4096, threads, [&](int begin, int end) {
     Vec3 low, high;
     for (int id = begin; id < end; ++id) {
-      region_box(f, supports, id, r, pad, low, high);
+      region_box(f, regions, id, r, pad, low, high);
       Box& b = boxes[id];
       for (int d = 0; d < 3; ++d) {
         const double lo = std::ceil((low[d] - grid.origin[d]) / h);
@@ -379,7 +365,7 @@ BandScan scan_band(const MeshFeatures& f, const RegionSupports& supports, const 
     for (int s = slab_count[slab]; s < slab_count[slab + 1]; ++s) {
       const int id = slab_regions[s];
       const Box& box = boxes[id];
-      make_region(f, eg, id, r, pad, planes, g);
+      make_region(f, regions, id, r, pad, planes, g);
       const Kind kind = id < nf ? Kind::face : id < nf + ne ? Kind::edge : Kind::vertex;
       const int feature = id < nf ? id : id < nf + ne ? id - nf : id - nf - ne;
       // Rows run along the box's longest axis (fewest rows); chosen from the whole box, not the
@@ -405,8 +391,8 @@ BandScan scan_band(const MeshFeatures& f, const RegionSupports& supports, const 
         key = feature;
       } else if (kind == Kind::edge) {
         p0 = f.vertices[f.edges[feature].first];
-        dir = eg.dirs[feature];
-        len = eg.lengths[feature];
+        dir = regions.edge_dirs[feature];
+        len = regions.edge_lengths[feature];
         normal = f.edge_normals[feature];
         key = nf + feature;
       } else {
@@ -419,7 +405,8 @@ BandScan scan_band(const MeshFeatures& f, const RegionSupports& supports, const 
       if (kind == Kind::face)
         needle = NeedleRows::face(f, feature, r, pad, slack);
       else if (kind == Kind::edge)
-        needle = NeedleRows::edge(f.vertices[f.edges[feature].first], eg.dirs[feature], eg.lengths[feature], g, r, pad, slack);
+        needle = NeedleRows::edge(f.vertices[f.edges[feature].first], regions.edge_dirs[feature],
+                                  regions.edge_lengths[feature], g, r, pad, slack);
       int idx[3];
       for (idx[c] = lo[c]; idx[c] <= hi[c]; ++idx[c]) {
         const double zc = grid.origin[c] + h * idx[c];

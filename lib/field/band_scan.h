@@ -20,18 +20,20 @@ struct BandScan {
   int64_t band_voxels = 0;
 };
 
-// How far each edge's and vertex's region reaches per unit radius: the largest u·(±x), u·(±y),
-// u·(±z) over the unit vectors u of its cone of normals, in that order. A region of radius r spans
-// its feature's box grown by r times these, so one computation serves every scan of a mesh (the
-// band's and the far field's coarse one).
-struct RegionSupports {
-  std::vector<std::array<double, 6>> edges, vertices;
+// What every scan of a mesh shares (the band's and the far field's coarse one), computed once:
+// each edge's unit direction and length, and how far each edge's and vertex's region reaches per
+// unit radius, the largest u·(±x), u·(±y), u·(±z) over the unit vectors u of its cone of normals,
+// in that order (a region of radius r spans its feature's box grown by r times these).
+struct ScanRegions {
+  std::vector<Vec3> edge_dirs;
+  std::vector<double> edge_lengths;
+  std::vector<std::array<double, 6>> edge_supports, vertex_supports;
 };
-RegionSupports region_supports(const MeshFeatures& features, int threads);
+ScanRegions scan_regions(const MeshFeatures& features, int threads);
 
 // Exact signed distances for every node within distance r (cm) of the mesh. Deterministic for
 // any thread count: work is split into fixed z-slabs and the minimum is order-independent.
-BandScan scan_band(const MeshFeatures& features, const RegionSupports& supports, const GridGeometry& grid, double r,
+BandScan scan_band(const MeshFeatures& features, const ScanRegions& regions, const GridGeometry& grid, double r,
                    int threads);
 
 // The closest point of feature `key` to p, and the pseudo-normal that signs the distance there.

@@ -171,9 +171,9 @@ DistanceField DistanceField::build(const Mesh& mesh, const FieldSpec& spec, int 
   const field::MeshFeatures features = field::extract_features(mesh, spec.name);
   GridGeometry grid{plan.origin, spec.voxel, plan.dims};
   const double r = spec.band * spec.voxel;
-  const field::RegionSupports supports = field::region_supports(features, threads);
-  field::BandScan band = field::scan_band(features, supports, grid, r, threads);
-  field::FarField far = field::make_far_field(features, supports, grid, band, r, plan.coarse_factor, threads);
+  const field::ScanRegions regions = field::scan_regions(features, threads);
+  field::BandScan band = field::scan_band(features, regions, grid, r, threads);
+  field::FarField far = field::make_far_field(features, regions, grid, band, r, plan.coarse_factor, threads);
   std::optional<field::RobustSigns> signs;
   if (!inside.empty()) {
     signs.emplace(inside, grid, threads);

@@ -9,7 +9,7 @@
 
 namespace hairfit::field {
 
-FarField make_far_field(const MeshFeatures& features, const RegionSupports& supports, const GridGeometry& grid,
+FarField make_far_field(const MeshFeatures& features, const ScanRegions& regions, const GridGeometry& grid,
                         const BandScan& band, double r, int coarse_factor, int threads) {
   const int c = coarse_factor;
   FarField out;
@@ -21,7 +21,7 @@ FarField make_far_field(const MeshFeatures& features, const RegionSupports& supp
   auto node = [&](int i, int j, int k) { return coarse.node(i, j, k); };
 
   // Exact values for every coarse node a fine voxel just outside the band interpolates from.
-  const BandScan near = scan_band(features, supports, coarse, r + std::sqrt(3.0) * coarse.voxel, threads);
+  const BandScan near = scan_band(features, regions, coarse, r + std::sqrt(3.0) * coarse.voxel, threads);
   const double inf = std::numeric_limits<double>::infinity();
   std::vector<Vec3> closest(count);
   std::vector<int32_t> feature(count, -1);

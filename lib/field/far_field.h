@@ -21,7 +21,7 @@ struct FarField {
 // nodes in the fine band take the fine sample itself. Every other node gets the distance to the
 // closest point carried by its best neighbour over repeated 8-direction sweeps (dead reckoning),
 // with that neighbour's sign: a distance to an actual mesh point, never below the true distance.
-FarField make_far_field(const MeshFeatures& features, const RegionSupports& supports, const GridGeometry& grid,
+FarField make_far_field(const MeshFeatures& features, const ScanRegions& regions, const GridGeometry& grid,
                         const BandScan& band, double r, int coarse_factor, int threads);
 
 // Every node of `values` beyond the band (+infinity there) gets its far-field sample: the trilinear
