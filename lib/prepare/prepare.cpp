@@ -264,7 +264,6 @@ Prepared prepare_scan(const Mesh& raw_scan, const std::vector<Vec3>& colors, con
       const int folded = o.scalp_method == "auto" ? static_cast<int>(inward_triangles(p.scalp.scalp, p.hull.centre).size()) : 0;
       if (folded > 0) {
         radial_failed = std::to_string(folded) + " of the radial scalp's triangles face the head centre (it folds)";
-        p.scalp = ScalpResult{};
       } else {
         p.checks = check(p, o.threads, o.scalp_method == "auto" ? CheckScope::until_failure : CheckScope::all);
         radial_failed = failures(p.checks);
