@@ -2,12 +2,12 @@
 
 #include <tiny_obj_loader.h>
 
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
 #include <cstring>
 #include <fstream>
-#include <algorithm>
 #include <numeric>
 #include <string_view>
 
