@@ -183,17 +183,16 @@ struct NeedleRows {
   double s_min = 0.0, s_max = 0.0;
 
   // A face's prism. The side planes, each moved out by the pad, meet at corners moved by
-  // pad·|o + o'|/(1 + o·o') (o, o': the two sides' outward normals), unbounded only for a face
-  // with an angle near 0, which keeps its box.
-  static NeedleRows face(const MeshFeatures& f, int face, double r, double pad, double slack) {
+  // pad·|o + o'|/(1 + o·o') (o, o': the two sides' outward normals, the first three of the face's
+  // `planes` from make_region), unbounded only for a face with an angle near 0, which keeps its box.
+  static NeedleRows face(const MeshFeatures& f, int face, const std::vector<Plane>& planes, double r, double pad,
+                         double slack) {
     NeedleRows out;
     const Vec3 p[3] = {f.vertices[f.faces[face][0]], f.vertices[f.faces[face][1]], f.vertices[f.faces[face][2]]};
     const Vec3& n = f.face_normals[face];
-    Vec3 side[3];
-    for (int k = 0; k < 3; ++k) side[k] = (p[(k + 1) % 3] - p[k]).cross(n).normalized();
     double grow = 0.0;
     for (int k = 0; k < 3; ++k) {
-      const Vec3 &o = side[k], &o_before = side[(k + 2) % 3];
+      const Vec3 &o = planes[k].g, &o_before = planes[(k + 2) % 3].g;
       const double cosine = 1.0 + o.dot(o_before);
       if (!(cosine > 1e-6)) return out;
       grow = std::max(grow, pad * (o + o_before).norm() / cosine);
@@ -403,7 +402,7 @@ BandScan scan_band(const MeshFeatures& f, const ScanRegions& regions, const Grid
 
       NeedleRows needle;
       if (kind == Kind::face)
-        needle = NeedleRows::face(f, feature, r, pad, slack);
+        needle = NeedleRows::face(f, feature, planes, r, pad, slack);
       else if (kind == Kind::edge)
         needle = NeedleRows::edge(f.vertices[f.edges[feature].first], regions.edge_dirs[feature],
                                   regions.edge_lengths[feature], g, r, pad, slack);
