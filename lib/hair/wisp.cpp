@@ -157,7 +157,9 @@ void fibre_along(const GuideTrack& track, const Vec3& pore, double length, doubl
       r1 = next, f1 = excess(r1);
       if (std::fabs(f1) <= tolerance) break;
       (f1 < 0.0 ? lo : hi) = r1;
-      if (hi - lo <= 1e-15 * length) break;
+      // A bracket this narrow that still misses the length by more than the tolerance holds a
+      // jump of the length (below), not a root: bisecting it further to round-off only costs sweeps.
+      if (hi - lo <= 1e-9 * length) break;
       next = f1 != f0 ? r1 - f1 * (r1 - r0) / (f1 - f0) : std::numeric_limits<double>::quiet_NaN();
     }
     // A lift off the scalp can make the length jump with the reach, so that no reach gives it
