@@ -206,6 +206,11 @@ class SceneParser {
     // Fibres spread about their guides wider than a thin layer is thick: those that skim out of
     // it (most by under 1 mm) are held in.
     if (!scene_.locations.count("strands.contain")) find_key("strands.contain")->store(scene_, {kShellContain}, {});
+    // A layer deeper than a wisp is wide is filled by its hair only if the fibres spread through
+    // it (MakeHuman bob01, 3.4 cm deep: coverage 0.32 with round wisps, 0.57 spread); a thinner
+    // one keeps the paper's wisps (short04 and ponytail01, 0.4 cm: spread, more fibres run past the
+    // layer's edge and are cut). bench/results/thin_shells.md.
+    if (!scene_.locations.count("strands.depth")) find_key("strands.depth")->store(scene_, {}, {"auto"});
     // Tips that run past the end of a thin layer (the hull's edge) are cut there.
     if (!scene_.locations.count("strands.cut_tips")) find_key("strands.cut_tips")->store(scene_, {1.0}, {});
     // The guides start from pre-guides that already lie in the layer: a looser stop loses nothing

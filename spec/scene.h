@@ -142,6 +142,7 @@ struct SceneStrands {
   double cut_threshold = 1.0;    // cm outside the volume before a fibre is cut, when effects.cutting
   bool cut_tips = false;         // with effects.cutting: a fibre ending outside is cut where it last left
   double contain = 0.0;          // cm: fibre points outside the volume by less than this move back in (0: none)
+  std::string depth = "wisp";    // wisp (around the guide, the paper) | layer (spread through the layer's depth) | auto
 };
 
 struct SceneOutput {

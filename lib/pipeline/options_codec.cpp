@@ -136,6 +136,7 @@ void encode(ByteWriter& out, const StrandOptions& o) {
   out.put<std::uint8_t>(o.cutting);
   out.put(o.cut_threshold);
   out.put<std::uint8_t>(o.cut_tips);
+  out.put<std::uint8_t>(o.layer_depth);
 }
 
 }  // namespace hairfit

@@ -2,6 +2,9 @@
 
 #include <limits>
 
+#include "core/smoothstep.h"
+#include "field/layer_depth.h"
+
 namespace hairfit {
 
 namespace {
@@ -38,6 +41,17 @@ std::function<Vec3(const Vec3&)> into_volume(const DistanceField& volume, double
     const double value = volume.value(p);
     if (!(value > 0.0) || value > reach) return p;
     return to_level(volume, p, -kVolumeClearance, -1.0);
+  };
+}
+
+std::function<Vec3(const Vec3&, double, double)> layer_placement(const DistanceField& scalp, const DistanceField& volume) {
+  return [&scalp, &volume](const Vec3& p, double depth, double weight) {
+    const FieldValueGradient s = scalp.value_and_gradient(p), v = volume.value_and_gradient(p);
+    const LayerDepth here = layer_depth(s, v);
+    if (!(here.thickness > 0.0)) return p;
+    if (v.value > 0.0) weight *= 1.0 - smoothstep(v.value / kLayerDepthReach);
+    if (!(weight > 0.0)) return p;
+    return to_layer_depth(scalp, volume, p, here, here.value + weight * (depth - here.value));
   };
 }
 

@@ -26,4 +26,13 @@ constexpr double kVolumeClearance = 0.05;
 // the interpolated field); `volume` must outlive the result.
 std::function<Vec3(const Vec3&)> into_volume(const DistanceField& volume, double reach);
 
+// How far beyond the hull (cm) a fibre point is still moved into its layer depth: the move fades
+// from full at the hull to none this far out, where the layer has ended.
+constexpr double kLayerDepthReach = 1.0;
+
+// StrandSurroundings::to_layer_depth from the two fields (field/layer_depth.h): p moves to the
+// layer depth λ(p) + w·(depth − λ(p)), with w the given weight faded by the smoothstep beyond the
+// hull over kLayerDepthReach. Both fields must outlive the result.
+std::function<Vec3(const Vec3&, double, double)> layer_placement(const DistanceField& scalp, const DistanceField& volume);
+
 }  // namespace hairfit

@@ -147,6 +147,7 @@ StrandOptions strand_options(const Scene& scene) {
     o.cut_threshold = scene.strands.cut_threshold;
     o.cut_tips = scene.strands.cut_tips;
   }
+  o.layer_depth = scene.strands.depth == "layer";
   return o;
 }
 

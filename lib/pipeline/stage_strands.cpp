@@ -9,6 +9,7 @@
 #include "pipeline/stage.h"
 #include "pipeline/stage_codec.h"
 #include "pipeline/stage_options.h"
+#include "scalp/shell_hair.h"
 #include "strands/coverage.h"
 
 namespace hairfit {
@@ -20,12 +21,23 @@ struct StrandsOptions {
   StrandOptions strands;
   double cross_section = 0.0;  // cm², for the fibres' widths
   double contain = 0.0;        // cm (strands.contain; 0: not held); the deposit's fibres are not
+  bool depth_from_layer = false;  // strands.depth = "auto": strands.layer_depth decided by the layer
 };
 
 void encode(ByteWriter& out, const StrandsOptions& o) {
   encode(out, o.strands);
   out.put(o.cross_section);
   out.put(o.contain);
+  out.put<std::uint8_t>(o.depth_from_layer);
+}
+
+// strands.depth = "auto": a round wisp is 2·tip_radius wide at most, so it fills a layer no
+// deeper than that; a deeper layer (its thickness T over the scalp, scalp/shell_hair.h) has its
+// fibres spread through it.
+bool spread_through_layer(const StageRun& run, const StrandOptions& o) {
+  const StageValues& v = run.values;
+  const ShellHair shell = shell_hair(*v.chart, layer_thickness(*v.volume_field), run.options.threads);
+  return shell.thickness > 2.0 * o.wisp.tip_radius;
 }
 
 std::size_t loop_items(const StageValues& v) { return v.roots->pores.size(); }
@@ -39,6 +51,8 @@ void compute(StageRun& run, const StrandsOptions& o, StageReport& stage) {
     const int side = volume->side(p);
     return side != 0 ? side * std::numeric_limits<double>::infinity() : volume->value(p);
   };
+  StrandOptions strands = o.strands;
+  if (o.depth_from_layer) strands.layer_depth = spread_through_layer(run, strands);
   const TriangleGrid scalp_triangles(v.chart->mesh);
   StrandSurroundings around;
   around.volume = volume_distance;
@@ -46,7 +60,8 @@ void compute(StageRun& run, const StrandsOptions& o, StageReport& stage) {
   around.out_of_head =
       scalp_exit(*v.scalp_field, &scalp_triangles, v.chart->outward, o.contain > 0.0 ? v.volume_field.get() : nullptr);
   if (o.contain > 0.0) around.out_of_head.into_volume = into_volume(*v.volume_field, o.contain);
-  GrownStrands grown = make_strands(v.guides->curves(), run.pores(), o.strands, around, run.exec(),
+  if (strands.layer_depth) around.to_layer_depth = layer_placement(*v.scalp_field, *v.volume_field);
+  GrownStrands grown = make_strands(v.guides->curves(), run.pores(), strands, around, run.exec(),
                                     std::move(run.deposited_fibres));
   run.deposited_fibres = {};
   const FibrePointSides& known = grown.sides;  // looked up on the way: the counts need not ask again
@@ -77,6 +92,7 @@ void compute(StageRun& run, const StrandsOptions& o, StageReport& stage) {
   for (const std::array<int, 3>& n : counts) inside += n[0], in_head += n[1], out_volume += n[2];
   const double points = std::max<double>(1.0, static_cast<double>(fibres.points.size() - fibres.count()));
   stage.add("fibres", static_cast<std::int64_t>(fibres.count()));
+  stage.add("depth", std::string(strands.layer_depth ? "layer" : "wisp"));
   stage.add("points", static_cast<std::int64_t>(fibres.points.size()));
   if (o.strands.cutting) stage.add("cut", static_cast<std::int64_t>(v.strands->cut_count));
   stage.add("inside_fraction", inside / points);
@@ -100,11 +116,15 @@ void encode_value(ByteWriter& out, const StageValues& v) { encode(out, *v.strand
 void decode_value(ByteReader& in, StageValues& v) { v.strands = std::make_shared<const Strands>(decode_strands(in)); }
 
 ConfiguredStage configure(const Scene& scene) {
-  StrandsOptions o{strand_options(scene), scene.hair.cross_section, scene.strands.contain};
-  const bool reads_fields = o.strands.cutting || o.contain > 0.0;  // cut where fibres leave the volume, or held in it
+  StrandsOptions o{strand_options(scene), scene.hair.cross_section, scene.strands.contain,
+                   scene.strands.depth == "auto"};
+  // cut where fibres leave the volume, held in it, or spread through the layer
+  const bool reads_fields = o.strands.cutting || o.contain > 0.0 || o.strands.layer_depth || o.depth_from_layer;
+  const bool reads_chart = o.depth_from_layer;
   ConfiguredStage c = configured(std::move(o), compute);
   c.consumes = {"roots", "guides"};
   if (reads_fields) c.consumes.push_back("fields");
+  if (reads_chart) c.consumes.push_back("chart");
   // Not stored: the strands (and the density of the final fibres) are hit only when nothing
   // before them changed, while every new weight or strand setting would add the largest entry of
   // all (31 MB for the spheroid's 68 000 fibres, against 15 MB for its guides); rebuilding them

@@ -152,10 +152,13 @@ struct ChordsLeft {
   int first = 0;
 };
 
+// `place` (optional): the fibre's move into its layer depth, in the length solve before the
+// keep-out pass.
 ChordsLeft fibre_kept_out(const GuideTrack& track, const Vec3& pore, double length, double wisp_extent,
                    const std::vector<WispStation>& stations, const HeadExit& out_of_head, const Vec3* root_normal,
-                   Vec3* points, WispPoint* layout, std::int8_t* in_head = nullptr, bool grown = false) {
-  if (!grown) fibre_along(track, pore, length, wisp_extent, stations, nullptr, points, layout);
+                   Vec3* points, WispPoint* layout, std::int8_t* in_head = nullptr, bool grown = false,
+                   const FibreAdjust* place = nullptr) {
+  if (!grown || place) fibre_along(track, pore, length, wisp_extent, stations, place, points, layout);
   if (!out_of_head) return {};
   const int n = static_cast<int>(stations.size());
   if (in_head) in_head[0] = -1;
@@ -172,7 +175,10 @@ ChordsLeft fibre_kept_out(const GuideTrack& track, const Vec3& pore, double leng
     if (out_of_head(points[i], value) != points[i] || chord_dips ||
         (out_of_head.into_volume && out_of_head.into_volume(points[i]) != points[i]) ||
         (chords && chord_crosses(out_of_head, points[i - 1], points[i], i == 1, unused, clearance_before, clearance))) {
-      const FibreAdjust keep = [&](Vec3* fibre, int m) { keep_out(out_of_head, root_normal, fibre, m); };
+      const FibreAdjust keep = [&](Vec3* fibre, int m) {
+        if (place) (*place)(fibre, m);
+        keep_out(out_of_head, root_normal, fibre, m);
+      };
       fibre_along(track, pore, length, wisp_extent, stations, &keep, points, layout);
       if (in_head) std::fill(in_head, in_head + n, std::int8_t(-1));
       ChordsLeft left;
@@ -199,6 +205,32 @@ std::vector<Vec3> make_fibre(const std::vector<Vec3>& guide, const Vec3& pore, d
   return points;
 }
 
+double fibre_layer_depth(int rank, int count) {
+  return kLayerMargin + (1.0 - 2.0 * kLayerMargin) * (1.0 - (rank + 0.5) / std::max(1, count));
+}
+
+namespace {
+
+// Per pore, its fibre's layer depth (fibre_layer_depth): within its guide's wisp, ranked by how
+// far upstream along the guide's root tangent the pore lies (ties by pore index).
+std::vector<double> fibre_layer_depths(const std::vector<GuideTrack>& tracks, const Pores& pores,
+                                       const std::vector<std::vector<int>>& pores_of) {
+  std::vector<double> depth(pores.positions.size(), 0.5);
+  std::vector<std::pair<double, int>> order;
+  for (std::size_t g = 0; g < tracks.size(); ++g) {
+    Vec3 root, tangent, d1, d2;
+    tracks[g].at(0.0, root, tangent, d1, d2);
+    order.clear();
+    for (int i : pores_of[g]) order.push_back({(pores.positions[i] - root).dot(tangent), i});
+    std::sort(order.begin(), order.end());
+    const int count = static_cast<int>(order.size());
+    for (int rank = 0; rank < count; ++rank) depth[order[rank].second] = fibre_layer_depth(rank, count);
+  }
+  return depth;
+}
+
+}  // namespace
+
 GrownStrands make_strands(const Curves& guides, const Pores& pores, const StrandOptions& options,
                           const StrandSurroundings& around, const Exec& exec, std::vector<Vec3> grown) {
   const DistanceFunction& volume = around.volume;
@@ -215,6 +247,9 @@ GrownStrands make_strands(const Curves& guides, const Pores& pores, const Strand
   for (std::size_t i = 0; i < pores.positions.size(); ++i) pores_of[pores.guide[i]].push_back(static_cast<int>(i));
   std::vector<double> extent(guide_count, 0.0);
   for (int g = 0; g < guide_count; ++g) extent[g] = wisp_extent(tracks[g], pores.positions, pores_of[g]);
+
+  const bool layered = options.layer_depth && static_cast<bool>(around.to_layer_depth);
+  const std::vector<double> layer_depths = layered ? fibre_layer_depths(tracks, pores, pores_of) : std::vector<double>{};
 
   // Every fibre is grown (and cut) in place in its own slot of n points of the result; slots of
   // cut fibres are closed up afterwards.
@@ -252,9 +287,14 @@ GrownStrands make_strands(const Curves& guides, const Pores& pores, const Strand
     Vec3* points = out.points.data() + n * i;
     std::int8_t* head = in_head ? in_head->data() + n * i : nullptr;
     const Vec3* root_normal = pores.normals.empty() ? nullptr : &pores.normals[i];
+    FibreAdjust place;
+    if (layered)
+      place = [&](Vec3* fibre, int m) {
+        for (int k = 2; k < m; ++k) fibre[k] = around.to_layer_depth(fibre[k], layer_depths[i], stations[k].w);
+      };
     const ChordsLeft left = fibre_kept_out(tracks[pores.guide[i]], pores.positions[i], pores.lengths[i],
                                            extent[pores.guide[i]], stations, out_of_head, root_normal, points,
-                                           scratch.layout.data(), head, pre_grown);
+                                           scratch.layout.data(), head, pre_grown, layered ? &place : nullptr);
     // A chord the keep-out pass leaves through the scalp (where both its ends lie clear of the
     // head, as at the scalp's rim, it has nothing to move) ends the fibre before it: the hair
     // stops at the skin. One from the root cannot be cut away: it and the rest are counted.

@@ -20,7 +20,21 @@ struct StrandOptions {
   bool cutting = false;
   double cut_threshold = 1.0;  // cm outside the volume before a cut
   bool cut_tips = false;       // a fibre ending outside is cut where it last left (cut_at_exit)
+  // Fibres spread through the depth of the hair layer (strands.depth = "layer"; needs
+  // StrandSurroundings::to_layer_depth): the fibres of a wisp take depths spaced evenly over the
+  // layer between kLayerMargin of it at either side, the fibre whose pore lies furthest upstream
+  // along the guide's root tangent on top (its hair lies over its neighbours' roots), each point
+  // moved to its depth by the settle weight of its wisp station. The first segment leaves the
+  // pore as in the wisp: turned toward a depth it could dip under a curved scalp beside the pore,
+  // where a chord from the root cannot be lifted.
+  bool layer_depth = false;
 };
+
+// The share of the layer's depth kept clear at either side when fibres spread through it.
+constexpr double kLayerMargin = 0.1;
+
+// The layer depth (0 scalp, 1 hull) of the fibre ranked `rank` of `count` (0 the furthest upstream).
+double fibre_layer_depth(int rank, int count);
 
 // sin of the least angle a fibre's first segment rises above its pore's triangle (2°).
 constexpr double kRootRise = 0.0348994967025;
@@ -97,6 +111,9 @@ struct StrandSurroundings {
   // guide's clearance, or a guide that dips in) has those points moved out, still with exactly
   // its length.
   HeadExit out_of_head;
+  // With StrandOptions::layer_depth: p moved the share `weight` of the way from its own layer depth
+  // to `depth` (field/layer_depth.h), less beyond the hull, where the layer has ended.
+  std::function<Vec3(const Vec3& p, double depth, double weight)> to_layer_depth;
 };
 
 // The strands, and what the field values looked up on the way said about every point.
@@ -111,7 +128,9 @@ struct GrownStrands {
 // `grown` (optional, else empty): every pore's fibre as grow_fibre grows it along these guides
 // with these options, fibre_point_count(options.wisp) points each, in pore order (the density
 // model's deposit grew them already); those fibres are not grown again, and the result is the
-// same bit for bit. Throws std::invalid_argument when it holds another number of points.
+// same bit for bit (with StrandOptions::layer_depth they are grown again, since the deposit
+// does not spread them through the layer). Throws std::invalid_argument when it holds another
+// number of points.
 GrownStrands make_strands(const Curves& guides, const Pores& pores, const StrandOptions& options,
                           const StrandSurroundings& around = {}, const Exec& exec = {}, std::vector<Vec3> grown = {});
 

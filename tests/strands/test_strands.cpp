@@ -545,3 +545,69 @@ TEST_CASE("a fibre whose chord the keep-out pass cannot lift off the scalp ends 
     else CHECK(s.fibres.points == reference.fibres.points);
   }
 }
+
+TEST_CASE("fibre layer depths: evenly spaced between the margins, the furthest upstream on top") {
+  CHECK(fibre_layer_depth(0, 1) == doctest::Approx(0.5).epsilon(1e-15));
+  const double expected[] = {0.8, 0.6, 0.4, 0.2};
+  for (int rank = 0; rank < 4; ++rank) CHECK(fibre_layer_depth(rank, 4) == doctest::Approx(expected[rank]).epsilon(1e-14));
+  for (int count : {2, 7, 100}) {
+    CHECK(fibre_layer_depth(0, count) < 1.0 - kLayerMargin);
+    CHECK(fibre_layer_depth(count - 1, count) > kLayerMargin);
+  }
+}
+
+TEST_CASE("fibres spread through the layer: each at its own depth past the settle, root and length kept") {
+  // The layer 0 ≤ y ≤ 2 over the scalp y = 0: λ = y / 2, and the placement moves a point to
+  // λ + w·(depth − λ) exactly. A guide rising to y = 1 and running along +x; 60 pores around its
+  // root, in two wisps (alternate pores) so that ranks are per wisp.
+  Curves guides;
+  guides.add(rising_guide(1.0), 0);
+  guides.add(rising_guide(1.0), 1);
+  Pores pores;
+  Random r(21, RandomStage::test, 0);
+  for (int i = 0; i < 60; ++i) {
+    pores.positions.push_back(Vec3(r.uniform(-0.3, 0.3), 0.0, r.uniform(-0.3, 0.3)));
+    pores.lengths.push_back(r.uniform(5.0, 9.0));
+    pores.guide.push_back(i % 2);
+  }
+  StrandOptions o;
+  o.wisp.points = 20;
+  o.layer_depth = true;
+  StrandSurroundings around;
+  around.to_layer_depth = [](const Vec3& p, double depth, double weight) {
+    const double lambda = 0.5 * p.y();
+    return Vec3(p.x(), 2.0 * (lambda + weight * (depth - lambda)), p.z());
+  };
+  const std::vector<WispStation> stations = wisp_stations(o.wisp);
+  Strands reference;
+  for (int threads : {1, 2, 4}) {
+    const Strands s = make_strands(guides, pores, o, around, Exec{threads, {}}).strands;
+    REQUIRE(s.fibres.count() == pores.positions.size());
+    if (threads == 1) reference = s;
+    CHECK(s.fibres.points == reference.fibres.points);
+  }
+  // Within each wisp the fibres' depths past the settle are the ranks' depths, upstream on top:
+  // the guide leaves its root along (1, 1, 0)/√2, so on the scalp y = 0 upstream is smaller x.
+  for (int g = 0; g < 2; ++g) {
+    std::vector<std::pair<double, std::size_t>> upstream;
+    for (std::size_t i = g; i < pores.positions.size(); i += 2) upstream.push_back({pores.positions[i].x(), i});
+    std::sort(upstream.begin(), upstream.end());
+    const int count = static_cast<int>(upstream.size());
+    for (int rank = 0; rank < count; ++rank) {
+      const std::size_t i = upstream[rank].second;
+      const std::size_t begin = reference.fibres.offsets[i], end = reference.fibres.offsets[i + 1];
+      std::vector<Vec3> fibre(reference.fibres.points.begin() + begin, reference.fibres.points.begin() + end);
+      CHECK(fibre[0] == pores.positions[i]);
+      CHECK(std::fabs(polyline_length(fibre) - pores.lengths[i]) <= 1e-9 * pores.lengths[i]);
+      for (std::size_t k = 0; k < fibre.size(); ++k)
+        if (stations[k].w == 1.0) CHECK(0.5 * fibre[k].y() == doctest::Approx(fibre_layer_depth(rank, count)).epsilon(1e-12));
+    }
+  }
+  // Without the placement (or without the option) the fibres are the paper's wisps, unchanged.
+  StrandOptions paper = o;
+  paper.layer_depth = false;
+  const Strands plain = make_strands(guides, pores, paper, {}, Exec{1, {}}).strands;
+  CHECK(make_strands(guides, pores, paper, around, Exec{1, {}}).strands.fibres.points == plain.fibres.points);
+  CHECK(make_strands(guides, pores, o, {}, Exec{1, {}}).strands.fibres.points == plain.fibres.points);
+  CHECK(plain.fibres.points != reference.fibres.points);
+}
