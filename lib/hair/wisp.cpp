@@ -162,13 +162,22 @@ void fibre_along(const GuideTrack& track, const Vec3& pore, double length, doubl
       if (hi - lo <= 1e-9 * length) break;
       next = f1 != f0 ? r1 - f1 * (r1 - r0) / (f1 - f0) : std::numeric_limits<double>::quiet_NaN();
     }
-    // A lift off the scalp can make the length jump with the reach, so that no reach gives it
-    // exactly: the fibre at the shortest reach known too long then ends short of its last point
-    // by the excess, along its last chord (a part of a chord that crosses nothing crosses nothing).
+    // A lift off the scalp, or a seam of the fields a fibre is moved by, can make the length jump
+    // with the reach, so that no reach gives it exactly: the fibre at the shortest reach known too
+    // long then ends short of its last point by the excess, along its last chord (a part of a
+    // chord that crosses nothing crosses nothing). Where the excess is longer than that chord, the
+    // fibre at the longest reach known too short goes on along its last chord by the shortfall.
     if (std::fabs(f1) > tolerance && std::isfinite(hi)) {
       const double too_long = r1 == hi ? f1 : excess(hi);
       const double last = (points[n - 1] - points[n - 2]).norm();
-      if (too_long > 0.0 && too_long < last) points[n - 1] = points[n - 2] + (1.0 - too_long / last) * (points[n - 1] - points[n - 2]);
+      if (too_long > 0.0 && too_long < last) {
+        points[n - 1] = points[n - 2] + (1.0 - too_long / last) * (points[n - 1] - points[n - 2]);
+      } else if (lo > 0.0) {
+        const double too_short = -excess(lo);
+        const double chord = (points[n - 1] - points[n - 2]).norm();
+        if (too_short > 0.0 && chord > 0.0)
+          points[n - 1] = points[n - 2] + (1.0 + too_short / chord) * (points[n - 1] - points[n - 2]);
+      }
     }
   }
   points[0] = pore;  // exactly, not up to round-off

@@ -611,3 +611,32 @@ TEST_CASE("fibres spread through the layer: each at its own depth past the settl
   CHECK(make_strands(guides, pores, o, {}, Exec{1, {}}).strands.fibres.points == plain.fibres.points);
   CHECK(plain.fibres.points != reference.fibres.points);
 }
+
+TEST_CASE("a fibre whose length jumps with its reach still has exactly its length") {
+  // A straight guide along +x; the adjustment throws point 5 sideways once it passes x = 2, so
+  // the fibre's length jumps there and no reach gives it exactly. A small jump is trimmed off the
+  // last chord of the fibre just too long; one longer than the last chord is made up by the fibre
+  // just too short going on along its last chord.
+  std::vector<Vec3> line;
+  for (int i = 0; i <= 60; ++i) line.emplace_back(0.25 * i, 0.0, 0.0);
+  const GuideTrack track(line);
+  WispShape shape;
+  shape.points = 16;
+  const std::vector<WispStation> stations = wisp_stations(shape);
+  std::vector<Vec3> points(stations.size());
+  std::vector<WispPoint> layout(stations.size());
+  for (double jump : {0.05, 0.3, 3.0}) {
+    int jumped = 0;
+    const FibreAdjust adjust = [&](Vec3* p, int n) {
+      if (n > 5 && p[5].x() > 2.0) p[5] += Vec3(0.0, jump, 0.0), ++jumped;
+    };
+    for (double length : {7.0, 8.0, 9.5}) {
+      const Vec3 pore(0.0, 0.0, 0.1);
+      fibre_along(track, pore, length, 0.3, stations, &adjust, points.data(), layout.data());
+      CHECK(points[0] == pore);
+      CHECK(polyline_length(points) == doctest::Approx(length).epsilon(1e-9));
+      for (const Vec3& p : points) CHECK(p.allFinite());
+    }
+    CHECK(jumped > 0);
+  }
+}
