@@ -63,6 +63,7 @@ struct SceneHair {
   double flow_smoothing = 6.0;              // cm: the growth field averages its guidance over this
   double relief_radius = 1.5;               // cm: with flow = relief, the reach of the hull's grain
   double swirl = 0.0;                       // degrees: growth away from the layer's end turns clockwise
+  double hang_margin = 0.0;                 // cm: with tilt_toward = hanging, hanging hair ends this far before its layer
   std::array<double, 2> whorl{0.0, 0.0};    // chart point of a crown whorl
   double whorl_radius = 0.0;                // cm (0: none)
   std::array<double, 2> parting{0.0, 1.0};  // chart point where a parting starts; it runs to the whorl

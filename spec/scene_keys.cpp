@@ -239,6 +239,10 @@ std::vector<SceneKey> build_keys() {
                         "With a growth field and tilt_toward = \"thicker\" or \"hanging\": hair that grows away from where the layer "
                         "ends turns clockwise (seen from outside) by this, so on a cap it spirals to the crown like a whorl "
                         "instead of meeting there head on."));
+  keys.push_back(number("hair.hang_margin", REF(hair.hang_margin), "cm", closed(0, 100), "roots",
+                        "With tilt_toward = \"hanging\": the layer below a root counts as ending this much sooner, so a "
+                        "hanging hair ends this far before the hull's lower edge instead of at it (a heavy rod sags and a "
+                        "wisp spreads past the probe's path)."));
   keys.push_back(point2("hair.whorl", REF(hair.whorl), "roots",
                       "With a growth field: the chart point (x to the person's right, y to the front) of a crown whorl, "
                       "from which hair grows, turned clockwise by hair.swirl."));

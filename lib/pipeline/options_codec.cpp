@@ -44,6 +44,7 @@ void encode(ByteWriter& out, const RootOptions& o) {
   out.put(o.tilt_range);
   out.put(o.length);
   out.put(o.length_range);
+  out.put(o.hang_margin);
   out.put(o.guides);
   out.put(o.preguide_spacing);
   out.put(o.cluster_overlap);

@@ -32,6 +32,7 @@ RootSettings root_settings(const Scene& scene) {
   }
   o.length = scene.hair.length;
   if (scene.effects.uses_map("length")) o.length_range = scene.hair.length_range;
+  if (o.tilt_toward == TiltToward::hanging) o.hang_margin = scene.hair.hang_margin;
   o.guides = scene.roots.guides;
   o.preguide_spacing = scene.roots.preguide_spacing;
   o.cluster_overlap = scene.roots.cluster_overlap;

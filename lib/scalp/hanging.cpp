@@ -59,10 +59,14 @@ double hang_length(const HangProbe& probe, const Vec3& root, const Vec3& normal,
   return std::min(travelled, cap);
 }
 
-std::vector<double> vertex_hangs(const ScalpChart& chart, const HangProbe& probe, double cap, int threads) {
+std::vector<double> vertex_hangs(const ScalpChart& chart, const HangProbe& probe, double cap, int threads,
+                                 double margin) {
   const int n = static_cast<int>(chart.mesh.positions.size());
   std::vector<double> hangs(n, 0.0);
-  parallel_for(n, threads, [&](int v) { hangs[v] = hang_length(probe, chart.mesh.positions[v], chart.vertex_normals[v], cap); });
+  parallel_for(n, threads, [&](int v) {
+    const double hang = hang_length(probe, chart.mesh.positions[v], chart.vertex_normals[v], cap + margin);
+    hangs[v] = margin > 0.0 ? std::max(0.0, hang - margin) : hang;
+  });
   return hangs;
 }
 

@@ -46,8 +46,11 @@ struct HangProbe {
 // The hang h of a root at `root` with unit outward `normal`, up to `cap` (cm).
 double hang_length(const HangProbe& probe, const Vec3& root, const Vec3& normal, double cap);
 
-// The hang at every vertex of the scalp chart, up to `cap`.
-std::vector<double> vertex_hangs(const ScalpChart& chart, const HangProbe& probe, double cap, int threads);
+// The hang at every vertex of the scalp chart, up to `cap`, with the layer taken to end `margin`
+// (cm, hair.hang_margin) sooner: probed up to cap + margin, less the margin, so that a layer
+// holding cap + margin below a vertex still holds the whole cap.
+std::vector<double> vertex_hangs(const ScalpChart& chart, const HangProbe& probe, double cap, int threads,
+                                 double margin = 0.0);
 
 // φ = smoothstep(h / L); 0 for L ≤ 0.
 double hang_weight(double hang, double length);

@@ -336,6 +336,7 @@ TEST_CASE("with every effect on, every scene key a stage reads changes a stage's
   all.effects.gravity = all.effects.contact = all.effects.cutting = all.effects.winding = true;
   all.effects.density = DensityModel::continuous;
   all.hair.flow = "relief";  // reads the growth field's keys and the relief radius
+  all.hair.tilt_toward = "hanging";  // reads the hang's margin too
   all.hair.whorl_radius = 3.0;
   all.hair.parting_radius = 1.0;
   all.preguides.immersion = "layer";

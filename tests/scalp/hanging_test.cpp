@@ -242,3 +242,26 @@ TEST_CASE("the hang at a scalp point interpolates its triangle's corners") {
   const Vec3 p = 0.2 * cap.chart.mesh.positions[t[0]] + 0.3 * cap.chart.mesh.positions[t[1]] + 0.5 * cap.chart.mesh.positions[t[2]];
   CHECK(hang_at(cap.chart, hangs, sp) == doctest::Approx(2.0 + p.x()).epsilon(1e-14));
 }
+
+TEST_CASE("the hang's margin: the layer ends that much sooner, and a layer holding cap + margin holds the cap") {
+  // A wall whose layer ends 5 cm below every vertex of the cap's chart, probed from each vertex
+  // straight down the wall's plane x = 0: each vertex's own hang is its height + 5 (y ≥ −5).
+  Cap cap;
+  const HangProbe wall = plane_probe(Vec3(1, 0, 0), -5.0, 0.05);
+  ScalpChart flat = cap.chart;
+  for (Vec3& p : flat.mesh.positions) p = Vec3(0.0, p.y(), p.z());  // every vertex on the wall
+  for (Vec3& n : flat.vertex_normals) n = Vec3(1, 0, 0);
+  const std::vector<double> plain = vertex_hangs(flat, wall, 30.0, 2);
+  for (double margin : {0.5, 2.0}) {
+    CAPTURE(margin);
+    for (double top : {30.0, 3.0}) {
+      const std::vector<double> kept = vertex_hangs(flat, wall, top, 2, margin);
+      for (std::size_t v = 0; v < kept.size(); ++v) {
+        // The layer below v: plain[v] (≈ height + 5, to the probe's bisection).
+        const double expected = std::clamp(plain[v] - margin, 0.0, top);
+        CHECK(kept[v] == doctest::Approx(expected).epsilon(1e-6).scale(1.0));
+      }
+    }
+  }
+  CHECK(vertex_hangs(flat, wall, 30.0, 2, 0.0) == plain);  // no margin: the hang as it was
+}
