@@ -8,10 +8,10 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
-#include <numeric>
 #include <string_view>
 
 #include "core/error.h"
+#include "core/weld.h"
 #include "io/atomic_file.h"
 #include "io/number_text.h"
 
@@ -168,22 +168,22 @@ LoadedMesh load_obj_mesh(const std::filesystem::path& path, double scale_to_cm) 
   // tinyobjloader keeps colours only when every vertex has them (vertex_color = false: no fallback).
   const std::vector<tinyobj::real_t>& rgb = reader.GetAttrib().colors;
   const bool with_colors = n > 0 && rgb.size() == v.size();
-  // Weld exact duplicates: scans often repeat vertices along patch seams. Sorted by position (ties
-  // by index), each vertex joins the first of its run of equal positions; welded vertices keep the
-  // order of their first appearance, and the first one's colour.
-  std::vector<std::array<double, 3>> at(n);
-  for (int i = 0; i < n; ++i) at[i] = {v[3 * i] * scale_to_cm, v[3 * i + 1] * scale_to_cm, v[3 * i + 2] * scale_to_cm};
-  std::vector<int> order(n);
-  std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](int a, int b) { return at[a] != at[b] ? at[a] < at[b] : a < b; });
-  std::vector<int> first(n);
-  for (int k = 0; k < n; ++k) first[order[k]] = k > 0 && at[order[k]] == at[order[k - 1]] ? first[order[k - 1]] : order[k];
+  // Weld exact duplicates: scans often repeat vertices along patch seams. Each vertex joins the
+  // first vertex at its position (weld_points at tolerance 0); welded vertices keep the order of
+  // their first appearance, and the first one's colour.
+  std::vector<Vec3> at(n);
+  for (int i = 0; i < n; ++i) at[i] = Vec3(v[3 * i], v[3 * i + 1], v[3 * i + 2]) * scale_to_cm;
+  for (int i = 0; i < n; ++i)
+    if (!at[i].allFinite())
+      throw InputError(file, "vertex " + std::to_string(i + 1) + " is beyond the range of numbers once scaled to cm; " +
+                                 "check the scene's units.length and the file's coordinates");
+  const std::vector<int> first = weld_points(at, 0.0);
   std::vector<int> weld(n);
   std::vector<Vec3> welded, welded_colors;
   for (int i = 0; i < n; ++i) {
     if (first[i] == i) {
       weld[i] = static_cast<int>(welded.size());
-      welded.emplace_back(at[i][0], at[i][1], at[i][2]);
+      welded.push_back(at[i]);
       if (with_colors) welded_colors.emplace_back(rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2]);
     } else {
       weld[i] = weld[first[i]];

@@ -113,6 +113,9 @@ TEST_CASE("OBJ errors name the file, the line and the fix") {
             .find("is a binary file") != std::string::npos);
   CHECK(error_of([&] { load_obj_mesh(write("short.obj", "v 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")); })
             .find("fewer than 3 coordinates") != std::string::npos);
+  // Finite as text, but beyond the reader's single precision (or the scale to cm): named, not welded as inf.
+  CHECK(error_of([&] { load_obj_mesh(write("huge.obj", "v 0 0 0\nv 1e39 0 0\nv 0 1 0\nf 1 2 3\n")); })
+            .find("vertex 2 is beyond the range of numbers once scaled to cm") != std::string::npos);
 }
 
 TEST_CASE("OBJ write → read round trip keeps positions and triangles") {
