@@ -36,8 +36,7 @@ void encode(ByteWriter& out, const StrandsOptions& o) {
 // fibres spread through it.
 bool spread_through_layer(const StageRun& run, const StrandOptions& o) {
   const StageValues& v = run.values;
-  const ShellHair shell = shell_hair(*v.chart, layer_thickness(*v.volume_field), run.options.threads);
-  return shell.thickness > 2.0 * o.wisp.tip_radius;
+  return shell_thickness(*v.chart, layer_thickness(*v.volume_field), run.options.threads) > 2.0 * o.wisp.tip_radius;
 }
 
 std::size_t loop_items(const StageValues& v) { return v.roots->pores.size(); }

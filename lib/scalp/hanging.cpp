@@ -65,7 +65,7 @@ std::vector<double> vertex_hangs(const ScalpChart& chart, const HangProbe& probe
   std::vector<double> hangs(n, 0.0);
   parallel_for(n, threads, [&](int v) {
     const double hang = hang_length(probe, chart.mesh.positions[v], chart.vertex_normals[v], cap + margin);
-    hangs[v] = margin > 0.0 ? std::max(0.0, hang - margin) : hang;
+    hangs[v] = std::max(0.0, hang - margin);  // hang ≥ 0, so exactly the hang without a margin
   });
   return hangs;
 }

@@ -18,19 +18,35 @@ ShellHair hair_for_shell(double thickness, double reach) {
   return h;
 }
 
-ShellHair shell_hair(const ScalpChart& ch, const ThicknessField& field, int threads) {
+namespace {
+
+std::vector<double> vertex_thickness(const ScalpChart& ch, const ThicknessField& field, int threads) {
   const int n = static_cast<int>(ch.mesh.positions.size());
   std::vector<double> thickness(n, 0.0);
   parallel_for(n, threads, [&](int i) { thickness[i] = field(ch.mesh.positions[i]).value; });
+  return thickness;
+}
+
+double percentile_90(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  return values[static_cast<std::size_t>(0.9 * (values.size() - 1))];
+}
+
+}  // namespace
+
+double shell_thickness(const ScalpChart& ch, const ThicknessField& field, int threads) {
+  return percentile_90(vertex_thickness(ch, field, threads));
+}
+
+ShellHair shell_hair(const ScalpChart& ch, const ThicknessField& field, int threads) {
+  const std::vector<double> thickness = vertex_thickness(ch, field, threads);
   const std::vector<double> distance = layer_end_distance(ch, thickness, field, kLayerEndProbe);
   double reach = 0.0;
   for (double d : distance)
     if (std::isfinite(d)) reach = std::max(reach, d);
   if (!(reach > 0.0)) return ShellHair{};
-  std::vector<double> sorted = thickness;
-  std::sort(sorted.begin(), sorted.end());
-  const double t90 = sorted[static_cast<std::size_t>(0.9 * (n - 1))];
-  return hair_for_shell(t90, reach);
+  return hair_for_shell(percentile_90(thickness), reach);
 }
 
 }  // namespace hairfit

@@ -29,6 +29,10 @@ struct ShellHair {
 // tilt and length from T and reach (cm), the rule above.
 ShellHair hair_for_shell(double thickness, double reach);
 
+// T: the 90th percentile of the layer's thickness over the scalp's vertices (`thickness` gives the
+// layer's depth below the hull), whether or not the layer ends.
+double shell_thickness(const ScalpChart& chart, const ThicknessField& thickness, int threads);
+
 // The rule applied to the layer over this scalp: `thickness` gives the layer's depth below the hull.
 ShellHair shell_hair(const ScalpChart& chart, const ThicknessField& thickness, int threads);
 

@@ -75,6 +75,9 @@ TEST_CASE("shell hair: tilt and length from the layer's thickness and reach, cap
   CHECK(h.length == std::round(2.0 * (2.0 / 3.0) * h.reach) / 2.0);
   CHECK(h.tilt == kMaxShellTilt);  // 90° − atan(0.8 / 9.6) = 85° is capped
   CHECK_FALSE(shell_hair(chart, shell(kCap + 0.3), 2).layer_ends);
+  // T alone, whether the layer ends or not (strands.depth = "auto" reads it).
+  CHECK(shell_thickness(chart, shell(kCap), 2) == h.thickness);
+  CHECK(shell_thickness(chart, shell(kCap + 0.3), 2) == doctest::Approx(kThickness).epsilon(1e-9));
 }
 
 TEST_CASE("growth field: near a hairline where the layer ends, hair grows away from it, toward the pole") {
