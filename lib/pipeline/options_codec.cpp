@@ -45,6 +45,7 @@ void encode(ByteWriter& out, const RootOptions& o) {
   out.put(o.length);
   out.put(o.length_range);
   out.put(o.hang_margin);
+  out.put<std::uint8_t>(o.hang_falls_free);
   out.put(o.guides);
   out.put(o.preguide_spacing);
   out.put(o.cluster_overlap);

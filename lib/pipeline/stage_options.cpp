@@ -32,7 +32,10 @@ RootSettings root_settings(const Scene& scene) {
   }
   o.length = scene.hair.length;
   if (scene.effects.uses_map("length")) o.length_range = scene.hair.length_range;
-  if (o.tilt_toward == TiltToward::hanging) o.hang_margin = scene.hair.hang_margin;
+  if (o.tilt_toward == TiltToward::hanging) {
+    o.hang_margin = scene.hair.hang_margin;
+    o.hang_falls_free = scene.effects.gravity;
+  }
   o.guides = scene.roots.guides;
   o.preguide_spacing = scene.roots.preguide_spacing;
   o.cluster_overlap = scene.roots.cluster_overlap;
@@ -66,8 +69,9 @@ ThicknessField layer_thickness(const DistanceField& volume) {
   };
 }
 
-HangProbe hang_probe(const Boundary& boundary, const Vec3& down) {
+HangProbe hang_probe(const Boundary& boundary, const Vec3& down, bool falls_free) {
   HangProbe probe;
+  probe.falls_free = falls_free;
   probe.skin = [scalp = boundary.scalp](const Vec3& p, double& distance, Vec3& gradient) {
     const FieldValueGradient v = scalp->value_and_gradient(p);
     distance = v.value;

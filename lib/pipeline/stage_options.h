@@ -35,7 +35,7 @@ bool roots_read_fields(const RootSettings& settings);
 ThicknessField layer_thickness(const DistanceField& volume);
 // What the hang of hair.tilt_toward = "hanging" reads (scalp/hanging.h): the scalp field's value
 // and trilinear gradient, the volume field's side, in steps of half the volume's voxel.
-HangProbe hang_probe(const Boundary& boundary, const Vec3& down);
+HangProbe hang_probe(const Boundary& boundary, const Vec3& down, bool falls_free);
 HairMaterial hair_material(const Scene& scene);
 RodDiscretisation rod_discretisation(const Scene& scene);
 PreguideOptions preguide_options(const Scene& scene);

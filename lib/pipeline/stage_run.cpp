@@ -44,7 +44,7 @@ const StageRun::ResolvedRoots& StageRun::resolved_roots(const RootSettings& sett
     }
   }
   if (o.tilt_toward == TiltToward::hanging)  // after the length is known: the hang stops there
-    r.inputs.hangs = vertex_hangs(*values.chart, hang_probe(boundary(), values.chart->down), longest_hair(r.inputs, o),
+    r.inputs.hangs = vertex_hangs(*values.chart, hang_probe(boundary(), values.chart->down, o.hang_falls_free), longest_hair(r.inputs, o),
                                   options.threads, o.hang_margin);
   resolved_ = std::move(r);
   return *resolved_;

@@ -29,20 +29,27 @@ double hang_length(const HangProbe& probe, const Vec3& root, const Vec3& normal,
   Vec3 gradient = Vec3::Zero();
   if (!in_layer(probe, p, distance, gradient)) return 0.0;
   while (travelled < cap) {
+    const double step = std::min(probe.step, cap - travelled);
+    // Heavy hair first tries straight down (off a skull that turns under, it hangs free of it).
+    // On the skull it goes down along the skin's level surface, which vanishes at the crown or on
+    // a skin facing down, where the hair has nowhere to fall.
     Vec3 along = probe.down;
-    if (distance < kHangHug) {
-      // On the skull: down along the skin's level surface; where that vanishes (the crown, or a
-      // skin facing down) the hair has nowhere to fall.
+    double next_distance = 0.0;
+    Vec3 next_gradient = Vec3::Zero();
+    bool moves = (probe.falls_free || distance >= kHangHug) && in_layer(probe, p + step * along, next_distance, next_gradient);
+    if (!moves && distance < kHangHug) {
       const double g = gradient.norm();
       if (g > 1e-9) along -= along.dot(gradient / g) * (gradient / g);
       const double a = along.norm();
       if (!(a > 1e-3)) break;
       along /= a;
+      moves = in_layer(probe, p + step * along, next_distance, next_gradient);
     }
-    const double step = std::min(probe.step, cap - travelled);
-    if (in_layer(probe, p + step * along, distance, gradient)) {
+    if (moves) {
       p += step * along;
       travelled += step;
+      distance = next_distance;
+      gradient = next_gradient;
       continue;
     }
     // The layer ends within this step: where, by bisection on the step.

@@ -8,7 +8,10 @@
 //   the hang h: the path a falling hair takes from the root, 0.1 cm off the skin, stepping along
 //   down projected onto the skin's level surface while within kHangHug of the skin (the hair lies
 //   on the skull) and straight down beyond (it hangs free), for as long as it stays in the layer
-//   (inside the hull's region and outside the head), at most the hair's length L;
+//   (inside the hull's region and outside the head), at most the hair's length L. Heavy hair
+//   (the rod under gravity) steps straight down wherever that keeps it in the layer, and along the
+//   skull only where it would not: a chain leaves a skull that turns under (the occiput over the
+//   neck) and hangs free, where a weightless hair follows the layer along the skin;
 //
 //   the weight φ = smoothstep(h / L): 1 where a hair's length of layer lies below the root, 0
 //   where none does;
@@ -41,6 +44,7 @@ struct HangProbe {
   std::function<bool(const Vec3& p)> in_volume;
   Vec3 down = Vec3(0.0, -1.0, 0.0);  // unit
   double step = 0.1;                 // cm
+  bool falls_free = false;           // heavy hair: straight down wherever the layer lets it
 };
 
 // The hang h of a root at `root` with unit outward `normal`, up to `cap` (cm).
