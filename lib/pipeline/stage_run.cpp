@@ -43,9 +43,14 @@ const StageRun::ResolvedRoots& StageRun::resolved_roots(const RootSettings& sett
       o.tilt = r.shell.tilt;
     }
   }
-  if (o.tilt_toward == TiltToward::hanging)  // after the length is known: the hang stops there
-    r.inputs.hangs = vertex_hangs(*values.chart, hang_probe(boundary(), values.chart->down, o.hang_falls_free), longest_hair(r.inputs, o),
+  if (o.tilt_toward == TiltToward::hanging) {  // after the length is known: the hang stops there
+    const double longest = longest_hair(r.inputs, o);
+    r.inputs.hangs = vertex_hangs(*values.chart, hang_probe(boundary(), values.chart->down, false), longest,
                                   options.threads, o.hang_margin);
+    if (o.hang_falls_free)
+      r.inputs.falls = vertex_hangs(*values.chart, hang_probe(boundary(), values.chart->down, true), longest,
+                                    options.threads, o.hang_margin);
+  }
   resolved_ = std::move(r);
   return *resolved_;
 }

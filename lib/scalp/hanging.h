@@ -3,15 +3,17 @@
 // grows down along the skull, the paper's pre-guide bends its tip into the layer, and it ends
 // where the layer below it ends. Elsewhere (a thin cap that ends at the hairline, the gathered
 // hair of a ponytail) it grows toward the thicker layer as with "thicker". How much a root hangs
-// is read off one probe per scalp vertex:
+// is read off a probe from each scalp vertex:
 //
 //   the hang h: the path a falling hair takes from the root, 0.1 cm off the skin, stepping along
 //   down projected onto the skin's level surface while within kHangHug of the skin (the hair lies
 //   on the skull) and straight down beyond (it hangs free), for as long as it stays in the layer
-//   (inside the hull's region and outside the head), at most the hair's length L. Heavy hair
-//   (the rod under gravity) steps straight down wherever that keeps it in the layer, and along the
-//   skull only where it would not: a chain leaves a skull that turns under (the occiput over the
-//   neck) and hangs free, where a weightless hair follows the layer along the skin;
+//   (inside the hull's region and outside the head), at most the hair's length L;
+//
+//   for heavy hair (the rod under gravity) also the fall f: the same probe stepping straight down
+//   wherever that keeps it in the layer, and along the skull only where it would not. A chain
+//   leaves a skull that turns under (the occiput over the neck) and hangs free, a shorter path
+//   than the skin's;
 //
 //   the weight φ = smoothstep(h / L): 1 where a hair's length of layer lies below the root, 0
 //   where none does;
@@ -19,6 +21,9 @@
 //   the length L − w·max(0, L − h), at least kShortestHangingHair, with w the larger of φ and how
 //   far the root's growth points down: a hair that hangs, or grows down toward where the layer
 //   ends (at the nape of a short cut), ends where the layer below it ends instead of turning back.
+//   Heavy hair takes f for h here: it ends where the layer below its fall ends. Its weight φ and
+//   growth still read h, which says whether the layer lies below a root at all (a fall that
+//   leaves a thin layer beside the face at once does not mean the hair there stands up).
 #pragma once
 #include <functional>
 #include <vector>
@@ -44,7 +49,7 @@ struct HangProbe {
   std::function<bool(const Vec3& p)> in_volume;
   Vec3 down = Vec3(0.0, -1.0, 0.0);  // unit
   double step = 0.1;                 // cm
-  bool falls_free = false;           // heavy hair: straight down wherever the layer lets it
+  bool falls_free = false;           // the fall f: straight down wherever the layer lets it
 };
 
 // The hang h of a root at `root` with unit outward `normal`, up to `cap` (cm).

@@ -182,7 +182,8 @@ RootSet make_root_set(const ScalpChart& ch, const RootInputs& maps, const RootOp
                                       : thicker;
     }
     if (o.tilt_toward == TiltToward::hanging)  // hair that hangs, or grows down, ends where the layer below ends
-      s.lengths[i] = hanging_length(s.lengths[i], hang, std::max(hanging, downness(s.directions[i], s.normals[i], ch.down)));
+      s.lengths[i] = hanging_length(s.lengths[i], maps.falls.empty() ? hang : hang_at(ch, maps.falls, sp),
+                                    std::max(hanging, downness(s.directions[i], s.normals[i], ch.down)));
     s.heights[i] = height_of(ch, s.positions[i]);
   });
   return s;
@@ -196,6 +197,8 @@ void check_options(const ScalpChart& ch, const RootInputs& maps, const RootOptio
     throw std::invalid_argument("roots: tilting toward the thicker layer needs the layer's thickness field");
   if (o.tilt_toward == TiltToward::hanging && maps.hangs.size() != ch.mesh.positions.size())
     throw std::invalid_argument("roots: hanging hair needs the hang at every scalp vertex");
+  if (!maps.falls.empty() && maps.falls.size() != ch.mesh.positions.size())
+    throw std::invalid_argument("roots: the hang as hair falls is needed at every scalp vertex, or not at all");
 }
 
 std::vector<SurfacePoint> pick(const HugeVector<SurfacePoint>& all, const std::vector<int>& kept) {

@@ -42,6 +42,8 @@ struct RootInputs {
   std::shared_ptr<const GreyMap> length;   // black → length_range[0], white → length_range[1]
   ThicknessField thickness;                // required with TiltToward::thicker and hanging
   std::vector<double> hangs;               // TiltToward::hanging: per scalp vertex, up to longest_hair (scalp/hanging.h)
+  std::vector<double> falls;               // the same along the path heavy hair falls (HangProbe::falls_free), for
+                                           // the hanging hair's length; empty: `hangs`
   std::vector<Vec3> grain;                 // FlowModel::relief: per scalp vertex (relief_grain)
 };
 
@@ -60,7 +62,7 @@ struct RootOptions {
   double length = 25.0;                       // cm, without length map
   std::array<double, 2> length_range{15.0, 35.0};  // cm, length map black → white
   double hang_margin = 0.0;                   // cm, TiltToward::hanging: the layer below a root counts as ending this much sooner
-  bool hang_falls_free = false;               // TiltToward::hanging: heavy hair (gravity) falls straight down where the layer lets it
+  bool hang_falls_free = false;               // TiltToward::hanging: heavy hair (gravity) ends where its fall ends (scalp/hanging.h)
   int guides = 3000;                          // clusters = principal guides (paper: 3000)
   double preguide_spacing = 1.0;              // cm between pre-guide roots (paper: about 1 per cm)
   double cluster_overlap = 1.3;               // cluster circle radius / covering radius (≥ 1)

@@ -264,9 +264,37 @@ TEST_CASE("hanging roots: nothing hangs gives the thicker roots, everything hang
   }
 }
 
+TEST_CASE("heavy hair: the hang along the skull weighs the roots, the hang as it falls sets their length") {
+  // Every root hangs along the skull (hangs 20 cm, more than the hair), but falling free the layer
+  // below holds only 4 cm (falls): directions and weights are those of the hang, lengths L − (L − 4).
+  Cap cap;
+  for (FlowModel flow : {FlowModel::local, FlowModel::field}) {
+    CAPTURE(static_cast<int>(flow));
+    RootInputs along = cap.inputs;
+    along.hangs.assign(cap.chart.mesh.positions.size(), 20.0);
+    RootInputs heavy = along;
+    heavy.falls.assign(cap.chart.mesh.positions.size(), 4.0);
+    const Roots light = make_roots(cap.chart, along, cap_options(TiltToward::hanging, flow), Exec{2, {}});
+    const Roots fallen = make_roots(cap.chart, heavy, cap_options(TiltToward::hanging, flow), Exec{2, {}});
+    REQUIRE(fallen.pores.size() == light.pores.size());
+    REQUIRE(fallen.pores.size() > 100);
+    CHECK(fallen.pores.positions == light.pores.positions);
+    CHECK(fallen.pores.directions == light.pores.directions);
+    CHECK(fallen.pores.hang_weights == light.pores.hang_weights);
+    for (int i = 0; i < fallen.pores.size(); ++i) {
+      CHECK(light.pores.lengths[i] == 10.0);
+      CHECK(fallen.pores.lengths[i] == doctest::Approx(4.0).epsilon(1e-12));
+    }
+  }
+}
+
 TEST_CASE("hanging roots need the hang at every scalp vertex") {
   Cap cap;
   CHECK_THROWS_AS(make_roots(cap.chart, cap.inputs, cap_options(TiltToward::hanging, FlowModel::field)), std::invalid_argument);
+  RootInputs short_falls = cap.inputs;
+  short_falls.hangs.assign(cap.chart.mesh.positions.size(), 1.0);
+  short_falls.falls.assign(3, 1.0);
+  CHECK_THROWS_AS(make_roots(cap.chart, short_falls, cap_options(TiltToward::hanging, FlowModel::field)), std::invalid_argument);
 }
 
 TEST_CASE("the hang at a scalp point interpolates its triangle's corners") {
