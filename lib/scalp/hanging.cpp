@@ -30,21 +30,21 @@ double hang_length(const HangProbe& probe, const Vec3& root, const Vec3& normal,
   if (!in_layer(probe, p, distance, gradient)) return 0.0;
   while (travelled < cap) {
     const double step = std::min(probe.step, cap - travelled);
-    // Heavy hair first tries straight down (off a skull that turns under, it hangs free of it).
-    // On the skull it goes down along the skin's level surface, which vanishes at the crown or on
-    // a skin facing down, where the hair has nowhere to fall.
+    // On the skull: down along the skin's level surface, which vanishes at the crown (the hair has
+    // nowhere to fall). Heavy hair leaves the skull where it turns under (the skin faces down) and
+    // hangs free, as a chain does; weightless hair keeps to a skin facing down.
     Vec3 along = probe.down;
     double next_distance = 0.0;
     Vec3 next_gradient = Vec3::Zero();
-    bool moves = (probe.falls_free || distance >= kHangHug) && in_layer(probe, p + step * along, next_distance, next_gradient);
-    if (!moves && distance < kHangHug) {
+    const bool on_skull = distance < kHangHug && !(probe.falls_free && gradient.dot(probe.down) > 0.0);
+    if (on_skull) {
       const double g = gradient.norm();
       if (g > 1e-9) along -= along.dot(gradient / g) * (gradient / g);
       const double a = along.norm();
       if (!(a > 1e-3)) break;
       along /= a;
-      moves = in_layer(probe, p + step * along, next_distance, next_gradient);
     }
+    const bool moves = in_layer(probe, p + step * along, next_distance, next_gradient);
     if (moves) {
       p += step * along;
       travelled += step;

@@ -10,10 +10,9 @@
 //   on the skull) and straight down beyond (it hangs free), for as long as it stays in the layer
 //   (inside the hull's region and outside the head), at most the hair's length L;
 //
-//   for heavy hair (the rod under gravity) also the fall f: the same probe stepping straight down
-//   wherever that keeps it in the layer, and along the skull only where it would not. A chain
-//   leaves a skull that turns under (the occiput over the neck) and hangs free, a shorter path
-//   than the skin's;
+//   for heavy hair (the rod under gravity) also the fall f: the same probe, but straight down
+//   where the skin faces down, since a chain stays on a skull only while the skull carries it and
+//   hangs free of one that turns under (the occiput over the neck), a shorter path than the skin's;
 //
 //   the weight φ = smoothstep(h / L): 1 where a hair's length of layer lies below the root, 0
 //   where none does;
@@ -49,7 +48,7 @@ struct HangProbe {
   std::function<bool(const Vec3& p)> in_volume;
   Vec3 down = Vec3(0.0, -1.0, 0.0);  // unit
   double step = 0.1;                 // cm
-  bool falls_free = false;           // the fall f: straight down wherever the layer lets it
+  bool falls_free = false;           // the fall f: straight down where the skin faces down
 };
 
 // The hang h of a root at `root` with unit outward `normal`, up to `cap` (cm).
