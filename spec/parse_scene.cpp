@@ -210,6 +210,11 @@ class SceneParser {
     // 0.030–0.047 (bench/results/thin_shells.md).
     if (!scene_.locations.count("hair.flow_smoothing"))
       find_key("hair.flow_smoothing")->store(scene_, {kShellFlowSmoothing}, {});
+    // Hair styled along its flow: rods straight at rest, loaded at the tip and the root alone, do
+    // not follow a flow that turns in the layer, and cross each other (the sculpted busts' guides
+    // at 0.12–0.16; styled, 0.008–0.077). Hanging hair falls free, and stays straight at rest.
+    if (!scene_.locations.count("hair.rest_shape") && scene_.hair.tilt_toward != "hanging")
+      find_key("hair.rest_shape")->store(scene_, {}, {"flow"});
     // Fibres spread about their guides wider than a thin layer is thick: those that skim out of
     // it (most by under 1 mm) are held in.
     if (!scene_.locations.count("strands.contain")) find_key("strands.contain")->store(scene_, {kShellContain}, {});
@@ -428,6 +433,10 @@ class SceneParser {
             "guides.point_forces act on weightless hair (solved by single shooting), but effects." +
                 std::string(scene_.effects.gravity ? "gravity" : "contact") +
                 " is declared; set guides.point_forces = 0 or leave the effect out");
+    if (scene_.hair.rest_shape == "flow" && scene_.hair.flow == "local")
+      error(location_of("hair.rest_shape"),
+            "hair.rest_shape = \"flow\" styles the hair along the growth field, but hair.flow = \"local\" makes none; "
+            "set hair.flow = \"field\" or \"relief\", or hair.rest_shape = \"straight\"");
     const Vec3& down = scene_.units.down;
     const Vec3& front = scene_.units.front;
     if (down.cross(front).norm() < 0.1)

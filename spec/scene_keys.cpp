@@ -233,6 +233,10 @@ std::vector<SceneKey> build_keys() {
                       "Where each root's tilt points: local, its own tilt_toward direction (the paper); field, one smooth "
                       "growth field over the scalp aligned with it (Knöppel et al. 2013), so neighbouring roots grow alike; "
                       "relief, that field steered by the hull's carved grooves and ridges (its grain, hair.relief_radius)."));
+  keys.push_back(text("hair.rest_shape", REF(hair.rest_shape), {"straight", "flow"}, "preguides, guides",
+                      "A fibre's shape at rest: straight (the paper); or flow, styled along the growth field: the path "
+                      "from its root along the field at its immersion depth in the layer, so that the unloaded rod "
+                      "follows the flow and the loads only correct it (needs hair.flow = \"field\" or \"relief\")."));
   keys.push_back(number("hair.flow_smoothing", REF(hair.flow_smoothing), "cm", above(0, 100), "roots",
                         "With hair.flow = \"field\" or \"relief\": the distance over which the growth field averages its guidance."));
   keys.push_back(number("hair.swirl", REF(hair.swirl), "degrees", closed(-90, 90), "roots",

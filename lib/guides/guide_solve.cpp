@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numeric>
 
+#include "guides/styled_rest.h"
+
 namespace hairfit {
 
 // Weights of followed neighbours at these distances, nearest first: inverse distance, softened
@@ -49,6 +51,9 @@ GuideTargets make_targets(const RootSet& bases, int b, const PreGuides& preguide
   t.point_force_weight = o.point_force_weight;
   const Vec3 bend = bending_direction(bases.normals[b], bases.directions[b], o.down, o.front);
   t.model = hair_rod_model(t.length, o.material, RodRoot{t.root, root_frame(bases.directions[b], bend)}, boundary.scalp.get());
+  if (o.styled && !hangs(bases, b))  // a hanging hair falls free, as its pre-guide does
+    t.model.kappa_hat = styled_rest(*o.styled, boundary, t.root, t.model.root_frame, t.length,
+                                    immersion_share(o.depth_range, bases.heights[b]), o.rod.segments);
   const int segments = o.rod.segments;
   const int k_max = std::min(o.samples, segments);
   for (int k = 0; k <= k_max; ++k) {

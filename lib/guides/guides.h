@@ -47,6 +47,10 @@ struct GuideOptions {
   int point_forces = 0;
   double point_force_weight = 1e-4;
   bool warm_start = true;      // start from the neighbours' loads (else straight, the paper)
+  // hair.rest_shape = "flow": the growth field each guide rests along (guides/styled_rest.h), at
+  // its pre-guides' immersion depth (depth_range); null: straight at rest.
+  std::shared_ptr<const FlowLookup> styled;
+  std::array<double, 2> depth_range{0.15, 0.6};
   Vec3 down{0, -1, 0};
   Vec3 front{0, 0, 1};
 };

@@ -7,6 +7,7 @@
 #include <Eigen/Dense>
 
 #include "core/smoothstep.h"
+#include "guides/styled_rest.h"
 
 namespace hairfit {
 
@@ -17,6 +18,11 @@ constexpr double kMargin = 0.15;         // the share of the layer kept clear at
 constexpr double kLoadRegularisation = 1e-3;  // prefers the smaller load where the layer leaves a choice
 constexpr int kIterations = 40;
 constexpr double kFollowWeight = 0.5;  // the growth field's pull against the immersion depth's
+// A styled rod's pull toward its rest tangents (3D, climb included): at the field's 0.5, the fit
+// traded the rest shape's flow for depth, rods climbed and dived by up to 45° across each other,
+// and the plain sculpted bust's pre-guides crossed at 0.093; at 1 / 2 / 4 they cross at 0.064 /
+// 0.041 / 0.020 with 414 / 417 / 373 of 438 at their depth (bench/results/prepare.md).
+constexpr double kStyledFollowWeight = 2.0;
 
 using Load = Eigen::Matrix<double, 6, 1>;
 
@@ -29,6 +35,9 @@ struct LayerFit {
   double length;
   double target;  // λ*
   double scale;   // cm: the layer coordinate's unit outside the layer (layer_coordinate)
+  // Styled along the flow (PreguideOptions::styled): the unloaded rod's tangents, which the loaded
+  // one follows in place of the field (so it keeps the rest shape's gentle climb, too); else empty.
+  std::vector<Vec3> rest_tangents;
 
   // x: the load in the root frame (d1, d2, d3): terminal force x[0..2], root couple x[3..5].
   FibreShape shape(const Load& x) const {
@@ -50,6 +59,10 @@ struct LayerFit {
       r[3 * (k - 1)] = ramp / root_n * (lambda - target);
       r[3 * (k - 1) + 1] = kOutsidePenalty * std::max(0.0, lambda - (1.0 - kMargin));
       r[3 * (k - 1) + 2] = kOutsidePenalty * std::max(0.0, kMargin - lambda) * ramp;
+      if (!rest_tangents.empty()) {
+        r.segment<3>(3 * (n - 1) + 3 * (k - 1)) = kStyledFollowWeight * ramp / root_n * (s.tangents[k] - rest_tangents[k]);
+        continue;
+      }
       if (!flow) continue;
       Vec3 normal;
       const Vec3 field = flow->at(s.nodes[k], &normal);
@@ -76,13 +89,20 @@ namespace {
 
 LayerFit layer_fit(const PreGuide& g, const Boundary& boundary, const PreguideOptions& o) {
   const Mat3 frame = root_frame(g.direction, bending_direction(g.normal, g.direction, o.down, o.front));
-  return LayerFit{make_rod_model(hair_rod(g.length, o.material), RodRoot{g.root, frame}),
-                  &o,
-                  &boundary,
-                  g.root,
-                  g.length,
-                  1.0 - immersion_share(o, g.height),
-                  std::max(g.thickness, 0.5 * boundary.volume->voxel())};
+  RodModel model = make_rod_model(hair_rod(g.length, o.material), RodRoot{g.root, frame});
+  const bool styled = o.styled && o.flow;
+  if (styled)
+    model.kappa_hat = styled_rest(*o.flow, boundary, g.root, frame, g.length, immersion_share(o, g.height), o.rod.segments);
+  LayerFit fit{std::move(model),
+               &o,
+               &boundary,
+               g.root,
+               g.length,
+               1.0 - immersion_share(o, g.height),
+               std::max(g.thickness, 0.5 * boundary.volume->voxel()),
+               {}};
+  if (styled) fit.rest_tangents = fit.shape(Load::Zero()).tangents;
+  return fit;
 }
 
 }  // namespace

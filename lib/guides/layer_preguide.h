@@ -11,6 +11,9 @@
 //
 // at 1 − depth share (preguides.depth_range, shallow at the top of the head, deeper low down),
 // with every excursion outside [0, 1] penalised, by Levenberg–Marquardt on the two parameters.
+// With the growth field the rod also follows it, on all six load components; a rod styled along
+// its flow (PreguideOptions::styled, guides/styled_rest.h) follows its rest shape's tangents
+// instead, climb included, so that the loads only correct the path it rests along.
 // Internal to lib/guides.
 #pragma once
 #include "guides/preguides.h"

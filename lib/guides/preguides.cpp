@@ -426,8 +426,8 @@ RodModel carrying_share(const RodModel& model, double weight_share) {
   return partial;
 }
 
-double immersion_share(const PreguideOptions& o, double height) {
-  return o.depth_range[1] + (o.depth_range[0] - o.depth_range[1]) * std::clamp(height, 0.0, 1.0);
+double immersion_share(const std::array<double, 2>& depth_range, double height) {
+  return depth_range[1] + (depth_range[0] - depth_range[1]) * std::clamp(height, 0.0, 1.0);
 }
 
 PreGuide preguide_start(const RootSet& roots, int i, const Boundary& boundary, const PreguideOptions& o) {

@@ -34,6 +34,9 @@ struct PreguideOptions {
   // With immersion = layer: the growth field, which each pre-guide then follows along its length
   // as well (a streamline in the layer); null: only its root direction comes from it.
   std::shared_ptr<const FlowLookup> flow;
+  // With immersion = layer and the growth field: the rods rest along their path in the layer
+  // (hair.rest_shape = "flow", guides/styled_rest.h) instead of straight.
+  bool styled = false;
   Vec3 down{0, -1, 0};
   Vec3 front{0, 0, 1};
 };
@@ -76,7 +79,10 @@ struct PreGuides {
 
 // The share of the local thickness a pre-guide rooted at this height (0 lowest, 1 top of the
 // head) is to be immersed to: depth_range from the top of the head to the lowest roots.
-double immersion_share(const PreguideOptions& options, double height);
+double immersion_share(const std::array<double, 2>& depth_range, double height);
+inline double immersion_share(const PreguideOptions& options, double height) {
+  return immersion_share(options.depth_range, height);
+}
 
 // A pre-guide as it starts, from root i of the set: root, normal, direction, length, height, the
 // layer's thickness at the root and the depth its tip is to reach (immersion_share of it).

@@ -15,8 +15,8 @@ static_assert(sizeof(FieldSpec) == 64, "FieldSpec changed: update options_codec.
 static_assert(sizeof(RootOptions) == 192, "RootOptions changed: update options_codec.cpp");
 static_assert(sizeof(HairMaterial) == 72, "HairMaterial changed: update options_codec.cpp");
 static_assert(sizeof(RodDiscretisation) == 8, "RodDiscretisation changed: update options_codec.cpp");
-static_assert(sizeof(PreguideOptions) == 176, "PreguideOptions changed: update options_codec.cpp");
-static_assert(sizeof(GuideOptions) == 232, "GuideOptions changed: update options_codec.cpp");
+static_assert(sizeof(PreguideOptions) == 184, "PreguideOptions changed: update options_codec.cpp");
+static_assert(sizeof(GuideOptions) == 264, "GuideOptions changed: update options_codec.cpp");
 static_assert(sizeof(DensityTermOptions) == 40, "DensityTermOptions changed: update options_codec.cpp");
 static_assert(sizeof(WispShape) == 32, "WispShape changed: update options_codec.cpp");
 static_assert(sizeof(StrandOptions) == 56, "StrandOptions changed: update options_codec.cpp");
@@ -83,6 +83,7 @@ void encode(ByteWriter& out, const PreguideOptions& o) {
   out.put(o.immersion);
   // o.flow is made in the stage from its root settings (PreguidesOptions::growth), which the key holds.
   if (o.flow) throw std::logic_error("pre-guide options: the growth field is keyed through its root settings");
+  out.put<std::uint8_t>(o.styled);
   out.put(o.down);
   out.put(o.front);
 }
@@ -104,6 +105,9 @@ void encode(ByteWriter& out, const GuideOptions& o) {
   out.put(o.weights.boundary);
   out.put(o.weights.density);
   out.put<std::uint8_t>(o.warm_start);
+  // o.styled is made in the stage from its root settings (GuidesOptions::growth), which the key holds.
+  if (o.styled) throw std::logic_error("guide options: the growth field is keyed through its root settings");
+  out.put(o.depth_range);
   out.put(o.down);
   out.put(o.front);
 }

@@ -15,6 +15,7 @@
 #include "density/statistics.h"
 #include "guides/boundary.h"
 #include "io/nrrd.h"
+#include "scalp/flow_lookup.h"
 #include "pipeline/byte_stream.h"
 #include "pipeline/pipeline.h"
 #include "pipeline/stage_options.h"
@@ -61,6 +62,9 @@ class StageRun {
     ShellHair shell;
   };
   const ResolvedRoots& resolved_roots(const RootSettings& settings);
+  // The growth field the roots grew along (one solve on the scalp, once a run), read anywhere near
+  // the scalp: for pre-guides that follow it and hair styled along it.
+  std::shared_ptr<const FlowLookup> growth_lookup(const RootSettings& settings);
 
   // Handed on within one run, never cached; results do not depend on them.
   // The stage's digest when it is hashed on a thread of its own beside its files.
@@ -75,6 +79,7 @@ class StageRun {
  private:
   std::vector<OutputFile>& outputs_;
   std::optional<ResolvedRoots> resolved_;
+  std::shared_ptr<const FlowLookup> growth_lookup_;
 };
 
 struct StageDescriptor {

@@ -12,22 +12,27 @@ namespace hairfit {
 
 namespace {
 
-// The guides' options, and with a density model the batches, the grid and the wisps they deposit.
+// The guides' options, with a density model the batches, the grid and the wisps they deposit,
+// and for hair styled along its flow (hair.rest_shape = "flow") the roots' settings its growth
+// field is made from.
 struct GuidesOptions {
   GuideOptions guides;
   std::optional<GuideDensitySettings> density;
+  std::optional<RootSettings> growth;
 };
 
 void encode(ByteWriter& out, const GuidesOptions& o) {
   encode(out, o.guides);
   encode(out, o.density);
+  encode(out, o.growth);
 }
 
 std::size_t loop_items(const StageValues& v) { return v.clusters->size(); }
 
 void compute(StageRun& run, const GuidesOptions& options, StageReport& stage) {
   StageValues& v = run.values;
-  const GuideOptions& o = options.guides;
+  GuideOptions o = options.guides;
+  if (options.growth) o.styled = run.growth_lookup(*options.growth);
   Digest density_digest;
   if (options.density) {
     const GuideDensityOptions d = guide_density_options(*options.density, run.inputs.volume.mesh, run.pores());
@@ -93,12 +98,15 @@ void decode_value(ByteReader& in, StageValues& v) {
 }
 
 ConfiguredStage configure(const Scene& scene) {
-  GuidesOptions o{guide_options(scene), std::nullopt};
+  GuidesOptions o{guide_options(scene), std::nullopt, std::nullopt};
   if (density_declared(scene)) o.density = guide_density_settings(scene);
-  const bool density = o.density.has_value();
+  if (scene.hair.rest_shape == "flow") o.growth = root_settings(scene);
+  const bool density = o.density.has_value(), styled = o.growth.has_value();
+  const bool relief = styled && o.growth->options.flow == FlowModel::relief;
   ConfiguredStage c = configured(std::move(o), compute);
   c.consumes = {"fields", "roots", "preguides"};
-  if (density) c.files = {"volume"};  // the density grid spans the hull
+  if (styled) c.consumes.push_back("chart");
+  if (density || relief) c.files = {"volume"};  // the density grid spans the hull; its grain steers the field
   return c;
 }
 

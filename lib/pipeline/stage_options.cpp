@@ -107,6 +107,7 @@ PreguideOptions preguide_options(const Scene& scene) {
   o.depth_range = scene.preguides.depth_range;
   o.max_load = scene.preguides.max_load;
   o.immersion = scene.preguides.immersion == "layer" ? PreguideImmersion::layer : PreguideImmersion::tip;
+  o.styled = scene.hair.rest_shape == "flow";
   o.down = scene.units.down;
   o.front = scene.units.front;
   return o;
@@ -130,6 +131,7 @@ GuideOptions guide_options(const Scene& scene) {
   o.weights = GuideWeights{scene.guides.weights.direction, scene.guides.weights.similarity,
                            scene.guides.weights.boundary, scene.guides.weights.density};
   o.warm_start = scene.guides.start == "warm";
+  o.depth_range = scene.preguides.depth_range;
   o.down = scene.units.down;
   o.front = scene.units.front;
   return o;

@@ -4,7 +4,6 @@
 #include "pipeline/stage.h"
 #include "pipeline/stage_codec.h"
 #include "pipeline/stage_options.h"
-#include "scalp/growth_field.h"
 
 namespace hairfit {
 
@@ -27,13 +26,7 @@ std::size_t loop_items(const StageValues& v) { return v.preguide_roots->roots.si
 void compute(StageRun& run, const PreguidesOptions& options, StageReport& stage) {
   StageValues& v = run.values;
   PreguideOptions o = options.preguides;
-  if (options.growth) {
-    // The growth field the roots grew along (one solve on the scalp), for the pre-guides to follow.
-    const ScalpChart& chart = *v.chart;
-    const StageRun::ResolvedRoots& roots = run.resolved_roots(*options.growth);
-    o.flow = std::make_shared<const FlowLookup>(chart.mesh, chart.vertex_normals,
-                                                make_growth_field(chart, roots.inputs, roots.options, run.exec()), kFlowLookupRadius);
-  }
+  if (options.growth) o.flow = run.growth_lookup(*options.growth);  // for the pre-guides to follow
   v.preguides = std::make_shared<const PreGuides>(make_preguides(v.preguide_roots->roots, run.boundary(), o, run.exec()));
   stage.digest = digest(*v.preguides).hex();
   const Boundary b = run.boundary();

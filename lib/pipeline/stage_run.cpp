@@ -4,6 +4,7 @@
 #include "core/parallel.h"
 #include "pipeline/stage.h"
 #include "pipeline/stage_options.h"
+#include "scalp/growth_field.h"
 #include "scalp/hanging.h"
 #include "scalp/relief.h"
 
@@ -53,6 +54,16 @@ const StageRun::ResolvedRoots& StageRun::resolved_roots(const RootSettings& sett
   }
   resolved_ = std::move(r);
   return *resolved_;
+}
+
+std::shared_ptr<const FlowLookup> StageRun::growth_lookup(const RootSettings& settings) {
+  if (growth_lookup_) return growth_lookup_;
+  const ScalpChart& chart = *values.chart;
+  const ResolvedRoots& roots = resolved_roots(settings);
+  growth_lookup_ = std::make_shared<const FlowLookup>(chart.mesh, chart.vertex_normals,
+                                                      make_growth_field(chart, roots.inputs, roots.options, exec()),
+                                                      kFlowLookupRadius);
+  return growth_lookup_;
 }
 
 void add_fibre_widths(Curves& curves, double cross_section, int threads) {

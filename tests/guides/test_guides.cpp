@@ -7,7 +7,9 @@
 
 #include "guides/guides.h"
 #include "guides/layer_preguide.h"
+#include "guides/flow_crossing.h"
 #include "guides/objective.h"
+#include "guides/styled_rest.h"
 #include "scalp/hanging.h"
 #include "residual_differences.h"
 
@@ -586,4 +588,115 @@ TEST_CASE("interior point forces: only guides that leave the layer get them, the
                                        << out_held);
   CHECK(with_forces > 0);
   CHECK(out_held < out_six);
+}
+
+TEST_CASE("rest curvature: the unloaded rod retraces the path it was styled along, to second order in the step") {
+  // A helix of radius a and rise b per radian, by arc length s: r(s) = (a cos(s/c), a sin(s/c),
+  // b·s/c), c = √(a² + b²). Its tangents sampled at N + 1 nodes give κ̂; the rod with that rest
+  // curvature and no load, traced by the rod integrator, must lie on the helix.
+  const double a = 3.0, b = 1.0, c = std::hypot(a, b), L = 12.0;
+  auto point = [&](double s) -> Vec3 { return Vec3(a * std::cos(s / c), a * std::sin(s / c), b * s / c); };
+  auto tangent = [&](double s) -> Vec3 { return Vec3(-a * std::sin(s / c), a * std::cos(s / c), b) / c; };
+  double previous = INFINITY;
+  for (int n : {16, 32, 64, 128}) {
+    CAPTURE(n);
+    StyledPath path;
+    for (int k = 0; k <= n; ++k) {
+      path.nodes.push_back(point(L * k / n));
+      path.tangents.push_back(tangent(L * k / n));
+    }
+    const Vec3 d3 = tangent(0.0), d1 = Vec3(-1, 0, 0);  // d1: the helix's principal normal at s = 0
+    Mat3 frame;
+    frame.col(0) = d1;
+    frame.col(1) = d3.cross(d1);
+    frame.col(2) = d3;
+    RodModel model = make_rod_model(hair_rod(L, HairMaterial{}), RodRoot{point(0.0), frame});
+    model.kappa_hat = rest_curvature(path, frame);
+    REQUIRE(model.kappa_hat.size() == static_cast<std::size_t>(2 * n + 1));
+    const FibreShape shape = fibre_shape(model, point(0.0), L, RodDiscretisation{RodIntegrator::rk4, n}, Vec3::Zero(), Vec3::Zero());
+    double error = 0.0;
+    for (int k = 0; k <= n; ++k) error = std::max(error, (shape.nodes[k] - point(L * k / n)).norm());
+    MESSAGE(n << " steps: largest node error " << error << " cm");
+    CHECK(error < 0.05 * 16.0 / n);
+    if (std::isfinite(previous)) CHECK(error < 0.3 * previous);  // second order halves it by 4
+    previous = error;
+  }
+}
+
+TEST_CASE("styled rest paths lag a turning flow as a tensorline does, and styled pre-guides keep to them") {
+  // The thin shell above with a growth field along the circles of latitude (hair swept round the
+  // head), whose turn within the layer at polar angle θ on the sphere of radius ρ is the geodesic
+  // curvature κ = cot θ / ρ. A path whose tangent relaxes toward the field over ℓ
+  // (dt/ds = (d − t)/ℓ) settles at the lag ψ with sin ψ = ℓκ behind it; the styled paths must
+  // show that lag past their first 4ℓ, and the styled pre-guides, fitted into the layer, must
+  // keep to their rest shapes and stay in it.
+  Mesh scalp = sphere(8.0, 48, 96, 2.0);
+  std::vector<Vec3> normals, along;
+  auto circle_at = [](const Vec3& p) -> Vec3 {
+    const Vec3 e = Vec3(0, 1, 0).cross(p);
+    return e.norm() > 1e-9 ? Vec3(e.normalized()) : Vec3::Zero();
+  };
+  for (const Vec3& p : scalp.positions) {
+    normals.push_back(p.normalized());
+    along.push_back(circle_at(p));
+  }
+  DirectionField field;
+  field.directions = along;
+  field.magnitude.assign(along.size(), 1.0);
+  const auto flow = std::make_shared<const FlowLookup>(scalp, normals, field, 2.0);
+
+  RootSet r;
+  for (int k = 0; k < 24; ++k) {
+    const double theta = 0.5 + 0.4 * (k % 4) / 3.0, phi = 2.0 * M_PI * k / 24.0;
+    const Vec3 n(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
+    r.positions.push_back(8.0 * n);
+    r.normals.push_back(n);
+    r.directions.push_back((std::cos(80.0 * M_PI / 180.0) * n + std::sin(80.0 * M_PI / 180.0) * circle_at(n)).normalized());
+    r.lengths.push_back(12.0);
+    r.heights.push_back(0.5 * (1 + std::cos(theta)));
+    r.chart.emplace_back(0, 0);
+    r.where.emplace_back();
+  }
+  const Boundary b = thin_world().boundary();
+  const int segments = 64;
+  const double ell = kStyleRelaxation * 12.0;
+  double worst = 0.0;
+  for (int i = 0; i < r.size(); ++i) {
+    const StyledPath path = styled_path(*flow, b, r.positions[i], r.directions[i], 12.0, 0.6, 0.8, segments);
+    for (int k = 0; k <= segments; ++k) {
+      if (12.0 * k / segments < 4.0 * ell) continue;
+      const Vec3 p = path.nodes[k], n = p.normalized();
+      const Vec3 t = (path.tangents[k] - path.tangents[k].dot(n) * n).normalized();
+      const double lag = std::acos(std::clamp(t.dot(circle_at(p)), -1.0, 1.0));
+      const double theta = std::acos(n.y()), kappa = 1.0 / (std::tan(theta) * p.norm());
+      worst = std::max(worst, std::fabs(lag - std::asin(std::min(1.0, ell * kappa))));
+    }
+  }
+  MESSAGE("largest departure from the tensorline's lag: " << worst * 180.0 / M_PI << "°");
+  CHECK(worst * 180.0 / M_PI < 2.0);
+
+  PreguideOptions o;
+  o.rod.segments = 32;
+  o.immersion = PreguideImmersion::layer;
+  o.flow = flow;
+  o.styled = true;
+  const PreGuides styled = make_preguides(r, b, o, Exec{2, {}});
+  CHECK(digest(make_preguides(r, b, o, Exec{1, {}})).hex() == digest(styled).hex());
+  CHECK(inside_share(styled.items, b) >= 0.99);
+  double turned = 0.0;  // the fit's largest mean turn from the rest shape's tangents, degrees
+  for (int i = 0; i < styled.size(); ++i) {
+    const PreGuide& g = styled.items[i];
+    const Mat3 frame = root_frame(g.direction, bending_direction(g.normal, g.direction, o.down, o.front));
+    RodModel model = make_rod_model(hair_rod(g.length, o.material), RodRoot{g.root, frame});
+    model.kappa_hat = styled_rest(*flow, b, g.root, frame, g.length, immersion_share(o, g.height), o.rod.segments);
+    const FibreShape rest = fibre_shape(model, g.root, g.length, o.rod, Vec3::Zero(), Vec3::Zero());
+    // The pre-guide is that rod under its own loads, traced again here.
+    CHECK(max_node_distance(fibre_shape(model, g.root, g.length, o.rod, g.force, g.root_moment).nodes, g.shape.nodes) < 1e-9);
+    double sum = 0.0;
+    for (std::size_t k = 1; k < rest.tangents.size(); ++k)
+      sum += std::acos(std::clamp(rest.tangents[k].dot(g.shape.tangents[k]), -1.0, 1.0));
+    turned = std::max(turned, sum / (rest.tangents.size() - 1) * 180.0 / M_PI);
+  }
+  MESSAGE("largest mean turn of a styled pre-guide from its rest shape: " << turned << "°");
+  CHECK(turned < 5.0);
 }

@@ -96,6 +96,10 @@ TEST_CASE("maps and effects must agree") {
   CHECK(first_error("[maps]\ntilt = \"" + map + "\"\n").find("effects.maps does not list \"tilt\"") != std::string::npos);
   CHECK(first_error("[effects]\nmaps = [\"tilt\"]\n").find("[maps] has no tilt path") != std::string::npos);
   CHECK_NOTHROW(parse("[effects]\nmaps = [\"tilt\"]\n[maps]\ntilt = \"" + map + "\"\n"));
+  // Hair styled along the growth field needs one.
+  CHECK(first_error("[hair]\nlength = 10\nrest_shape = \"flow\"\n").find("hair.flow = \"local\" makes none") !=
+        std::string::npos);
+  CHECK_NOTHROW(parse("[hair]\nlength = 10\nflow = \"field\"\nrest_shape = \"flow\"\n"));
 }
 
 TEST_CASE("the reference page documents exactly the keys the parser accepts") {
@@ -274,5 +278,10 @@ TEST_CASE("hanging hair is a style the shell's hair keeps: the length and tilt a
   CHECK(hanging.hair.from_shell);
   CHECK(hanging.preguides.immersion == "layer");  // hanging roots take the tip construction root by root
   CHECK(parse("").hair.tilt_toward == "thicker");
+  // The shell's hair is styled along its flow, unless it hangs; declared hair stays straight.
+  CHECK(parse("").hair.rest_shape == "flow");
+  CHECK(hanging.hair.rest_shape == "straight");
+  CHECK(parse("[hair]\nlength = 10\n").hair.rest_shape == "straight");
+  CHECK(parse("[hair]\nrest_shape = \"straight\"\n").hair.rest_shape == "straight");
   CHECK(first_error("[hair]\ntilt_toward = \"falling\"\n").find("choose one of \"down\", \"thicker\", \"hanging\"") != std::string::npos);
 }
