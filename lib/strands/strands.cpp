@@ -48,21 +48,22 @@ bool dips(const HeadExit& out_of_head, const Vec3& a, const Vec3& b, const doubl
   return false;
 }
 
-// Whether the first segment rises less than kRootRise above the plane with unit normal n.
-bool first_segment_low(const Vec3& n, const Vec3* points) {
+// Whether the first segment rises less than `rise` (the sine of its angle) above the plane with
+// unit normal n.
+bool first_segment_low(const Vec3& n, const Vec3* points, double rise = kRootRise) {
   const Vec3 d = points[1] - points[0];
-  return d.dot(n) < kRootRise * d.norm();
+  return d.dot(n) < rise * d.norm();
 }
 
-// Turns the first segment about the root, in the plane of it and n, to rise kRootRise above the
+// Turns the first segment about the root, in the plane of it and n, to rise `rise` above the
 // plane with unit normal n where it rises less (its length kept).
-void raise_first_segment(const Vec3& n, Vec3* points) {
-  if (!first_segment_low(n, points)) return;
+void raise_first_segment(const Vec3& n, Vec3* points, double rise = kRootRise) {
+  if (!first_segment_low(n, points, rise)) return;
   const Vec3 d = points[1] - points[0];
   const Vec3 along = d - d.dot(n) * n;
   const double length = d.norm(), across = along.norm();
   const Vec3 tangent = across > 1e-12 * length ? Vec3(along / across) : Vec3(Vec3::Zero());
-  points[1] = points[0] + length * (std::sqrt(1.0 - kRootRise * kRootRise) * tangent + kRootRise * n);
+  points[1] = points[0] + length * (std::sqrt(1.0 - rise * rise) * tangent + rise * n);
 }
 
 // Whether chord a→b crosses or touches the scalp (HeadExit::chord_crossing; a is a root when
@@ -81,11 +82,34 @@ bool chord_crosses(const HeadExit& out_of_head, const Vec3& a, const Vec3& b, bo
 constexpr int kLiftsPerSegment = 4;
 constexpr int kCrossingPasses = 3;
 
+// The rises (sines of the angle above the pore's plane) a first segment is turned up to, in turn,
+// where its root lies behind the plane of a triangle its chord crosses (a pore in a hollow of the
+// scalp, its chord leaving low across the rising triangle beside it): the steeper the chord, the
+// nearer the pore it meets that plane, until it meets it off the triangle.
+constexpr double kFirstSegmentRises[] = {0.25, 0.5, 0.75, 0.9};
+
+// Turns the first segment up about its root toward the pore's normal n, to the first of
+// kFirstSegmentRises at which its chord crosses the scalp no more; false (points unchanged) if
+// none clears it.
+bool turn_first_segment_up(const HeadExit& out_of_head, const Vec3& n, Vec3* points) {
+  for (double rise : kFirstSegmentRises) {
+    Vec3 trial[2] = {points[0], points[1]};
+    raise_first_segment(n, trial, rise);
+    ChordCrossing hit;
+    if (!out_of_head.chord_crossing(trial[0], trial[1], true, hit)) {
+      points[1] = trial[1];
+      return true;
+    }
+  }
+  return false;
+}
+
 // Root to tip, where a segment's chord crosses the scalp (the exact test of `out_of_head`), the
 // end behind the crossed triangle's plane moves out along its normal to kProbeClearance in front
 // of it, so the chord no longer meets that triangle. The root stays where it is: a first segment
-// whose root lies behind the crossed plane keeps that crossing.
-void lift_off_crossings(const HeadExit& out_of_head, Vec3* points, int n) {
+// whose root lies behind the crossed plane turns up about the root instead (given the pore's
+// normal, turn_first_segment_up), or keeps that crossing.
+void lift_off_crossings(const HeadExit& out_of_head, const Vec3* root_normal, Vec3* points, int n) {
   double unused;
   for (int pass = 0; pass < kCrossingPasses; ++pass) {
     bool lifted = false;
@@ -95,7 +119,11 @@ void lift_off_crossings(const HeadExit& out_of_head, Vec3* points, int n) {
         if (!chord_crosses(out_of_head, points[i - 1], points[i], i == 1, hit)) break;
         const double near = hit.normal.dot(points[i - 1] - hit.point), far = hit.normal.dot(points[i] - hit.point);
         Vec3& end = far <= near ? points[i] : points[i - 1];
-        if (&end == points) break;
+        if (&end == points) {
+          if (!root_normal || !turn_first_segment_up(out_of_head, *root_normal, points)) break;
+          lifted = true;
+          continue;
+        }
         end += (kProbeClearance - std::min(far, near)) * hit.normal;
         end = out_of_head(end, unused);
         lifted = true;
@@ -117,7 +145,7 @@ void keep_out(const HeadExit& out_of_head, const Vec3* root_normal, Vec3* points
   for (int i = 1; i < n; ++i) points[i] = out_of_head(points[i], unused);
   if (root_normal) raise_first_segment(*root_normal, points);
   if (out_of_head.chord_crossing) {
-    lift_off_crossings(out_of_head, points, n);
+    lift_off_crossings(out_of_head, root_normal, points, n);
     return;
   }
   for (int i = 1; i < n; ++i) {

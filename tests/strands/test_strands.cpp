@@ -640,3 +640,56 @@ TEST_CASE("a fibre whose length jumps with its reach still has exactly its lengt
     CHECK(jumped > 0);
   }
 }
+
+TEST_CASE("a pore in a hollow of the scalp: its first chord turns up about the root until it clears the triangle beside it") {
+  // The pore at the origin on a scalp facing +y; beside it the scalp rises as the triangle on the
+  // plane y = 0.5x + 0.01 (0.02 ≤ x ≤ 3, |z| ≤ 1), whose plane passes above the pore. The fibre
+  // leaves along its guide at slope 0.6, so its first chord runs from behind that plane through
+  // the triangle (at x = 0.1), and lifting the chord's far end cannot clear a root behind the
+  // plane. Turned up about the root, at the rise 0.75 (slope 1.13) it meets the plane at
+  // x = 0.0159, off the triangle.
+  std::vector<Vec3> line;
+  for (int k = 0; k <= 20; ++k) line.push_back(0.25 * k * Vec3(1.0, 0.6, 0.0).normalized());
+  Curves guides;
+  guides.add(line, 0);
+  Pores pores;
+  pores.positions = {Vec3::Zero()};
+  pores.lengths = {5.0};
+  pores.guide = {0};
+  HeadExit exit = [](const Vec3& p, double& scalp) {
+    scalp = std::numeric_limits<double>::infinity();
+    return p;
+  };
+  const Vec3 wall_normal = Vec3(-0.5, 1.0, 0.0).normalized();
+  exit.chord_crossing = [wall_normal](const Vec3& a, const Vec3& b, bool, ChordCrossing& first) {
+    const double fa = a.y() - 0.5 * a.x() - 0.01, fb = b.y() - 0.5 * b.x() - 0.01;
+    if ((fa < 0.0) == (fb < 0.0)) return false;
+    const double t = fa / (fa - fb);
+    const Vec3 p = a + t * (b - a);
+    if (p.x() < 0.02 || p.x() > 3.0 || std::fabs(p.z()) > 1.0) return false;
+    first.t = t;
+    first.point = p;
+    first.normal = wall_normal;
+    return true;
+  };
+  StrandOptions o;
+  o.wisp.points = 16;
+  StrandSurroundings around;
+  around.out_of_head = exit;
+  const Strands without = make_strands(guides, pores, o, around, Exec{1, {}}).strands;
+  CHECK(without.scalp_crossings == 1);  // without the pore's normal the crossing stays
+  pores.normals = {Vec3(0, 1, 0)};
+  const Strands with = make_strands(guides, pores, o, around, Exec{1, {}}).strands;
+  CHECK(with.scalp_crossings == 0);
+  CHECK(with.cut_count == 0);
+  const std::vector<Vec3> fibre(with.fibres.points.begin(), with.fibres.points.end());
+  REQUIRE(fibre.size() == 16);
+  CHECK(fibre[0] == Vec3::Zero());
+  const Vec3 first = fibre[1] - fibre[0];
+  CHECK(first.y() / first.norm() == doctest::Approx(0.75).epsilon(1e-12));
+  ChordCrossing hit;
+  for (int k = 1; k < 16; ++k) CHECK(!exit.chord_crossing(fibre[k - 1], fibre[k], k == 1, hit));
+  double length = 0.0;
+  for (int k = 1; k < 16; ++k) length += (fibre[k] - fibre[k - 1]).norm();
+  CHECK(length == doctest::Approx(5.0).epsilon(1e-9));  // the turn runs inside the length solve
+}
