@@ -148,6 +148,8 @@ void fibre_along(const GuideTrack& track, const Vec3& pore, double length, doubl
           zero_measured = true;
           if (excess(0.0) >= 0.0) {
             for (int i = 0; i < n; ++i) points[i] = pore + length * static_cast<double>(i) / static_cast<double>(n - 1) * t0;
+            if (adjust) (*adjust)(points, n);  // kept out of the head as every other fibre is
+            points[0] = pore;
             return;
           }
         }

@@ -693,3 +693,23 @@ TEST_CASE("a pore in a hollow of the scalp: its first chord turns up about the r
   for (int k = 1; k < 16; ++k) length += (fibre[k] - fibre[k - 1]).norm();
   CHECK(length == doctest::Approx(5.0).epsilon(1e-9));  // the turn runs inside the length solve
 }
+
+TEST_CASE("a fibre too short for its own wisp offset, laid straight along the root tangent, is kept out of the head too") {
+  // The scalp y = 0 (the head below). The guide leaves its root 3° into the head; a pore 0.8 cm
+  // from the guide's root, with 0.5 cm of hair, is shorter than its own offset in the wisp, so it
+  // is laid straight along the root tangent, into the head, unless the keep-out pass sees it.
+  std::vector<Vec3> guide;
+  for (int i = 0; i <= 20; ++i) guide.push_back(0.25 * i * Vec3(1.0, -0.05, 0.0).normalized());
+  const Vec3 pore(0.0, 0.0, 0.8);
+  StrandOptions o;
+  o.wisp.points = 8;
+  const std::vector<Vec3> loose = make_fibre(guide, pore, 0.5, 1.0, o);
+  REQUIRE(loose.size() == 8);
+  CHECK(loose.back().y() < -0.02);  // straight along the root tangent, 3° down
+  for (std::size_t k = 1; k < loose.size(); ++k)
+    CHECK((loose[k] - loose[k - 1]).normalized().dot(Vec3(1.0, -0.05, 0.0).normalized()) == doctest::Approx(1.0).epsilon(1e-12));
+  const std::vector<Vec3> kept = make_fibre(guide, pore, 0.5, 1.0, o, plane_scalp_exit());
+  REQUIRE(kept.size() == 8);
+  CHECK(kept.front() == pore);
+  for (const Vec3& p : kept) CHECK(p.y() >= 0.0);
+}
