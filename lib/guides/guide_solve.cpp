@@ -193,11 +193,13 @@ Guide solve_guide(const GuideProblem& problem, int b, const GuideSolveSetup& set
     if (grazing) retry_options.max_iterations = std::min(o.max_iterations, kInsideRetryIterations);
     GuideSolve retry = optimise_in_stages(targets, other, retry_options, stall, near, boundary);
     const int iterations = solve.iterations + retry.iterations, evaluations = solve.evaluations + retry.evaluations;
-    const bool better = astray ? retry.final_cost < solve.final_cost
-                               : worst_excursion(solved_shape(targets, retry, g.terminal_torque), boundary) <= 0.0;
+    Vec3 retry_torque;
+    FibreShape retry_shape = solved_shape(targets, retry, retry_torque);
+    const bool better = astray ? retry.final_cost < solve.final_cost : worst_excursion(retry_shape, boundary) <= 0.0;
     if (better) {
       solve = std::move(retry);
-      g.shape = solved_shape(targets, solve, g.terminal_torque);
+      g.shape = std::move(retry_shape);
+      g.terminal_torque = retry_torque;
     }
     solve.iterations = iterations;
     solve.evaluations = evaluations;

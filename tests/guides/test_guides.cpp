@@ -588,6 +588,20 @@ TEST_CASE("interior point forces: only guides that leave the layer get them, the
                                        << out_held);
   CHECK(with_forces > 0);
   CHECK(out_held < out_six);
+  // Whichever solve a guide keeps (a retry from its other start may be kept or not), its shape and
+  // its terminal moment t_L are those of its own loads, traced again here.
+  for (const Guides* set : {&six, &held})
+    for (const Guide& g : set->items) {
+      const Vec3 bend = bending_direction(g.normal, g.direction, o.down, o.front);
+      const RodModel model = make_rod_model(hair_rod(g.length, o.material), RodRoot{g.root, root_frame(g.direction, bend)});
+      std::vector<double> loads{g.force.x(), g.force.y(), g.force.z(), g.root_moment.x(), g.root_moment.y(), g.root_moment.z()};
+      for (const Vec3& f : g.point_forces) loads.insert(loads.end(), {f.x(), f.y(), f.z()});
+      Vec3 torque;
+      const FibreShape traced = fibre_shape(model, g.root, g.length, o.rod, loads.data(),
+                                            static_cast<int>(g.point_forces.size()), &torque);
+      CHECK(max_node_distance(traced.nodes, g.shape.nodes) <= 1e-12 * g.length);
+      CHECK((torque - g.terminal_torque).norm() <= 1e-12 * (1.0 + torque.norm()));
+    }
 }
 
 TEST_CASE("rest curvature: the unloaded rod retraces the path it was styled along, to second order in the step") {
