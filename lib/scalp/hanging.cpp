@@ -34,22 +34,16 @@ double hang_length(const HangProbe& probe, const Vec3& root, const Vec3& normal,
     // nowhere to fall). Heavy hair leaves the skull where it turns under (the skin faces down) and
     // hangs free, as a chain does; weightless hair keeps to a skin facing down.
     Vec3 along = probe.down;
-    double next_distance = 0.0;
-    Vec3 next_gradient = Vec3::Zero();
-    const bool on_skull = distance < kHangHug && !(probe.falls_free && gradient.dot(probe.down) > 0.0);
-    if (on_skull) {
+    if (distance < kHangHug && !(probe.falls_free && gradient.dot(probe.down) > 0.0)) {
       const double g = gradient.norm();
       if (g > 1e-9) along -= along.dot(gradient / g) * (gradient / g);
       const double a = along.norm();
       if (!(a > 1e-3)) break;
       along /= a;
     }
-    const bool moves = in_layer(probe, p + step * along, next_distance, next_gradient);
-    if (moves) {
+    if (in_layer(probe, p + step * along, distance, gradient)) {
       p += step * along;
       travelled += step;
-      distance = next_distance;
-      gradient = next_gradient;
       continue;
     }
     // The layer ends within this step: where, by bisection on the step.
