@@ -163,7 +163,7 @@ void add_field_error(const DistanceField& run, const DistanceField& reference, F
 FieldError field_error(const StageValues& run, const StageValues& reference) {
   FieldError e;
   double sum = 0.0;
-  add_field_error(*run.scalp_field, *reference.scalp_field, e, sum);
+  add_field_error(*run.scalp_distance, *reference.scalp_distance, e, sum);
   add_field_error(*run.volume_field, *reference.volume_field, e, sum);
   e.mean = e.samples ? sum / e.samples : 0.0;
   return e;

@@ -227,6 +227,21 @@ DistanceField DistanceField::from_parts(DistanceFieldParts parts) {
   return f;
 }
 
+DistanceField DistanceField::from_samples(const Vec3& origin, double voxel, const Vec3i& dims, std::vector<double> samples,
+                                         int threads) {
+  if (dims.minCoeff() < 0 || !(std::isfinite(voxel) && voxel > 0.0))
+    throw std::invalid_argument("a distance field needs non-negative dimensions and a finite voxel > 0");
+  if (samples.size() != std::size_t(dims.x()) * dims.y() * dims.z())
+    throw std::invalid_argument("distance field grid sizes do not match their samples");
+  DistanceField f;
+  f.origin_ = origin;
+  f.h_ = voxel;
+  f.dims_ = dims;
+  std::vector<std::uint8_t> in_band(samples.size(), 0);
+  f.finish(std::move(samples), std::move(in_band), threads);
+  return f;
+}
+
 DistanceField make_distance_field(const Mesh& mesh, const FieldSpec& spec, int threads, const RobustInside& inside) {
   return DistanceField::build(mesh, spec, threads, inside, nullptr, nullptr);
 }

@@ -82,6 +82,11 @@ class DistanceField {
   // one: negative dimensions, a voxel that is not finite and > 0, or sample and flag counts that
   // are not one per node.
   static DistanceField from_parts(DistanceFieldParts parts);
+  // A signed implicit function sampled on a grid (not a mesh's distance): no node is in a band of
+  // exact distances, so distance_lower_bound() bounds nothing; the lookup flags follow from the
+  // samples as make_distance_field's do. Throws std::invalid_argument as from_parts does.
+  static DistanceField from_samples(const Vec3& origin, double voxel, const Vec3i& dims, std::vector<double> samples,
+                                    int threads = 1);
   // The samples (x fastest) and their lookup flags, as from_parts takes them.
   const std::vector<double>& samples() const { return *samples_; }
   const std::vector<std::uint8_t>& flags() const { return *flags_; }

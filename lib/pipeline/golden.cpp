@@ -240,6 +240,7 @@ FigureTolerance figure_tolerance(const std::string& stage, const std::string& fi
       {"preguides.weight_not_followed", {1, 0.01}},
       {"preguides.flagged_tip_outside", {1, 0.01}},
       {"preguides.hanging", {1, 0.02}},
+      {"fields.hairline_thickness_cm", {0, 1e-6}},
       {"roots.hang_weight_mean", {0.005, 0}},
       {"roots.hair_length_mean_cm", {0, 0.01}},
       {"guides.mean_direction_mismatch", {0, 0.05}},

@@ -33,7 +33,10 @@ struct RunOptions {
 
 // Every stage's value; a stage not run (beyond --until) stays empty.
 struct StageValues {
-  std::shared_ptr<const DistanceField> scalp_field, volume_field;
+  // scalp_field is the skin the stages keep hair in front of: the closed head's distance field
+  // (scalp_distance itself), or with fields.skin_beyond_hairline = "shell" that field continued
+  // past the hairline under the hull (field/skin_beyond_hairline.h), which bounds no distance.
+  std::shared_ptr<const DistanceField> scalp_field, volume_field, scalp_distance;
   std::shared_ptr<const ScalpChart> chart;
   std::shared_ptr<const Roots> roots;
   std::shared_ptr<const Clusters> clusters;

@@ -60,7 +60,7 @@ std::function<Vec3(const Vec3&, double, double)> layer_placement(const DistanceF
 // seldom dip under it. Most points are well in front of the scalp, which the field's side() tells
 // without interpolating (reported as +infinity).
 HeadExit scalp_exit(const DistanceField& scalp, const TriangleGrid* scalp_triangles, int outward,
-                    const DistanceField* volume) {
+                    const DistanceField* volume, const DistanceField* scalp_distance) {
   HeadExit exit = [&scalp, volume](const Vec3& p, double& value_at_p) {
     if (scalp.side(p) > 0) {
       value_at_p = std::numeric_limits<double>::infinity();
@@ -83,7 +83,8 @@ HeadExit scalp_exit(const DistanceField& scalp, const TriangleGrid* scalp_triang
     return out;
   };
   if (scalp_triangles) {
-    exit.clearance = [&scalp](const Vec3& p) { return scalp.distance_lower_bound(p); };
+    const DistanceField& bound = scalp_distance ? *scalp_distance : scalp;
+    exit.clearance = [&bound](const Vec3& p) { return bound.distance_lower_bound(p); };
     exit.chord_crossing = [scalp_triangles, outward](const Vec3& a, const Vec3& b, bool from_root, ChordCrossing& first) {
       const SegmentHit hit =
           scalp_triangles->first_crossing(a, b, kChordSlack, from_root ? kChordSlack : -kChordSlack, 1 + kChordSlack);

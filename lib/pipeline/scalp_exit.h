@@ -14,9 +14,11 @@ namespace hairfit {
 // the field's lower bound on the distance at their ends does not rule a crossing out. Both must
 // outlive the result. With `volume` (fibres held in the layer, strands.contain), where the layer
 // in front of the scalp is thinner than the clearance a point stops nearer the scalp, where the
-// layer holds it (at half or a quarter of the clearance), if it does anywhere.
+// layer holds it (at half or a quarter of the clearance), if it does anywhere. The chords' tests
+// skip what `scalp_distance` (the closed head's distance field, which bounds the distance to the
+// triangles) rules out; without it, what `scalp` does, which must then be that field.
 HeadExit scalp_exit(const DistanceField& scalp, const TriangleGrid* scalp_triangles = nullptr, int outward = 1,
-                    const DistanceField* volume = nullptr);
+                    const DistanceField* volume = nullptr, const DistanceField* scalp_distance = nullptr);
 
 // The clearance (cm) inside the volume that contained points move to.
 constexpr double kVolumeClearance = 0.05;

@@ -69,8 +69,8 @@ class StageRun {
   // Handed on within one run, never cached; results do not depend on them.
   // The stage's digest when it is hashed on a thread of its own beside its files.
   std::future<std::string> digest;
-  // The fields stage's samples (scalp, volume), for its files.
-  std::optional<std::array<NrrdVolume, 2>> field_volumes;
+  // The fields stage's samples (scalp, volume, and the skin where it differs), for its files.
+  std::optional<std::vector<NrrdVolume>> field_volumes;
   // The fibres the guides stage's CDM deposit grew (DensityGuides::fibres), as the strands stage
   // grows them before the head exit and the cut, so that it need not grow them again.
   std::vector<Vec3> deposited_fibres;

@@ -2,6 +2,7 @@
 #include "core/digest.h"
 #include "field/field_nrrd.h"
 #include "field/hair_region.h"
+#include "field/skin_beyond_hairline.h"
 #include "pipeline/stage.h"
 #include "pipeline/stage_codec.h"
 #include "pipeline/stage_options.h"
@@ -10,46 +11,59 @@ namespace hairfit {
 
 namespace {
 
-// The grids of the scalp's and the volume's fields.
+// The grids of the scalp's and the volume's fields, and where the skin lies past the hairline.
 struct FieldsOptions {
   FieldSpec scalp, volume;
+  bool skin_under_shell = false;  // fields.skin_beyond_hairline = "shell"
 };
 
 void encode(ByteWriter& out, const FieldsOptions& o) {
   encode(out, o.scalp);
   encode(out, o.volume);
+  out.put<std::uint8_t>(o.skin_under_shell);
 }
 
 void compute(StageRun& run, const FieldsOptions& o, StageReport& stage) {
   const Inputs& inputs = run.inputs;
   const int threads = run.options.threads;
   StageValues& v = run.values;
+  auto grid = [](const DistanceField& f) {
+    return std::to_string(f.dims().x()) + "x" + std::to_string(f.dims().y()) + "x" + std::to_string(f.dims().z());
+  };
   // The scalp's field: the distance to the head closed under the scalp by a floor across the
   // hairline, negative inside it.
   const Mesh head = closed_head(inputs.scalp.mesh);
   const FastWindingNumber head_winding(head, HairRegion::kFirstBeta, threads);
   const RobustInside inside_head{{winding_soup(head, head_winding)}};
-  v.scalp_field = std::make_shared<const DistanceField>(make_distance_field(head, o.scalp, threads, inside_head));
+  v.scalp_distance = std::make_shared<const DistanceField>(make_distance_field(head, o.scalp, threads, inside_head));
+  v.scalp_field = v.scalp_distance;
   // The volume's inside is the region's (HairRegion) together with the head, so that its field
   // keeps its sign across the scalp, as a prepared volume's floor under the scalp makes it: the
   // acceptable region, inside the volume and not behind the scalp, is the region's shell.
   const HairRegion region(inputs.volume.mesh, inputs.scalp.mesh, inputs.volume_report.closed(), threads);
-  const RobustInside inside_volume{{region.soup(inputs.volume.mesh, inputs.scalp.mesh)}, v.scalp_field.get()};
+  const RobustInside inside_volume{{region.soup(inputs.volume.mesh, inputs.scalp.mesh)}, v.scalp_distance.get()};
   v.volume_field = std::make_shared<const DistanceField>(
       make_distance_field(inputs.volume.mesh, o.volume, threads, inside_volume));
+  std::vector<NrrdVolume> volumes{field_to_nrrd(*v.scalp_distance, threads), field_to_nrrd(*v.volume_field, threads)};
+  if (o.skin_under_shell) {
+    const SkinBeyondHairline skin = skin_beyond_hairline(inputs.scalp.mesh, *v.scalp_distance, *v.volume_field, threads);
+    v.scalp_field = std::make_shared<const DistanceField>(skin.field);
+    volumes.push_back(field_to_nrrd(*v.scalp_field, threads));
+    stage.add("skin_beyond_hairline", std::string("shell"));
+    stage.add("skin_grid", grid(*v.scalp_field));
+    stage.add("hairline_thickness_cm", skin.hairline_thickness);
+  }
   Digest d;
-  std::array<NrrdVolume, 2> volumes{field_to_nrrd(*v.scalp_field, threads), field_to_nrrd(*v.volume_field, threads)};
   for (const NrrdVolume& volume : volumes) d.add_bytes(volume.data.data(), volume.data.size() * sizeof(float));
   if (run.options.write_outputs) run.field_volumes = std::move(volumes);  // the files hold the same samples
   stage.digest = d.hex();
-  auto grid = [](const DistanceField& f) {
-    return std::to_string(f.dims().x()) + "x" + std::to_string(f.dims().y()) + "x" + std::to_string(f.dims().z());
-  };
   stage.add("voxel_cm", o.volume.voxel);
-  stage.add("scalp_grid", grid(*v.scalp_field));
+  stage.add("scalp_grid", grid(*v.scalp_distance));
   stage.add("volume_grid", grid(*v.volume_field));
-  stage.add("band_voxels", static_cast<std::int64_t>(v.scalp_field->band_voxels() + v.volume_field->band_voxels()));
-  stage.add("memory_bytes", static_cast<std::int64_t>(v.scalp_field->memory_bytes() + v.volume_field->memory_bytes()));
+  stage.add("band_voxels", static_cast<std::int64_t>(v.scalp_distance->band_voxels() + v.volume_field->band_voxels()));
+  const std::int64_t skin_bytes = o.skin_under_shell ? v.scalp_field->memory_bytes() : 0;
+  stage.add("memory_bytes",
+            static_cast<std::int64_t>(v.scalp_distance->memory_bytes() + v.volume_field->memory_bytes()) + skin_bytes);
   // What the inputs were found to be, and how much of the scalp the region covers.
   const MeshReport& hull = inputs.volume_report;
   stage.add("volume_closed", hull.closed());
@@ -63,18 +77,22 @@ void compute(StageRun& run, const FieldsOptions& o, StageReport& stage) {
 }
 
 void encode_value(ByteWriter& out, const StageValues& v) {
-  encode(out, *v.scalp_field);
+  encode(out, *v.scalp_distance);
   encode(out, *v.volume_field);
+  out.put<std::uint8_t>(v.scalp_field != v.scalp_distance);
+  if (v.scalp_field != v.scalp_distance) encode(out, *v.scalp_field);
 }
 
 void decode_value(ByteReader& in, StageValues& v) {
-  v.scalp_field = std::make_shared<const DistanceField>(decode_distance_field(in));
+  v.scalp_distance = std::make_shared<const DistanceField>(decode_distance_field(in));
   v.volume_field = std::make_shared<const DistanceField>(decode_distance_field(in));
+  v.scalp_field = in.get<std::uint8_t>() ? std::make_shared<const DistanceField>(decode_distance_field(in)) : v.scalp_distance;
 }
 
 ConfiguredStage configure(const Scene& scene) {
+  const bool shell = scene.fields.skin_beyond_hairline == "shell";
   ConfiguredStage c = configured(FieldsOptions{field_spec(scene, scene.inputs.scalp.string()),
-                                               field_spec(scene, scene.inputs.volume.string())},
+                                               field_spec(scene, scene.inputs.volume.string()), shell},
                                  compute);
   c.files = {"scalp", "volume"};
   return c;
@@ -83,10 +101,15 @@ ConfiguredStage configure(const Scene& scene) {
 void write(StageRun& run, const Scene&) {
   const StageValues& v = run.values;
   const int threads = run.options.threads;
-  if (!run.field_volumes)  // a cached stage: converted again rather than stored
-    run.field_volumes = {field_to_nrrd(*v.scalp_field, threads), field_to_nrrd(*v.volume_field, threads)};
-  run.output("fields/scalp.nrrd", [&](const std::filesystem::path& p) { write_nrrd(p, (*run.field_volumes)[0]); });
-  run.output("fields/volume.nrrd", [&](const std::filesystem::path& p) { write_nrrd(p, (*run.field_volumes)[1]); });
+  if (!run.field_volumes) {  // a cached stage: converted again rather than stored
+    run.field_volumes = std::vector<NrrdVolume>{field_to_nrrd(*v.scalp_distance, threads), field_to_nrrd(*v.volume_field, threads)};
+    if (v.scalp_field != v.scalp_distance) run.field_volumes->push_back(field_to_nrrd(*v.scalp_field, threads));
+  }
+  const std::vector<NrrdVolume>& volumes = *run.field_volumes;
+  run.output("fields/scalp.nrrd", [&](const std::filesystem::path& p) { write_nrrd(p, volumes[0]); });
+  run.output("fields/volume.nrrd", [&](const std::filesystem::path& p) { write_nrrd(p, volumes[1]); });
+  if (volumes.size() > 2)
+    run.output("fields/skin.nrrd", [&](const std::filesystem::path& p) { write_nrrd(p, volumes[2]); });
   run.field_volumes.reset();
 }
 

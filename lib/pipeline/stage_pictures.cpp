@@ -171,7 +171,9 @@ Image render_stage(const std::string& stage, const Scene& scene, const Inputs& i
     return contact_sheet(tiles, captions, 4);
   }
   if (stage == "fields") {
-    return halves([&](int w, int h) { return field_slice(*values.scalp_field, scene, "scalp field, mid-sagittal slice", w, h); },
+    const char* skin = values.scalp_field != values.scalp_distance ? "skin field (past the hairline under the hull)"
+                                                                   : "scalp field, mid-sagittal slice";
+    return halves([&](int w, int h) { return field_slice(*values.scalp_field, scene, skin, w, h); },
                   [&](int w, int h) { return field_slice(*values.volume_field, scene, "volume field, mid-sagittal slice", w, h); },
                   width, height, 800);
   }

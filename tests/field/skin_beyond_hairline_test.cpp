@@ -1,0 +1,149 @@
+// The skin past the hairline (field/skin_beyond_hairline.h) on a head whose answer is known: a
+// hemispherical scalp of radius R over the floor z = 0, under a shell that is the same hemisphere
+// t further out on top of a straight cylinder of radius R + t below. The layer is t thick at the
+// whole hairline, so past the floor the skin is the cylinder r = R: the skull continued straight
+// down, t under the shell.
+#include <doctest/doctest.h>
+
+#include <cmath>
+
+#include "field/skin_beyond_hairline.h"
+
+using namespace hairfit;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// A hemisphere of radius R about the origin above z = 0, as a disk: a pole and `rings` rings of
+// `sectors` vertices down to the equator (the hairline, in the plane z = 0), facing outward.
+Mesh hemisphere(double R, int rings, int sectors) {
+  Mesh m;
+  m.positions.push_back(Vec3(0, 0, R));
+  for (int k = 1; k <= rings; ++k) {
+    const double polar = 0.5 * kPi * k / rings;
+    for (int s = 0; s < sectors; ++s) {
+      const double a = 2 * kPi * s / sectors;
+      m.positions.push_back(R * Vec3(std::sin(polar) * std::cos(a), std::sin(polar) * std::sin(a), std::cos(polar)));
+    }
+  }
+  auto at = [&](int k, int s) { return 1 + (k - 1) * sectors + (s % sectors); };
+  for (int s = 0; s < sectors; ++s) m.triangles.push_back({0, at(1, s), at(1, s + 1)});
+  for (int k = 1; k < rings; ++k)
+    for (int s = 0; s < sectors; ++s) {
+      m.triangles.push_back({at(k, s), at(k + 1, s), at(k + 1, s + 1)});
+      m.triangles.push_back({at(k, s), at(k + 1, s + 1), at(k, s + 1)});
+    }
+  return m;
+}
+
+// An analytic field sampled on origin + h·(i, j, k), dims n³, as a plain trilinear interpolant.
+template <class F>
+DistanceField sampled(const F& f, const Vec3& origin, double h, int n) {
+  DistanceFieldParts parts;
+  parts.origin = origin;
+  parts.voxel = h;
+  parts.dims = Vec3i(n, n, n);
+  parts.samples.resize(static_cast<std::size_t>(n) * n * n);
+  parts.flags.assign(parts.samples.size(), 0);
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) parts.samples[i + n * (j + n * k)] = f(origin + h * Vec3(i, j, k));
+  return DistanceField::from_parts(std::move(parts));
+}
+
+}  // namespace
+
+TEST_CASE("skin past the hairline: a straight shell continues the skull straight down, t under it") {
+  const double R = 8.0, t = 0.6, h = 0.2;
+  const int n = 111;  // the grid spans [−11, 11]³
+  const Vec3 origin(-11, -11, -11);
+  const Mesh scalp = hemisphere(R, 24, 96);
+  // The closed head: the half ball r ≤ R, z ≥ 0 (its exact signed distance).
+  const DistanceField S = sampled(
+      [&](const Vec3& p) {
+        const double r = std::hypot(p.x(), p.y());
+        if (p.z() >= 0) {
+          const double ball = p.norm() - R;
+          return ball > 0 ? ball : std::max(ball, -p.z());
+        }
+        return r <= R ? -p.z() : std::hypot(r - R, p.z());
+      },
+      origin, h, n);
+  // The hull's region together with the head: the hemisphere R + t on the cylinder R + t.
+  const DistanceField V = sampled(
+      [&](const Vec3& p) { return (p.z() >= 0 ? p.norm() : std::hypot(p.x(), p.y())) - (R + t); }, origin, h, n);
+
+  const SkinBeyondHairline skin = skin_beyond_hairline(scalp, S, V, 2);
+  // The hairline's vertices read the thickness through the interpolated V: t to O(h²/R).
+  CHECK(skin.hairline_thickness == doctest::Approx(t).epsilon(1e-3));
+  const DistanceField& F = skin.field;
+  REQUIRE(F.dims() == Vec3i(n, n, n));  // the fields' own grid: its nodes are theirs
+  int below = 0, above = 0;
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; j += 3)
+      for (int i = 0; i < n; i += 3) {
+        const Vec3 p = origin + h * Vec3(i, j, k);
+        const double r = std::hypot(p.x(), p.y());
+        const double value = F.sample(i, j, k);
+        if (p.z() < 0 && std::abs(r - R) <= -p.z() && r < R + t + 1) {
+          // Past the floor, where the cylinder r = R is nearer than the floor: its signed distance.
+          INFO("p = " << p.transpose());
+          CHECK(value == doctest::Approx(r - R).epsilon(0).scale(1.0).epsilon(2e-3));
+          ++below;
+        } else if (p.z() > 1.0 && V.sample(i, j, k) <= 0) {
+          // In the head and the layer above the floor by more than the layer is thick: the
+          // scalp's field untouched. (Outside the shell too the skin is S but for T's own
+          // interpolation error, the hairline vertices reading V between the nodes.)
+          CHECK(value == doctest::Approx(S.sample(i, j, k)).epsilon(1e-12).scale(1.0));
+          ++above;
+        }
+        // Beyond the shell nothing is head.
+        if (V.sample(i, j, k) > 0) CHECK(value > 0);
+      }
+  CHECK(below > 1000);
+  CHECK(above > 1000);
+  // Under the shell past the floor the layer is t thick: from the skin (value 0) to the hull.
+  for (double z : {-2.0, -5.0, -9.0}) {
+    const Vec3 skin_point(R, 0, z), hull_point(R + t, 0, z), neck(R - 2, 0, z);
+    CHECK(F.value(skin_point) == doctest::Approx(0).scale(1.0).epsilon(2e-3));
+    CHECK(F.value(hull_point) == doctest::Approx(t).scale(1.0).epsilon(2e-3));
+    CHECK(F.value(neck) < -1.9);  // the neck is head, not hair layer
+    CHECK(S.value(neck) > 0);     // which the closed head alone counts as outside it
+  }
+}
+
+TEST_CASE("skin past the hairline: where the shell does not go past the floor, nothing changes") {
+  const double R = 8.0, t = 0.6, h = 0.25;
+  const int n = 89;
+  const Vec3 origin(-11, -11, -11);
+  const Mesh scalp = hemisphere(R, 16, 64);
+  const DistanceField S = sampled(
+      [&](const Vec3& p) {
+        const double r = std::hypot(p.x(), p.y());
+        if (p.z() >= 0) {
+          const double ball = p.norm() - R;
+          return ball > 0 ? ball : std::max(ball, -p.z());
+        }
+        return r <= R ? -p.z() : std::hypot(r - R, p.z());
+      },
+      origin, h, n);
+  // A closed hull: the ball R + t cut by the floor (the half ball, as a prepared volume's floor
+  // closes it under the scalp); the region past the floor lies outside it.
+  const DistanceField V = sampled(
+      [&](const Vec3& p) {
+        const double r = std::hypot(p.x(), p.y());
+        if (p.z() >= 0) {
+          const double ball = p.norm() - (R + t);
+          return ball > 0 ? ball : std::max(ball, -p.z());
+        }
+        return r <= R + t ? -p.z() : std::hypot(r - R - t, p.z());
+      },
+      origin, h, n);
+  const DistanceField F = skin_beyond_hairline(scalp, S, V, 1).field;
+  int changed_sign = 0;
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) changed_sign += (F.sample(i, j, k) < 0) != (S.sample(i, j, k) < 0);
+  CHECK(changed_sign == 0);
+}
