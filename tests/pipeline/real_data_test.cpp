@@ -68,6 +68,7 @@ TEST_CASE("real data: open multi-part hulls that dip under the skin run end to e
     const char* fixture;
     double strands_inside;  // the least share of fibre points inside the region, by direct sums
     double guides_inside;   // the same for the guides' nodes after the root
+    double in_real_head;    // the most of the fibre points inside the real head (see below)
   };
   // Measured: short04 0.994, bob01 0.997, ponytail01 0.995 (hair that suits its shell, held in
   // it where it skims out by under 1 cm, nearer the scalp than the head's clearance where the
@@ -75,8 +76,8 @@ TEST_CASE("real data: open multi-part hulls that dip under the skin run end to e
   // scalp/hanging.h). Without the containment, before hanging: 0.977, 0.998, 0.980.
   // Guides: the issue's 0.99, but 0.985 on ponytail01, which meets it by under 0.001 (0.9908):
   // across seeds its guides keep 0.988–0.995, so another machine's last bits could take it under.
-  for (const Case& c : {Case{"makehuman-short04", 0.98, 0.99}, Case{"makehuman-bob01", 0.995, 0.99},
-                        Case{"makehuman-ponytail01", 0.985, 0.985}}) {
+  for (const Case& c : {Case{"makehuman-short04", 0.98, 0.99, 0.01}, Case{"makehuman-bob01", 0.995, 0.99, 0.05},
+                        Case{"makehuman-ponytail01", 0.985, 0.985, 0.01}}) {
     const std::string name = c.fixture;
     INFO(name);
     const Scene scene = parse_scene(source_path(std::string("fixtures/") + c.fixture + "/scene.toml"));
@@ -108,5 +109,20 @@ TEST_CASE("real data: open multi-part hulls that dip under the skin run end to e
                  << guide_check.crossings);
     CHECK(guide_check.finite);
     CHECK(guide_check.inside >= c.guides_inside);
+    // The real head, which the method never sees (the scene's occluder: MakeHuman's skin cut
+    // under the nose, closed across the cut), by direct winding-number sums: the hull goes on past
+    // the scalp's hairline over the ears, the neck and the face, and the skin taken to lie under
+    // the shell there (fields.skin_beyond_hairline) keeps the hair out of them. Measured:
+    // short04 / bob01 / ponytail01 0.049 / 0.204 / 0.018 with the floor, 0.0002 / 0.029 / 0.003
+    // with the shell; what stays of bob01's lies in its fringe, which passes through the face.
+    REQUIRE(inputs.occluder);
+    const FastWindingNumber real_head(closed_head(*inputs.occluder));
+    long long in_head = 0, points = 0;
+    for (std::size_t f = 0; f < fibres.count(); ++f)
+      for (std::size_t k = fibres.offsets[f] + 1; k < fibres.offsets[f + 1]; ++k, ++points)
+        in_head += real_head.above(fibres.points[k], 0.5);
+    const double in_real_head = static_cast<double>(in_head) / static_cast<double>(points);
+    MESSAGE(name << ": fibre points inside the real head " << in_real_head);
+    CHECK(in_real_head <= c.in_real_head);
   }
 }
