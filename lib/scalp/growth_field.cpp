@@ -163,12 +163,15 @@ DirectionField make_growth_field(const ScalpChart& ch, const RootInputs& in, con
     for (int i = 0; i < n; ++i) {
       const Vec3& normal = ch.vertex_normals[i];
       Vec3 local = growth_guidance(normal, gradient[i], o, ch.down, ch.front);
+      double hanging = 0.0;
       if (o.tilt_toward == TiltToward::hanging) {  // where hair hangs, toward down
-        const double hanging = hang_weight(in.hangs[i], hair);
+        hanging = hang_weight(in.hangs[i], hair);
         local = hanging * down_guidance(normal, ch.down, ch.front) + (1.0 - hanging) * local;
       }
       const Vec3 a = turned_clockwise(away[i] - away[i].dot(normal) * normal, normal, o.swirl);
-      const double urgency = std::isfinite(reach[i]) ? smoothstep(1.0 - reach[i] / o.length) : 0.0;
+      // A root with a hair's length of layer below it falls there: it need not turn away from
+      // where the layer ends elsewhere (MakeHuman short04's temples then fall over the sideburns).
+      const double urgency = (std::isfinite(reach[i]) ? smoothstep(1.0 - reach[i] / o.length) : 0.0) * (1.0 - hanging);
       guidance[i] = a.norm() > 1e-12 ? Vec3(urgency * a.normalized() + (1.0 - urgency) * local) : local;
     }
   }

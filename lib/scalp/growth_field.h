@@ -45,11 +45,11 @@ std::vector<double> layer_end_distance(const ScalpChart& chart, const std::vecto
 // its anisotropy, turned to agree with the guidance below.
 // Per scalp vertex: growth_guidance with the thickness gradient of the piecewise-linear thickness
 // the field gives at the vertices (per triangle, area-weighted at each vertex); with "hanging",
-// blended toward down_guidance by the vertex's hang weight (scalp/hanging.h, against the longest
+// blended toward down_guidance by the vertex's hang weight φ (scalp/hanging.h, against the longest
 // hair); with "thicker" or "hanging", blended toward the direction away from the layer's end (the gradient of layer_end_distance),
 // turned clockwise (seen from outside) by options.swirl, by the smoothstep of 1 − distance / hair
-// length, since a hair needs its length of layer ahead of it; then the smoothest field aligned
-// with it.
+// length, since a hair needs its length of layer ahead of it (with "hanging", times 1 − φ: a hair
+// that has its length of layer below it falls instead); then the smoothest field aligned with it.
 DirectionField make_growth_field(const ScalpChart& chart, const RootInputs& inputs, const RootOptions& options,
                                  const Exec& exec = {});
 
