@@ -134,6 +134,7 @@ inline void write_scene_variant(const fs::path& base, const Overrides& overrides
   if (toml::table* maps = scene["maps"].as_table())
     for (auto&& [key, node] : *maps) absolute(&node);
   absolute(scene.at_path("output.dir").node());
+  absolute(scene.at_path("output.occluder").node());
   for (const auto& [key, value] : overrides) {
     toml::table* table = &scene;
     std::string rest = key;
