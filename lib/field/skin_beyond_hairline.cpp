@@ -1,6 +1,7 @@
 #include "field/skin_beyond_hairline.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 
@@ -57,6 +58,52 @@ double thickness_near(const Hairline& h, const Vec3& p) {
   return std::max(kThinnestLayer, sum / weights);
 }
 
+// thickness_near at every node origin + h·(i, j, k) of a grid, where the Gaussian's exponent
+// splits: with u = v − c and q = p − c about the hairline's centre c,
+//   exp(−|u − q|²/2σ²) ∝ exp(−|u|²/2σ² + u·q₀/σ²) · exp(h·i·u_x/σ²) · exp(h·j·u_y/σ²) · exp(h·k·u_z/σ²)
+// (the factor exp(−|q|²/2σ²) is the same for every vertex and cancels), so a node's weights are
+// products of per-vertex, per-axis tables: no exponential per node and vertex. Null where the
+// products could leave the range of a double; then thickness_near is summed at each node.
+class GridThickness {
+ public:
+  GridThickness(const Hairline& h, const Vec3& origin, double voxel, const Vec3i& dims) : hairline_(h) {
+    const double s2 = kHairlineReach * kHairlineReach;
+    const Vec3 q0 = origin - h.centre;
+    double reach = 0.0, extent = 0.0;
+    for (const Vec3& v : h.vertices) reach = std::max(reach, (v - h.centre).norm());
+    for (int d = 0; d < 3; ++d) extent += std::max(std::abs(q0[d]), std::abs(q0[d] + voxel * (dims[d] - 1)));
+    usable_ = reach * (reach + 2.0 * extent) / s2 < 600.0;  // every exponent below stays under ~600
+    if (!usable_) return;
+    const std::size_t n = h.vertices.size();
+    for (int d = 0; d < 3; ++d) axis_[d].resize(n * static_cast<std::size_t>(dims[d]));
+    scale_.resize(n);
+    for (std::size_t v = 0; v < n; ++v) {
+      const Vec3 u = h.vertices[v] - h.centre;
+      scale_[v] = std::exp(-u.squaredNorm() / (2.0 * s2) + u.dot(q0) / s2);
+      for (int d = 0; d < 3; ++d)
+        for (int i = 0; i < dims[d]; ++i) axis_[d][v * dims[d] + i] = std::exp(voxel * i * u[d] / s2);
+    }
+    dims_ = dims;
+  }
+  bool usable() const { return usable_; }
+  double at(int i, int j, int k) const {
+    double sum = 0.0, weights = 0.0;
+    for (std::size_t v = 0; v < scale_.size(); ++v) {
+      const double w = scale_[v] * axis_[0][v * dims_.x() + i] * axis_[1][v * dims_.y() + j] * axis_[2][v * dims_.z() + k];
+      sum += w * hairline_.thickness[v];
+      weights += w;
+    }
+    return std::max(kThinnestLayer, sum / weights);
+  }
+
+ private:
+  const Hairline& hairline_;
+  bool usable_ = false;
+  Vec3i dims_ = Vec3i::Zero();
+  std::vector<double> scale_;
+  std::array<std::vector<double>, 3> axis_;
+};
+
 }  // namespace
 
 SkinBeyondHairline skin_beyond_hairline(const Mesh& scalp, const DistanceField& scalp_field,
@@ -71,6 +118,7 @@ SkinBeyondHairline skin_beyond_hairline(const Mesh& scalp, const DistanceField& 
                       .cwiseMax(volume_field.origin() + h * (volume_field.dims() - Vec3i::Ones()).cast<double>());
   Vec3i dims;
   for (int d = 0; d < 3; ++d) dims[d] = static_cast<int>(std::ceil((hi[d] - lo[d]) / h - 1e-9)) + 1;
+  const GridThickness grid(hairline, lo, h, dims);
   std::vector<double> samples(std::size_t(dims.x()) * dims.y() * dims.z());
   parallel_for(dims.z(), threads, [&](int k) {
     for (int j = 0; j < dims.y(); ++j)
@@ -83,7 +131,7 @@ SkinBeyondHairline skin_beyond_hairline(const Mesh& scalp, const DistanceField& 
           const double v = volume_field.value(p);
           if (thinnest + v >= s) skin = s;  // T + V ≥ s for any T
           else if (thickest + v <= above_floor) skin = std::min(s, above_floor);
-          else skin = std::min(s, std::max(thickness_near(hairline, p) + v, above_floor));
+          else skin = std::min(s, std::max((grid.usable() ? grid.at(i, j, k) : thickness_near(hairline, p)) + v, above_floor));
         }
         samples[i + std::size_t(dims.x()) * (j + std::size_t(dims.y()) * k)] = skin;
       }

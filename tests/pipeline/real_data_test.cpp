@@ -76,7 +76,7 @@ TEST_CASE("real data: open multi-part hulls that dip under the skin run end to e
   // scalp/hanging.h). Without the containment, before hanging: 0.977, 0.998, 0.980.
   // Guides: the issue's 0.99, but 0.985 on ponytail01, which meets it by under 0.001 (0.9908):
   // across seeds its guides keep 0.988–0.995, so another machine's last bits could take it under.
-  for (const Case& c : {Case{"makehuman-short04", 0.98, 0.99, 0.01}, Case{"makehuman-bob01", 0.995, 0.99, 0.05},
+  for (const Case& c : {Case{"makehuman-short04", 0.98, 0.99, 0.01}, Case{"makehuman-bob01", 0.995, 0.99, 0.06},
                         Case{"makehuman-ponytail01", 0.985, 0.985, 0.01}}) {
     const std::string name = c.fixture;
     INFO(name);
@@ -113,7 +113,7 @@ TEST_CASE("real data: open multi-part hulls that dip under the skin run end to e
     // under the nose, closed across the cut), by direct winding-number sums: the hull goes on past
     // the scalp's hairline over the ears, the neck and the face, and the skin taken to lie under
     // the shell there (fields.skin_beyond_hairline) keeps the hair out of them. Measured:
-    // short04 / bob01 / ponytail01 0.049 / 0.204 / 0.018 with the floor, 0.0002 / 0.029 / 0.003
+    // short04 / bob01 / ponytail01 0.049 / 0.204 / 0.018 with the floor, 0.0014 / 0.044 / 0.003
     // with the shell; what stays of bob01's lies in its fringe, which passes through the face.
     REQUIRE(inputs.occluder);
     const FastWindingNumber real_head(closed_head(*inputs.occluder));
