@@ -171,7 +171,7 @@ Image render_stage(const std::string& stage, const Scene& scene, const Inputs& i
     return contact_sheet(tiles, captions, 4);
   }
   if (stage == "fields") {
-    const char* skin = values.scalp_field != values.scalp_distance ? "skin field (past the hairline under the hull)"
+    const char* skin = values.scalp_field != values.scalp_distance ? "skin field, mid-sagittal slice"
                                                                    : "scalp field, mid-sagittal slice";
     return halves([&](int w, int h) { return field_slice(*values.scalp_field, scene, skin, w, h); },
                   [&](int w, int h) { return field_slice(*values.volume_field, scene, "volume field, mid-sagittal slice", w, h); },
