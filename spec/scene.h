@@ -80,7 +80,7 @@ struct SceneFields {
   double band = 4.0;        // voxels: half-width of the band of exact distances
   double margin = 2.0;      // cm of grid beyond the mesh's bounding box
   double max_memory = 4.0;  // GiB for the grids of both fields together
-  std::string skin_beyond_hairline = "floor";  // "floor" | "shell" (field/skin_beyond_hairline.h)
+  std::string skin_beyond_hairline = "floor";  // "floor" | "shell" | "auto" (field/skin_beyond_hairline.h)
 };
 
 struct SceneRoots {

@@ -276,13 +276,14 @@ std::vector<SceneKey> build_keys() {
                         "Grid extent beyond the mesh's bounding box."));
   keys.push_back(number("fields.max_memory", REF(fields.max_memory), "GiB", above(0, 1024), "fields",
                         "Refuse field grids larger than this, naming a voxel size that fits."));
-  keys.push_back(text("fields.skin_beyond_hairline", REF(fields.skin_beyond_hairline), {"floor", "shell"}, "fields",
+  keys.push_back(text("fields.skin_beyond_hairline", REF(fields.skin_beyond_hairline), {"floor", "shell", "auto"}, "fields",
                       "Where the head's skin lies past the scalp's hairline, where the hull may go on (the sides and "
                       "nape of short hair, a bob's curtain): floor, nowhere (the head is the scalp closed by a floor "
                       "across its hairline, so the hull's region there, ears and neck included, is all hair layer); "
                       "shell, the hairline's layer thickness under the hull (a hair shell follows the skin at about "
                       "its offset at the hairline), so that hair hangs in the layer there instead of sinking into "
-                      "the neck."));
+                      "the neck; auto, shell for an open hull (a raw shell) and floor for a closed one (which "
+                      "encloses what it overhangs past the hairline, as prepare's volumes do)."));
 
   keys.push_back(integer("roots.guides", REF(roots.guides), "", closed(1, 1000000), "roots, guides",
                          "Number of clusters, each with one principal guide (paper: 3000)."));

@@ -14,13 +14,14 @@ namespace {
 // The grids of the scalp's and the volume's fields, and where the skin lies past the hairline.
 struct FieldsOptions {
   FieldSpec scalp, volume;
-  bool skin_under_shell = false;  // fields.skin_beyond_hairline = "shell"
+  // fields.skin_beyond_hairline: 0 "floor", 1 "shell", 2 "auto" (shell for an open hull).
+  std::uint8_t skin = 0;
 };
 
 void encode(ByteWriter& out, const FieldsOptions& o) {
   encode(out, o.scalp);
   encode(out, o.volume);
-  out.put<std::uint8_t>(o.skin_under_shell);
+  out.put<std::uint8_t>(o.skin);
 }
 
 void compute(StageRun& run, const FieldsOptions& o, StageReport& stage) {
@@ -45,7 +46,8 @@ void compute(StageRun& run, const FieldsOptions& o, StageReport& stage) {
   v.volume_field = std::make_shared<const DistanceField>(
       make_distance_field(inputs.volume.mesh, o.volume, threads, inside_volume));
   std::vector<NrrdVolume> volumes{field_to_nrrd(*v.scalp_distance, threads), field_to_nrrd(*v.volume_field, threads)};
-  if (o.skin_under_shell) {
+  const bool skin_under_shell = o.skin == 1 || (o.skin == 2 && !inputs.volume_report.closed());
+  if (skin_under_shell) {
     const SkinBeyondHairline skin = skin_beyond_hairline(inputs.scalp.mesh, *v.scalp_distance, *v.volume_field, threads);
     v.scalp_field = std::make_shared<const DistanceField>(skin.field);
     volumes.push_back(field_to_nrrd(*v.scalp_field, threads));
@@ -61,7 +63,7 @@ void compute(StageRun& run, const FieldsOptions& o, StageReport& stage) {
   stage.add("scalp_grid", grid(*v.scalp_distance));
   stage.add("volume_grid", grid(*v.volume_field));
   stage.add("band_voxels", static_cast<std::int64_t>(v.scalp_distance->band_voxels() + v.volume_field->band_voxels()));
-  const std::int64_t skin_bytes = o.skin_under_shell ? v.scalp_field->memory_bytes() : 0;
+  const std::int64_t skin_bytes = skin_under_shell ? v.scalp_field->memory_bytes() : 0;
   stage.add("memory_bytes",
             static_cast<std::int64_t>(v.scalp_distance->memory_bytes() + v.volume_field->memory_bytes()) + skin_bytes);
   // What the inputs were found to be, and how much of the scalp the region covers.
@@ -90,9 +92,10 @@ void decode_value(ByteReader& in, StageValues& v) {
 }
 
 ConfiguredStage configure(const Scene& scene) {
-  const bool shell = scene.fields.skin_beyond_hairline == "shell";
+  const std::string& skin = scene.fields.skin_beyond_hairline;
+  const std::uint8_t mode = skin == "shell" ? 1 : skin == "auto" ? 2 : 0;
   ConfiguredStage c = configured(FieldsOptions{field_spec(scene, scene.inputs.scalp.string()),
-                                               field_spec(scene, scene.inputs.volume.string()), shell},
+                                               field_spec(scene, scene.inputs.volume.string()), mode},
                                  compute);
   c.files = {"scalp", "volume"};
   return c;
