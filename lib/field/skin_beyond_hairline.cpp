@@ -72,7 +72,8 @@ class GridThickness {
     double reach = 0.0, extent = 0.0;
     for (const Vec3& v : h.vertices) reach = std::max(reach, (v - h.centre).norm());
     for (int d = 0; d < 3; ++d) extent += std::max(std::abs(q0[d]), std::abs(q0[d] + voxel * (dims[d] - 1)));
-    usable_ = reach * (reach + 2.0 * extent) / s2 < 600.0;  // every exponent below stays under ~600
+    // Every exponent below, and every partial sum of one, lies within ±reach·(reach + 2·extent)/2σ².
+    usable_ = reach * (reach + 2.0 * extent) / (2.0 * s2) < 300.0;
     if (!usable_) return;
     const std::size_t n = h.vertices.size();
     for (int d = 0; d < 3; ++d) axis_[d].resize(n * static_cast<std::size_t>(dims[d]));

@@ -11,17 +11,19 @@ namespace hairfit {
 
 namespace {
 
+// fields.skin_beyond_hairline: "auto" takes the shell for an open hull, the floor for a closed one.
+enum class SkinMode : std::uint8_t { floor, shell, automatic };
+
 // The grids of the scalp's and the volume's fields, and where the skin lies past the hairline.
 struct FieldsOptions {
   FieldSpec scalp, volume;
-  // fields.skin_beyond_hairline: 0 "floor", 1 "shell", 2 "auto" (shell for an open hull).
-  std::uint8_t skin = 0;
+  SkinMode skin = SkinMode::floor;
 };
 
 void encode(ByteWriter& out, const FieldsOptions& o) {
   encode(out, o.scalp);
   encode(out, o.volume);
-  out.put<std::uint8_t>(o.skin);
+  out.put<std::uint8_t>(static_cast<std::uint8_t>(o.skin));
 }
 
 void compute(StageRun& run, const FieldsOptions& o, StageReport& stage) {
@@ -46,7 +48,8 @@ void compute(StageRun& run, const FieldsOptions& o, StageReport& stage) {
   v.volume_field = std::make_shared<const DistanceField>(
       make_distance_field(inputs.volume.mesh, o.volume, threads, inside_volume));
   std::vector<NrrdVolume> volumes{field_to_nrrd(*v.scalp_distance, threads), field_to_nrrd(*v.volume_field, threads)};
-  const bool skin_under_shell = o.skin == 1 || (o.skin == 2 && !inputs.volume_report.closed());
+  const bool skin_under_shell =
+      o.skin == SkinMode::shell || (o.skin == SkinMode::automatic && !inputs.volume_report.closed());
   if (skin_under_shell) {
     const SkinBeyondHairline skin = skin_beyond_hairline(inputs.scalp.mesh, *v.scalp_distance, *v.volume_field, threads);
     v.scalp_field = std::make_shared<const DistanceField>(skin.field);
@@ -93,7 +96,7 @@ void decode_value(ByteReader& in, StageValues& v) {
 
 ConfiguredStage configure(const Scene& scene) {
   const std::string& skin = scene.fields.skin_beyond_hairline;
-  const std::uint8_t mode = skin == "shell" ? 1 : skin == "auto" ? 2 : 0;
+  const SkinMode mode = skin == "shell" ? SkinMode::shell : skin == "auto" ? SkinMode::automatic : SkinMode::floor;
   ConfiguredStage c = configured(FieldsOptions{field_spec(scene, scene.inputs.scalp.string()),
                                                field_spec(scene, scene.inputs.volume.string()), mode},
                                  compute);
