@@ -52,4 +52,23 @@ Mesh uv_sphere(const Vec3& centre, double radius, int rings, int sectors) {
   return mesh;
 }
 
+Mesh spherical_cap(double theta0, int rings, int sectors, double radius) {
+  Mesh m;
+  m.positions.push_back(Vec3(0, 0, 1));
+  for (int i = 1; i <= rings; ++i)
+    for (int j = 0; j < sectors; ++j) {
+      const double theta = theta0 * i / rings, phi = 2 * M_PI * j / sectors;
+      m.positions.push_back(Vec3(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)));
+    }
+  const auto at = [&](int i, int j) { return 1 + (i - 1) * sectors + j % sectors; };
+  for (int j = 0; j < sectors; ++j) m.triangles.push_back({0, at(1, j), at(1, j + 1)});
+  for (int i = 1; i < rings; ++i)
+    for (int j = 0; j < sectors; ++j) {
+      m.triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+      m.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+    }
+  for (Vec3& p : m.positions) p *= radius;
+  return m;
+}
+
 }  // namespace hairfit

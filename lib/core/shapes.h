@@ -13,4 +13,9 @@ Mesh icosphere(int levels, double radius = 1.0, const Vec3& centre = Vec3::Zero(
 // from outside.
 Mesh uv_sphere(const Vec3& centre, double radius, int rings, int sectors);
 
+// The part of the sphere of `radius` about the origin with polar angle ≤ theta0 (from +z): a pole
+// and `rings` rings of `sectors` vertices, the last at theta0 (its boundary), counter-clockwise
+// seen from outside. An open disk; with theta0 = π/2 a hemisphere over the plane z = 0.
+Mesh spherical_cap(double theta0, int rings, int sectors, double radius = 1.0);
+
 }  // namespace hairfit

@@ -27,6 +27,15 @@ std::string format(const char* fmt, double a, double b = 0, double c = 0, double
   return buffer;
 }
 
+// Throws std::invalid_argument unless the grid is one: non-negative dimensions, a finite voxel
+// > 0, and one sample (and one flag) per node.
+void check_grid(const Vec3i& d, double voxel, std::size_t samples, std::size_t flags) {
+  if (d.minCoeff() < 0 || !(std::isfinite(voxel) && voxel > 0.0))
+    throw std::invalid_argument("a distance field needs non-negative dimensions and a finite voxel > 0");
+  if (samples != std::size_t(d.x()) * d.y() * d.z() || flags != samples)
+    throw std::invalid_argument("distance field grid sizes do not match their samples");
+}
+
 void check_spec(const FieldSpec& spec) {
   auto bad = [&](const std::string& what) { throw InputError(spec.name, "distance field: " + what); };
   if (!(std::isfinite(spec.voxel) && spec.voxel > 0)) bad(format("voxel must be a positive length in cm, got %g", spec.voxel));
@@ -210,15 +219,11 @@ DistanceField DistanceField::build(const Mesh& mesh, const FieldSpec& spec, int 
 }
 
 DistanceField DistanceField::from_parts(DistanceFieldParts parts) {
-  const Vec3i& d = parts.dims;
-  if (d.minCoeff() < 0 || !(std::isfinite(parts.voxel) && parts.voxel > 0.0))
-    throw std::invalid_argument("a distance field needs non-negative dimensions and a finite voxel > 0");
-  if (parts.samples.size() != std::size_t(d.x()) * d.y() * d.z() || parts.flags.size() != parts.samples.size())
-    throw std::invalid_argument("distance field grid sizes do not match their samples");
+  check_grid(parts.dims, parts.voxel, parts.samples.size(), parts.flags.size());
   DistanceField f;
   f.origin_ = parts.origin;
   f.h_ = parts.voxel;
-  f.dims_ = d;
+  f.dims_ = parts.dims;
   f.band_cm_ = parts.band_width;
   f.band_voxels_ = parts.band_voxels;
   f.set_geometry();
@@ -229,10 +234,7 @@ DistanceField DistanceField::from_parts(DistanceFieldParts parts) {
 
 DistanceField DistanceField::from_samples(const Vec3& origin, double voxel, const Vec3i& dims, std::vector<double> samples,
                                          int threads) {
-  if (dims.minCoeff() < 0 || !(std::isfinite(voxel) && voxel > 0.0))
-    throw std::invalid_argument("a distance field needs non-negative dimensions and a finite voxel > 0");
-  if (samples.size() != std::size_t(dims.x()) * dims.y() * dims.z())
-    throw std::invalid_argument("distance field grid sizes do not match their samples");
+  check_grid(dims, voxel, samples.size(), samples.size());
   DistanceField f;
   f.origin_ = origin;
   f.h_ = voxel;

@@ -63,26 +63,6 @@ Mesh torus(double R, double r, int nu, int nv) {
   return m;
 }
 
-// The part of the unit sphere with polar angle ≤ theta0: a pole, `rings` rings of `sectors`
-// vertices on the sphere, outward (counter-clockwise seen from outside).
-Mesh spherical_cap(double theta0, int rings, int sectors) {
-  Mesh m;
-  m.positions.push_back(Vec3(0, 0, 1));
-  for (int i = 1; i <= rings; ++i)
-    for (int j = 0; j < sectors; ++j) {
-      const double theta = theta0 * i / rings, phi = 2 * M_PI * j / sectors;
-      m.positions.push_back(Vec3(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)));
-    }
-  const auto at = [&](int i, int j) { return 1 + (i - 1) * sectors + j % sectors; };
-  for (int j = 0; j < sectors; ++j) m.triangles.push_back({0, at(1, j), at(1, j + 1)});
-  for (int i = 1; i < rings; ++i)
-    for (int j = 0; j < sectors; ++j) {
-      m.triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
-      m.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
-    }
-  return m;
-}
-
 // Solid angle of n spherical triangles, each with two sides of arc θ about an apex angle 2π/n:
 // a regular spherical n-gon of circumradius θ. Spherical excess from two sides a = b = θ and the
 // included angle C: tan(E/2) = tan(a/2) tan(b/2) sin C / (1 + tan(a/2) tan(b/2) cos C).

@@ -4,29 +4,11 @@
 
 #include "core/random.h"
 #include "field/layer_depth.h"
+#include "tests/field/sampled_field.h"
 
 using namespace hairfit;
 
-namespace {
-
-// A field sampled from an analytic function f on the grid origin + h·(i, j, k), dims n³; no band
-// or seam flags, so lookups are the plain trilinear interpolant of the samples.
-template <class F>
-DistanceField sampled(const F& f, const Vec3& origin, double h, int n) {
-  DistanceFieldParts parts;
-  parts.origin = origin;
-  parts.voxel = h;
-  parts.dims = Vec3i(n, n, n);
-  parts.band_width = 0.0;
-  parts.samples.resize(static_cast<std::size_t>(n) * n * n);
-  parts.flags.assign(parts.samples.size(), 0);
-  for (int k = 0; k < n; ++k)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) parts.samples[i + n * (j + n * k)] = f(origin + h * Vec3(i, j, k));
-  return DistanceField::from_parts(std::move(parts));
-}
-
-}  // namespace
+using hairfit::test::sampled;
 
 TEST_CASE("layer depth: value and gradient of λ = S/(S − V) against the formula and central differences") {
   // Concentric spheres about the origin: the scalp r = 3, the hull r = 4.2, analytic values and gradients.

@@ -7,49 +7,27 @@
 
 #include <cmath>
 
+#include "core/shapes.h"
 #include "field/skin_beyond_hairline.h"
+#include "tests/field/sampled_field.h"
 
 using namespace hairfit;
+
+using hairfit::test::sampled;
 
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// A hemisphere of radius R about the origin above z = 0, as a disk: a pole and `rings` rings of
-// `sectors` vertices down to the equator (the hairline, in the plane z = 0), facing outward.
-Mesh hemisphere(double R, int rings, int sectors) {
-  Mesh m;
-  m.positions.push_back(Vec3(0, 0, R));
-  for (int k = 1; k <= rings; ++k) {
-    const double polar = 0.5 * kPi * k / rings;
-    for (int s = 0; s < sectors; ++s) {
-      const double a = 2 * kPi * s / sectors;
-      m.positions.push_back(R * Vec3(std::sin(polar) * std::cos(a), std::sin(polar) * std::sin(a), std::cos(polar)));
-    }
+// The closed head's exact signed distance: the half ball r ≤ R, z ≥ 0, whose flat side is the
+// floor across the hemispherical scalp's hairline.
+double half_ball(double R, const Vec3& p) {
+  const double r = std::hypot(p.x(), p.y());
+  if (p.z() >= 0) {
+    const double ball = p.norm() - R;
+    return ball > 0 ? ball : std::max(ball, -p.z());
   }
-  auto at = [&](int k, int s) { return 1 + (k - 1) * sectors + (s % sectors); };
-  for (int s = 0; s < sectors; ++s) m.triangles.push_back({0, at(1, s), at(1, s + 1)});
-  for (int k = 1; k < rings; ++k)
-    for (int s = 0; s < sectors; ++s) {
-      m.triangles.push_back({at(k, s), at(k + 1, s), at(k + 1, s + 1)});
-      m.triangles.push_back({at(k, s), at(k + 1, s + 1), at(k, s + 1)});
-    }
-  return m;
-}
-
-// An analytic field sampled on origin + h·(i, j, k), dims n³, as a plain trilinear interpolant.
-template <class F>
-DistanceField sampled(const F& f, const Vec3& origin, double h, int n) {
-  DistanceFieldParts parts;
-  parts.origin = origin;
-  parts.voxel = h;
-  parts.dims = Vec3i(n, n, n);
-  parts.samples.resize(static_cast<std::size_t>(n) * n * n);
-  parts.flags.assign(parts.samples.size(), 0);
-  for (int k = 0; k < n; ++k)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) parts.samples[i + n * (j + n * k)] = f(origin + h * Vec3(i, j, k));
-  return DistanceField::from_parts(std::move(parts));
+  return r <= R ? -p.z() : std::hypot(r - R, p.z());
 }
 
 }  // namespace
@@ -58,18 +36,9 @@ TEST_CASE("skin past the hairline: a straight shell continues the skull straight
   const double R = 8.0, t = 0.6, h = 0.2;
   const int n = 111;  // the grid spans [−11, 11]³
   const Vec3 origin(-11, -11, -11);
-  const Mesh scalp = hemisphere(R, 24, 96);
+  const Mesh scalp = spherical_cap(kPi / 2, 24, 96, R);
   // The closed head: the half ball r ≤ R, z ≥ 0 (its exact signed distance).
-  const DistanceField S = sampled(
-      [&](const Vec3& p) {
-        const double r = std::hypot(p.x(), p.y());
-        if (p.z() >= 0) {
-          const double ball = p.norm() - R;
-          return ball > 0 ? ball : std::max(ball, -p.z());
-        }
-        return r <= R ? -p.z() : std::hypot(r - R, p.z());
-      },
-      origin, h, n);
+  const DistanceField S = sampled([&](const Vec3& p) { return half_ball(R, p); }, origin, h, n);
   // The hull's region together with the head: the hemisphere R + t on the cylinder R + t.
   const DistanceField V = sampled(
       [&](const Vec3& p) { return (p.z() >= 0 ? p.norm() : std::hypot(p.x(), p.y())) - (R + t); }, origin, h, n);
@@ -117,17 +86,8 @@ TEST_CASE("skin past the hairline: where the shell does not go past the floor, n
   const double R = 8.0, t = 0.6, h = 0.25;
   const int n = 89;
   const Vec3 origin(-11, -11, -11);
-  const Mesh scalp = hemisphere(R, 16, 64);
-  const DistanceField S = sampled(
-      [&](const Vec3& p) {
-        const double r = std::hypot(p.x(), p.y());
-        if (p.z() >= 0) {
-          const double ball = p.norm() - R;
-          return ball > 0 ? ball : std::max(ball, -p.z());
-        }
-        return r <= R ? -p.z() : std::hypot(r - R, p.z());
-      },
-      origin, h, n);
+  const Mesh scalp = spherical_cap(kPi / 2, 16, 64, R);
+  const DistanceField S = sampled([&](const Vec3& p) { return half_ball(R, p); }, origin, h, n);
   // A closed hull: the ball R + t cut by the floor (the half ball, as a prepared volume's floor
   // closes it under the scalp); the region past the floor lies outside it.
   const DistanceField V = sampled(
@@ -155,15 +115,8 @@ TEST_CASE("skin past the hairline: the hairline's thickness, averaged by its Gau
   const double R = 8.0, t0 = 1.0, d = 0.6, h = 0.25;
   const int n = 89;
   const Vec3 origin(-11, -11, -11), centre(d, 0, 0);
-  const Mesh scalp = hemisphere(R, 12, 48);
-  auto S_of = [&](const Vec3& p) {
-    const double r = std::hypot(p.x(), p.y());
-    if (p.z() >= 0) {
-      const double ball = p.norm() - R;
-      return ball > 0 ? ball : std::max(ball, -p.z());
-    }
-    return r <= R ? -p.z() : std::hypot(r - R, p.z());
-  };
+  const Mesh scalp = spherical_cap(kPi / 2, 12, 48, R);
+  auto S_of = [&](const Vec3& p) { return half_ball(R, p); };
   auto V_of = [&](const Vec3& p) { return (p - centre).norm() - (R + t0); };
   const DistanceField S = sampled(S_of, origin, h, n), V = sampled(V_of, origin, h, n);
   const SkinBeyondHairline skin = skin_beyond_hairline(scalp, S, V, 2);
