@@ -210,11 +210,11 @@ class SceneParser {
     // 0.030–0.047 (bench/results/thin_shells.md).
     if (!scene_.locations.count("hair.flow_smoothing"))
       find_key("hair.flow_smoothing")->store(scene_, {kShellFlowSmoothing}, {});
-    // Hair styled along its flow: rods straight at rest, loaded at the tip and the root alone, do
+    // Hair styled along its path: rods straight at rest, loaded at the tip and the root alone, do
     // not follow a flow that turns in the layer, and cross each other (the sculpted busts' guides
-    // at 0.12–0.16; styled, 0.008–0.077). Hanging hair falls free, and stays straight at rest.
-    if (!scene_.locations.count("hair.rest_shape") && scene_.hair.tilt_toward != "hanging")
-      find_key("hair.rest_shape")->store(scene_, {}, {"flow"});
+    // at 0.12–0.16; styled, 0.008–0.077); nor do they lie on the skull and then hang. Hair that
+    // hangs rests along its fall (guides/fall_rest.h), the rest along the flow.
+    if (!scene_.locations.count("hair.rest_shape")) find_key("hair.rest_shape")->store(scene_, {}, {"flow"});
     // Fibres spread about their guides wider than a thin layer is thick: those that skim out of
     // it (most by under 1 mm) are held in.
     if (!scene_.locations.count("strands.contain")) find_key("strands.contain")->store(scene_, {kShellContain}, {});

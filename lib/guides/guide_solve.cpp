@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numeric>
 
+#include "guides/fall_rest.h"
 #include "guides/styled_rest.h"
 
 namespace hairfit {
@@ -51,9 +52,16 @@ GuideTargets make_targets(const RootSet& bases, int b, const PreGuides& preguide
   t.point_force_weight = o.point_force_weight;
   const Vec3 bend = bending_direction(bases.normals[b], bases.directions[b], o.down, o.front);
   t.model = hair_rod_model(t.length, o.material, RodRoot{t.root, root_frame(bases.directions[b], bend)}, boundary.scalp.get());
-  if (o.styled && !hangs(bases, b))  // a hanging hair falls free, as its pre-guide does
+  // Styled along its path: a hanging hair along its fall (weightless), the rest along the flow.
+  const bool along_fall = o.styled && hangs(bases, b) && o.material.gravity.isZero(0.0) && !o.material.contact.active();
+  if (along_fall) {
+    t.model.kappa_hat = fall_rest(fall_region(boundary, o.down, o.front), t.root, bases.normals[b], t.model.root_frame,
+                                  t.length, immersion_share(o.depth_range, bases.heights[b]),
+                                  o.rod.segments);
+  } else if (o.styled && !hangs(bases, b)) {
     t.model.kappa_hat = styled_rest(*o.styled, boundary, t.root, t.model.root_frame, t.length,
                                     immersion_share(o.depth_range, bases.heights[b]), o.rod.segments);
+  }
   const int segments = o.rod.segments;
   const int k_max = std::min(o.samples, segments);
   for (int k = 0; k <= k_max; ++k) {
@@ -71,13 +79,33 @@ GuideTargets make_targets(const RootSet& bases, int b, const PreGuides& preguide
   for (int i = 0; i < count; ++i) {
     GuideTargets::Neighbour nb;
     nb.weight = weights[i];
-    const FibreShape& shape = preguides.items[chosen[i]].shape;
+    // At the same arc length from the root (cm), not the same share of the length: hair from
+    // the hull is as long as its layer lets it, so neighbours differ in length, and a share of
+    // theirs would put a guide's hanging part beside a neighbour's part on the skull. Past a
+    // neighbour's tip its tip says where it went. Darboux vectors are per unit normalised arc
+    // length, so they scale by the ratio of the lengths.
+    const PreGuide& pre = preguides.items[chosen[i]];
+    const double ratio = pre.length > 0.0 ? t.length / pre.length : 1.0;  // exactly 1 for equal lengths
+    const FibreShape& shape = pre.shape;
     for (int node : t.sample_nodes) {
-      nb.tangents.push_back(shape.tangents[node]);
-      nb.darboux.push_back(shape.darboux[node]);
-      nb.trust.push_back(follow_trust(boundary, shape.nodes[node], o.boundary_width));
+      const double at = std::min(node * ratio, static_cast<double>(segments));
+      const int k = static_cast<int>(at);
+      const double u = at - k;
+      const auto lerp = [&](const std::vector<Vec3>& v) { return u == 0.0 ? v[k] : Vec3((1.0 - u) * v[k] + u * v[k + 1]); };
+      nb.tangents.push_back(u == 0.0 ? shape.tangents[k] : Vec3(lerp(shape.tangents).normalized()));
+      nb.darboux.push_back(ratio * lerp(shape.darboux));
+      nb.trust.push_back(follow_trust(boundary, lerp(shape.nodes), o.boundary_width));
     }
     t.neighbours.push_back(std::move(nb));
+  }
+  // A hair at rest along its fall keeps to its own rest curvature in F2: its neighbours rest along
+  // their own falls, whose corners (where a fall meets the skin or the hull) lie at other arc
+  // lengths, and matching their curvature bent the guides off their falls into a tangle (the
+  // straight fixture at default keys: F2 was 4.2 of a cost of 4.4).
+  if (along_fall) {
+    const FibreShape rest = fibre_shape(t.model, t.root, t.length, t.rod, Vec3::Zero(), Vec3::Zero());
+    for (GuideTargets::Neighbour& nb : t.neighbours)
+      for (std::size_t k = 0; k < t.sample_nodes.size(); ++k) nb.darboux[k] = rest.darboux[t.sample_nodes[k]];
   }
   t.boundary = &boundary;
   t.weights = o.weights;

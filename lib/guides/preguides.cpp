@@ -5,7 +5,7 @@
 #include <optional>
 
 #include "core/parallel.h"
-
+#include "guides/fall_rest.h"
 #include "guides/layer_preguide.h"
 #include "rod/rod_point_forces.h"
 #include "rod/rod_shooting.h"
@@ -449,9 +449,30 @@ bool fitted_to_layer(const PreguideOptions& o) {
   return o.immersion == PreguideImmersion::layer && o.material.gravity.isZero(0.0) && !o.material.contact.active();
 }
 
+// Whether root i's pre-guide rests along its fall (guides/fall_rest.h): a hanging root of hair
+// styled along its path, weightless.
+bool rests_along_fall(const RootSet& roots, int i, const PreguideOptions& o) {
+  return o.styled && hangs(roots, i) && o.material.gravity.isZero(0.0) && !o.material.contact.active();
+}
+
+// The unloaded rod at rest along its fall: its tip rests where the fall ends, on the layer's floor.
+PreGuide fall_preguide(const RootSet& roots, int i, const Boundary& boundary, const PreguideOptions& o) {
+  PreGuide g = preguide_start(roots, i, boundary, o);
+  const Mat3 frame = root_frame(g.direction, bending_direction(g.normal, g.direction, o.down, o.front));
+  RodModel model = make_rod_model(hair_rod(g.length, o.material), RodRoot{g.root, frame});
+  model.kappa_hat = fall_rest(fall_region(boundary, o.down, o.front), g.root, g.normal, frame, g.length,
+                               immersion_share(o, g.height), o.rod.segments);
+  g.shape = fibre_shape(model, g.root, g.length, o.rod, Vec3::Zero(), Vec3::Zero());
+  g.depth = -boundary.volume->value(g.shape.nodes.back());
+  g.reached = boundary.acceptable(g.shape.nodes.back());
+  g.solves = 1;
+  return g;
+}
+
 }  // namespace
 
 PreGuide solve_preguide_alone(const RootSet& roots, int i, const Boundary& boundary, const PreguideOptions& options) {
+  if (rests_along_fall(roots, i, options)) return fall_preguide(roots, i, boundary, options);
   return fitted_to_layer(options) && !hangs(roots, i) ? solve_layer_preguide(roots, i, boundary, options)
                                                       : solve_preguide(roots, i, boundary, options, {});
 }
@@ -481,7 +502,8 @@ PreGuides make_preguides(const RootSet& roots, const Boundary& boundary, const P
   for (const PreguideMarch& m : shared) result.shared_solves += m.solves;
   ProgressCounter progress(exec.progress);
   parallel_for(roots.size(), exec.threads, [&](int i) {
-    result.items[i] = solve_preguide(roots, i, boundary, options, shared);
+    result.items[i] = rests_along_fall(roots, i, options) ? fall_preguide(roots, i, boundary, options)
+                                                          : solve_preguide(roots, i, boundary, options, shared);
     progress.item_done();
   });
   return result;

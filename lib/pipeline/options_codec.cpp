@@ -58,6 +58,7 @@ void encode(ByteWriter& out, const RootSettings& s) {
   out.put(s.maps);
   out.put<std::uint8_t>(s.from_shell);
   out.put(s.relief_radius);
+  out.put(s.fall_depth_range);
 }
 
 void encode(ByteWriter& out, const HairMaterial& m) {

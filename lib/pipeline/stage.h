@@ -21,6 +21,7 @@
 #include "pipeline/stage_options.h"
 #include "pipeline/stage_plan.h"
 #include "pipeline/options_codec.h"
+#include "scalp/hull_hair.h"
 #include "scalp/shell_hair.h"
 
 namespace hairfit {
@@ -60,6 +61,8 @@ class StageRun {
     RootOptions options;
     RootInputs inputs;
     ShellHair shell;
+    std::vector<Fall> falls;  // hair from the hull: the fall from every scalp vertex
+    HullHair hull;
   };
   const ResolvedRoots& resolved_roots(const RootSettings& settings);
   // The growth field the roots grew along (one solve on the scalp, once a run), read anywhere near

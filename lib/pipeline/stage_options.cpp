@@ -43,6 +43,7 @@ RootSettings root_settings(const Scene& scene) {
   for (const char* map : {"density", "tilt", "length"})
     if (scene.effects.uses_map(map)) s.maps.push_back(map);
   s.from_shell = scene.hair.from_shell;
+  if (s.from_shell) s.fall_depth_range = scene.preguides.depth_range;
   if (o.flow == FlowModel::relief) s.relief_radius = scene.hair.relief_radius;
   return s;
 }

@@ -23,6 +23,9 @@ struct RootSettings {
   std::vector<std::string> maps;  // the grey maps it reads (effects.maps: density, tilt, length)
   bool from_shell = false;        // length and tilt from the shell (hair.length and hair.tilt unset)
   double relief_radius = 0.0;     // cm around a scalp point the hull's grain is read (flow = relief)
+  // Hair from the hull: the share of the layer's depth the hair falls at, crown → rim (the
+  // pre-guides' immersion, preguides.depth_range).
+  std::array<double, 2> fall_depth_range{0.15, 0.6};
 };
 RootSettings root_settings(const Scene& scene);
 // The input files and earlier stages those settings read beyond the chart.

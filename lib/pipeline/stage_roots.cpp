@@ -18,6 +18,13 @@ void compute(StageRun& run, const RootSettings& settings, StageReport& stage) {
     stage.add("shell_reach_cm", resolved.shell.reach);
     stage.add("hair_length_cm", o.length);
     stage.add("hair_tilt_degrees", o.tilt);
+    stage.add("hair_hangs_from_hull", resolved.hull.hangs);
+    for (const HullHairRegion& g : hull_hair_regions(*v.chart, resolved.falls, resolved.hull)) {
+      const std::string key = "hull_" + g.name + "_";
+      stage.add(key + "hanging_share", g.hanging_share);
+      stage.add(key + "length_cm", g.median_length);
+      stage.add(key + "fall_below_rim_cm", g.median_below_rim);
+    }
   }
   ScalpRoots made = make_scalp_roots(*v.chart, resolved.inputs, o, run.exec());
   v.roots = std::make_shared<const Roots>(std::move(made.roots));

@@ -4,8 +4,11 @@
 #include "core/parallel.h"
 #include "pipeline/stage.h"
 #include "pipeline/stage_options.h"
+#include "guides/fall_rest.h"
+#include "guides/preguides.h"
 #include "scalp/growth_field.h"
 #include "scalp/hanging.h"
+#include "scalp/hull_hair.h"
 #include "scalp/relief.h"
 
 namespace hairfit {
@@ -44,7 +47,21 @@ const StageRun::ResolvedRoots& StageRun::resolved_roots(const RootSettings& sett
       o.tilt = r.shell.tilt;
     }
   }
-  if (o.tilt_toward == TiltToward::hanging) {  // after the length is known: the hang stops there
+  if (settings.from_shell) {  // where the layer carries the hair on below the rim, it hangs there
+    const ScalpChart& chart = *values.chart;
+    const std::array<double, 2> depth_range = settings.fall_depth_range;
+    r.falls = vertex_falls(chart, fall_region(boundary(), chart.down, chart.front), kLongestFall,
+                           [&](const Vec3& p) { return immersion_share(depth_range, height_of(chart, p)); },
+                           options.threads);
+    r.hull = hull_hair(r.falls, o.length);
+    if (r.hull.hangs) {
+      r.inputs.vertex_hang_weights = r.hull.hang_weights;
+      r.inputs.vertex_lengths = r.hull.lengths;
+      o.tilt_toward = TiltToward::hanging;
+      if (!r.shell.layer_ends) o.tilt = kMaxShellTilt;
+    }
+  }
+  if (o.tilt_toward == TiltToward::hanging && r.inputs.vertex_lengths.empty()) {  // after the length is known
     const double longest = longest_hair(r.inputs, o);
     r.inputs.hangs = vertex_hangs(*values.chart, hang_probe(boundary(), values.chart->down, false), longest,
                                   options.threads, o.hang_margin);

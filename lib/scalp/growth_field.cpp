@@ -165,13 +165,14 @@ DirectionField make_growth_field(const ScalpChart& ch, const RootInputs& in, con
       Vec3 local = growth_guidance(normal, gradient[i], o, ch.down, ch.front);
       double hanging = 0.0;
       if (o.tilt_toward == TiltToward::hanging) {  // where hair hangs, toward down
-        hanging = hang_weight(in.hangs[i], hair);
+        hanging = in.vertex_hang_weights.empty() ? hang_weight(in.hangs[i], hair) : in.vertex_hang_weights[i];
         local = hanging * down_guidance(normal, ch.down, ch.front) + (1.0 - hanging) * local;
       }
       const Vec3 a = turned_clockwise(away[i] - away[i].dot(normal) * normal, normal, o.swirl);
       // A root with a hair's length of layer below it falls there: it need not turn away from
       // where the layer ends elsewhere (MakeHuman short04's temples then fall over the sideburns).
-      const double urgency = (std::isfinite(reach[i]) ? smoothstep(1.0 - reach[i] / o.length) : 0.0) * (1.0 - hanging);
+      const double length = in.vertex_lengths.empty() ? o.length : in.vertex_lengths[i];
+      const double urgency = (std::isfinite(reach[i]) ? smoothstep(1.0 - reach[i] / length) : 0.0) * (1.0 - hanging);
       guidance[i] = a.norm() > 1e-12 ? Vec3(urgency * a.normalized() + (1.0 - urgency) * local) : local;
     }
   }

@@ -163,11 +163,14 @@ RootSet make_root_set(const ScalpChart& ch, const RootInputs& maps, const RootOp
     s.normals[i] = surface_normal(ch, sp);
     s.chart[i] = chart_position(ch, sp);
     const double tilt = maps.tilt ? lerp(o.tilt_range, map_value(maps.tilt.get(), s.chart[i])) : o.tilt;
-    s.lengths[i] = maps.length ? lerp(o.length_range, map_value(maps.length.get(), s.chart[i])) : o.length;
+    const bool from_hull = !maps.vertex_lengths.empty();
+    s.lengths[i] = from_hull    ? hang_at(ch, maps.vertex_lengths, sp)
+                   : maps.length ? lerp(o.length_range, map_value(maps.length.get(), s.chart[i]))
+                                 : o.length;
     double hang = 0.0, hanging = 0.0;
     if (o.tilt_toward == TiltToward::hanging) {
-      hang = hang_at(ch, maps.hangs, sp);
-      hanging = s.hang_weights[i] = hang_weight(hang, s.lengths[i]);
+      hang = from_hull ? 0.0 : hang_at(ch, maps.hangs, sp);
+      hanging = s.hang_weights[i] = from_hull ? hang_at(ch, maps.vertex_hang_weights, sp) : hang_weight(hang, s.lengths[i]);
     }
     if (flow) {
       const Vec3 fallback = tangent_toward_down(s.normals[i], ch.down, ch.front);
@@ -181,7 +184,7 @@ RootSet make_root_set(const ScalpChart& ch, const RootInputs& maps, const RootOp
       s.directions[i] = hanging > 0.0 ? blend_unit(thicker, growth_direction(s.normals[i], ch.down, ch.front, tilt), hanging)
                                       : thicker;
     }
-    if (o.tilt_toward == TiltToward::hanging)  // hair that hangs, or grows down, ends where the layer below ends
+    if (o.tilt_toward == TiltToward::hanging && !from_hull)  // hair that hangs, or grows down, ends where the layer below ends
       s.lengths[i] = hanging_length(s.lengths[i], maps.falls.empty() ? hang : hang_at(ch, maps.falls, sp),
                                     std::max(hanging, downness(s.directions[i], s.normals[i], ch.down)));
     s.heights[i] = height_of(ch, s.positions[i]);
@@ -195,7 +198,11 @@ void check_options(const ScalpChart& ch, const RootInputs& maps, const RootOptio
   if (!(o.oversampling >= 1)) throw std::invalid_argument("roots: oversampling must be ≥ 1");
   if (o.tilt_toward != TiltToward::down && !maps.thickness)
     throw std::invalid_argument("roots: tilting toward the thicker layer needs the layer's thickness field");
-  if (o.tilt_toward == TiltToward::hanging && maps.hangs.size() != ch.mesh.positions.size())
+  const std::size_t vertices = ch.mesh.positions.size();
+  if ((maps.vertex_lengths.size() != maps.vertex_hang_weights.size()) ||
+      (!maps.vertex_lengths.empty() && maps.vertex_lengths.size() != vertices))
+    throw std::invalid_argument("roots: hair from the hull needs its length and weight at every scalp vertex");
+  if (o.tilt_toward == TiltToward::hanging && maps.vertex_lengths.empty() && maps.hangs.size() != vertices)
     throw std::invalid_argument("roots: hanging hair needs the hang at every scalp vertex");
   if (!maps.falls.empty() && maps.falls.size() != ch.mesh.positions.size())
     throw std::invalid_argument("roots: the hang as hair falls is needed at every scalp vertex, or not at all");

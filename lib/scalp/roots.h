@@ -45,6 +45,11 @@ struct RootInputs {
   std::vector<double> falls;               // the same along the path heavy hair falls (HangProbe::falls_free), for
                                            // the hanging hair's length; empty: `hangs`
   std::vector<Vec3> grain;                 // FlowModel::relief: per scalp vertex (relief_grain)
+  // Hair from the hull (scalp/hull_hair.h), per scalp vertex, both or neither: how much the hair
+  // hangs, φ ∈ [0, 1], in place of hang_weight(hang, length), and its length (cm), in place of the
+  // options' length and the hanging length.
+  std::vector<double> vertex_hang_weights;
+  std::vector<double> vertex_lengths;
 };
 
 struct RootOptions {

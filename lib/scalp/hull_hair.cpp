@@ -1,0 +1,63 @@
+#include "scalp/hull_hair.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "core/smoothstep.h"
+
+namespace hairfit {
+
+HullHair hull_hair(const std::vector<Fall>& falls, double lying_length) {
+  HullHair h;
+  h.hang_weights.reserve(falls.size());
+  h.lengths.reserve(falls.size());
+  for (const Fall& f : falls) {
+    const double phi = smoothstep(f.below_rim / kHangRamp);
+    h.hang_weights.push_back(phi);
+    h.lengths.push_back(std::max(kShortestHullHair, phi * (f.length - kFallTipMargin) + (1.0 - phi) * lying_length));
+    h.hangs = h.hangs || phi > 0.0;
+  }
+  return h;
+}
+
+namespace {
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  const std::size_t m = v.size() / 2;
+  std::nth_element(v.begin(), v.begin() + m, v.end());
+  return v[m];
+}
+
+}  // namespace
+
+std::vector<HullHairRegion> hull_hair_regions(const ScalpChart& chart, const std::vector<Fall>& falls,
+                                              const HullHair& hair) {
+  const RimHeights rim = rim_heights(chart);
+  const Vec3 front = (chart.front - chart.front.dot(rim.up) * rim.up).normalized();
+  const Vec3 left = rim.up.cross(front);
+  std::array<HullHairRegion, 4> regions{{{"front"}, {"left"}, {"back"}, {"right"}}};
+  std::array<std::vector<double>, 4> lengths, below;
+  std::array<int, 4> hanging{};
+  for (std::size_t v = 0; v < falls.size(); ++v) {
+    const Vec3 q = chart.mesh.positions[v] - rim.centre;
+    const double angle = std::atan2(q.dot(left), q.dot(front));  // 0 front, π/2 left
+    const int r = static_cast<int>(std::floor(angle / (0.5 * M_PI) + 0.5 + 4.0)) % 4;
+    lengths[r].push_back(hair.lengths[v]);
+    below[r].push_back(falls[v].below_rim);
+    hanging[r] += hair.hang_weights[v] > 0.5;
+  }
+  std::vector<HullHairRegion> out;
+  for (int r = 0; r < 4; ++r) {
+    HullHairRegion g = regions[r];
+    g.vertices = static_cast<int>(lengths[r].size());
+    g.hanging_share = g.vertices ? static_cast<double>(hanging[r]) / g.vertices : 0.0;
+    g.median_length = median(lengths[r]);
+    g.median_below_rim = median(below[r]);
+    out.push_back(g);
+  }
+  return out;
+}
+
+}  // namespace hairfit

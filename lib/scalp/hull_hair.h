@@ -1,0 +1,51 @@
+// Hair from the hull (issue 47): with no hair length or tilt in the scene, the hull decides per
+// scalp vertex whether the hair hangs and how long it is, from the way the hair falls through the
+// region the hull and the skin enclose (scalp/fall.h). Where the layer carries that way on below
+// the scalp's rim (shoulder-length hulls, a ponytail, a curtain), the hair hangs, and is as long
+// as the way; where the way ends at or above the rim (a cap that ends at the hairline) the hair
+// keeps the length and tilt of hair that suits its shell (scalp/shell_hair.h). Between the two,
+// over the first kHangRamp of the way below the rim, it blends smoothly, so that a region's hair
+// turns from lying to hanging without a seam.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "scalp/fall.h"
+
+namespace hairfit {
+
+// cm of the fall below the rim over which hair turns from lying to hanging (smoothstep).
+constexpr double kHangRamp = 4.0;
+// cm: the longest fall followed (four times a waist-length hair).
+constexpr double kLongestFall = 200.0;
+// cm the tip of a hanging hair stays short of where its fall ends (the layer's floor), so that
+// the tip lies in the layer; and the shortest hair that comes of it.
+constexpr double kFallTipMargin = 1.0;
+constexpr double kShortestHullHair = 1.0;
+
+struct HullHair {
+  std::vector<double> hang_weights;  // φ ∈ [0, 1] per scalp vertex
+  std::vector<double> lengths;       // cm per scalp vertex
+  bool hangs = false;                // some vertex has φ > 0
+};
+
+// φ = smoothstep(below_rim / kHangRamp), ℓ = max(kShortestHullHair,
+// φ·(fall length − kFallTipMargin) + (1 − φ)·`lying_length`), per fall.
+HullHair hull_hair(const std::vector<Fall>& falls, double lying_length);
+
+// What a region of the scalp derived from the hull: its roots' share that hangs (φ > ½), and the
+// median length and median fall below the rim of its vertices.
+struct HullHairRegion {
+  std::string name;  // "front", "left", "back", "right"
+  int vertices = 0;
+  double hanging_share = 0.0;
+  double median_length = 0.0;     // cm
+  double median_below_rim = 0.0;  // cm
+};
+
+// The four quarters of the scalp seen from above, about the hairline's centre, `front` and the
+// viewer's left and right as the head sees them (left = up × front).
+std::vector<HullHairRegion> hull_hair_regions(const ScalpChart& chart, const std::vector<Fall>& falls,
+                                              const HullHair& hair);
+
+}  // namespace hairfit

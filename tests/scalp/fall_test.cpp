@@ -1,0 +1,174 @@
+// The fall from the hull (scalp/fall.h) against exact path lengths on walls, slopes, floors and a
+// sphere, its pull toward a share of the layer's depth, the rim heights of a level hairline, and
+// the hair the hull gives (scalp/hull_hair.h) from known falls.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "scalp/hanging.h"
+#include "scalp/hull_hair.h"
+#include "tests/scalp/scalp_meshes.h"
+
+using namespace hairfit;
+
+namespace {
+
+using Field = std::function<void(const Vec3&, double&, Vec3&)>;
+
+// The plane through `through` with unit normal m, positive on m's side.
+Field plane(const Vec3& m, const Vec3& through = Vec3::Zero()) {
+  return [m, through](const Vec3& p, double& value, Vec3& gradient) {
+    value = m.dot(p - through);
+    gradient = m;
+  };
+}
+
+// The larger of two fields, with the gradient of the one that is larger: their intersection.
+Field intersection(Field a, Field b) {
+  return [a, b](const Vec3& p, double& value, Vec3& gradient) {
+    double va, vb;
+    Vec3 ga, gb;
+    a(p, va, ga);
+    b(p, vb, gb);
+    value = va >= vb ? va : vb;
+    gradient = va >= vb ? ga : gb;
+  };
+}
+
+// The sphere of radius R about the origin, negative inside.
+Field sphere(double R) {
+  return [R](const Vec3& p, double& value, Vec3& gradient) {
+    value = p.norm() - R;
+    gradient = p.normalized();
+  };
+}
+
+// A region whose floor is the height `floor`: the hull holds the hair above it (and, with `outer`,
+// inside that field too).
+FallRegion region(Field skin, double floor, double step, Field outer = {}) {
+  FallRegion r;
+  r.skin = std::move(skin);
+  const Field above = plane(Vec3(0, -1, 0), Vec3(0, floor, 0));
+  r.hull = outer ? intersection(outer, above) : above;
+  r.step = step;
+  return r;
+}
+
+// A rim at height h all round the vertical axis.
+RimHeights level_rim(double h) {
+  RimHeights rim;
+  rim.heights.assign(kRimBins, h);
+  return rim;
+}
+
+}  // namespace
+
+TEST_CASE("the fall runs straight down a wall to the layer's floor, to a 2⁻²⁰ step") {
+  for (double step : {0.3, 0.1, 0.07}) {
+    CAPTURE(step);
+    const FallRegion wall = region(plane(Vec3(1, 0, 0)), -5.0, step);
+    const Fall f = fall_from(wall, level_rim(-1.0), Vec3::Zero(), Vec3(1, 0, 0), 20.0, kNoDepth, true);
+    CHECK(f.length == doctest::Approx(5.0).epsilon(1e-6));
+    CHECK(f.below_rim == doctest::Approx(4.0).epsilon(1e-6));
+    CHECK(f.nodes.back().y() == doctest::Approx(-5.0).epsilon(1e-6));
+    CHECK(f.nodes.back().x() == doctest::Approx(kHangStart).epsilon(1e-12));
+    // The cap ends it.
+    const Fall capped = fall_from(wall, level_rim(-1.0), Vec3::Zero(), Vec3(1, 0, 0), 3.0, kNoDepth);
+    CHECK(capped.length == doctest::Approx(3.0).epsilon(1e-12));
+    CHECK(capped.below_rim == doctest::Approx(2.0).epsilon(1e-6));
+  }
+}
+
+TEST_CASE("the fall slides down a sloping skin, kFallClearance off it, to the floor") {
+  // Skin with unit normal m = (0.8, 0.6, 0): down along it is (0.6, −0.8, 0). The bead slides at
+  // kFallClearance off the skin from the start's height down to the floor at −4.
+  const Vec3 m(0.8, 0.6, 0.0);
+  const FallRegion slope = region(plane(m), -4.0, 0.05);
+  const Fall f = fall_from(slope, level_rim(10.0), Vec3::Zero(), m, 20.0, kNoDepth, true);
+  const Vec3 end = f.nodes.back();
+  CHECK(end.y() < -4.0 + 0.05);  // where its last step would leave through the skin or the floor
+  CHECK(m.dot(end) == doctest::Approx(kFallClearance).epsilon(0.2));
+  // Along the slope from the start (height 0.6·kHangStart) to the floor: 1/0.8 cm a cm of height.
+  CHECK(std::fabs(f.length - (4.0 + 0.6 * kHangStart) / 0.8) < 0.1);
+  CHECK(f.below_rim == doctest::Approx(f.length).epsilon(1e-12));  // all of it below a rim at 10
+}
+
+TEST_CASE("on a skin flatter than kFallSlope the fall leans over kCrownLean and rests") {
+  const Vec3 m = Vec3(0.1, 1.0, 0.0).normalized();  // sin of the slope: 0.0995 < kFallSlope
+  const FallRegion flat = region(plane(m), -4.0, 0.05);
+  const Fall f = fall_from(flat, level_rim(10.0), Vec3::Zero(), m, 20.0, kNoDepth);
+  CHECK(f.length >= kCrownLean);
+  CHECK(f.length <= kCrownLean + 0.05 + 1e-9);
+  // Steeper than kFallSlope it slides on to the floor.
+  const Vec3 steep = Vec3(0.2, 1.0, 0.0).normalized();  // 0.196
+  const Fall g = fall_from(region(plane(steep), -4.0, 0.05), level_rim(10.0), Vec3::Zero(), steep, 100.0, kNoDepth);
+  CHECK(g.length > 4.0 / 0.196 - 1.0);
+}
+
+TEST_CASE("the fall from the crown of a sphere leans over, runs round it and hangs to the floor") {
+  // A skull of radius 8 under a layer 2 cm thick, cut off 5 cm below the centre. From the crown
+  // the bead leans toward −front, runs a quarter great circle on the skin (8·π/2, within the
+  // clearance), leaves it where it turns under, and falls 5 cm to the floor.
+  const double R = 8.0, c = 5.0;
+  FallRegion r;
+  r.skin = sphere(R);
+  r.hull = intersection(sphere(R + 2.0), plane(Vec3(0, -1, 0), Vec3(0, -c, 0)));
+  r.step = 0.05;
+  const Fall f = fall_from(r, level_rim(0.0), Vec3(0, R, 0), Vec3(0, 1, 0), 100.0, kNoDepth, true);
+  const Vec3 end = f.nodes.back();
+  CHECK(end.y() == doctest::Approx(-c).epsilon(1e-6));
+  CHECK(end.z() < -R);                  // behind the head, toward −front
+  CHECK(std::fabs(end.x()) < 1e-9);     // in the plane of front and down
+  CHECK(std::fabs(f.length - (R * M_PI / 2 + c)) < 0.3);
+  CHECK(std::fabs(f.below_rim - c) < 0.1);
+}
+
+TEST_CASE("the fall is pulled to its share of the layer's depth and keeps it") {
+  // A wall of hair 4 cm deep (skin x = 0, hull x = 4) down to y = −10: at share ½ the bead moves
+  // from kHangStart off the skin to x = 2 within a few kFallDepthReach and falls there.
+  FallRegion r = region(plane(Vec3(1, 0, 0)), -10.0, 0.05, plane(Vec3(1, 0, 0), Vec3(4, 0, 0)));
+  const Fall f = fall_from(r, level_rim(0.0), Vec3::Zero(), Vec3(1, 0, 0), 100.0, 0.5, true);
+  CHECK(f.nodes.back().y() == doctest::Approx(-10.0).epsilon(1e-6));
+  CHECK(std::fabs(f.nodes.back().x() - 2.0) < 0.05);
+  for (const Vec3& p : f.nodes) CHECK(p.x() <= 2.0 + 1e-9);  // it never overshoots its depth
+  // Without a target it falls straight down where it started.
+  const Fall straight = fall_from(r, level_rim(0.0), Vec3::Zero(), Vec3(1, 0, 0), 100.0, kNoDepth, true);
+  CHECK(straight.nodes.back().x() == doctest::Approx(kHangStart).epsilon(1e-12));
+}
+
+TEST_CASE("a root outside the region has no fall") {
+  const FallRegion wall = region(plane(Vec3(1, 0, 0)), -5.0, 0.1);
+  CHECK(fall_from(wall, level_rim(0.0), Vec3(0, -6, 0), Vec3(1, 0, 0), 20.0, kNoDepth).length == 0.0);
+  CHECK(fall_from(wall, level_rim(0.0), Vec3::Zero(), Vec3(1, 0, 0), 0.0, kNoDepth).length == 0.0);
+}
+
+TEST_CASE("the rim heights of a level hairline are its height all round") {
+  // A sphere's cap down to the polar angle 1.2: its hairline is the circle at height 8·cos 1.2.
+  const Mesh cap = test::head_cap(8, 1.2, 0.0, 8.0, 8.0, 8.0);
+  const ScalpChart chart = make_scalp_chart(cap, Vec3(0, 0, 1), Vec3(0, -1, 0), "cap.obj");
+  const RimHeights rim = rim_heights(chart);
+  REQUIRE(rim.heights.size() == static_cast<std::size_t>(kRimBins));
+  CHECK(rim.centre.y() == doctest::Approx(8.0 * std::cos(1.2)).epsilon(1e-12));
+  for (double h : rim.heights) CHECK(std::fabs(h) < 1e-12);
+  CHECK(rim.below(Vec3(3, -3, 5)) == doctest::Approx(8.0 * std::cos(1.2) + 3.0).epsilon(1e-12));
+  CHECK(rim.below(Vec3(0, 20, 0)) < 0.0);
+}
+
+TEST_CASE("hair from the hull: lying above the rim, hanging past kHangRamp below it, smooth between") {
+  std::vector<Fall> falls(4);
+  falls[0].length = 3.0, falls[0].below_rim = 0.0;                 // a cap: keeps the lying length
+  falls[1].length = 30.0, falls[1].below_rim = kHangRamp;          // hangs its fall's length
+  falls[2].length = 20.0, falls[2].below_rim = 0.5 * kHangRamp;    // half and half
+  falls[3].length = 1.2, falls[3].below_rim = kHangRamp;           // hangs, but no shorter than the least
+  const HullHair h = hull_hair(falls, 6.0);
+  CHECK(h.hangs);
+  CHECK(h.hang_weights[0] == 0.0);
+  CHECK(h.lengths[0] == 6.0);
+  CHECK(h.hang_weights[1] == 1.0);
+  CHECK(h.lengths[1] == doctest::Approx(30.0 - kFallTipMargin).epsilon(1e-15));
+  CHECK(h.hang_weights[2] == doctest::Approx(0.5).epsilon(1e-15));
+  CHECK(h.lengths[2] == doctest::Approx(0.5 * (20.0 - kFallTipMargin) + 0.5 * 6.0).epsilon(1e-15));
+  CHECK(h.lengths[3] == kShortestHullHair);
+  CHECK_FALSE(hull_hair({falls[0]}, 6.0).hangs);
+}
