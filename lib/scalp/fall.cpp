@@ -182,7 +182,16 @@ Fall fall_from(const FallRegion& region, const RimHeights& rim, const Vec3& root
   const Vec3& down = region.down;
   // A kept step moves the bead at least a quarter step, so the way ends within this many.
   const long steps = static_cast<long>(std::ceil(4.0 * cap / region.step)) + 4;
+  // Where it was lowest: a way that has not gone lower over kFallStall rests there (in the
+  // crease at the bottom of a bag-shaped hull the bead can wander without falling).
+  double lowest = p.dot(down), length_at_lowest = 0.0, below_at_lowest = 0.0;
+  std::size_t nodes_at_lowest = f.nodes.size();
   for (long k = 0; k < steps && f.length < cap; ++k) {
+    if (f.length > kCrownLean && f.length - length_at_lowest > kFallStall) {
+      f.length = length_at_lowest, f.below_rim = below_at_lowest;
+      if (keep_nodes) f.nodes.resize(nodes_at_lowest);
+      return f;
+    }
     const double h = std::min(region.step, cap - f.length);
     const bool leaning = f.length < kCrownLean;
     const Vec3 w = heading(s, down, target);
@@ -212,6 +221,8 @@ Fall fall_from(const FallRegion& region, const RimHeights& rim, const Vec3& root
     f.below_rim += length_below(rim, p, q);
     p = q, s = t;
     if (keep_nodes) f.nodes.push_back(p);
+    if (p.dot(down) > lowest) lowest = p.dot(down), length_at_lowest = f.length, below_at_lowest = f.below_rim,
+                              nodes_at_lowest = f.nodes.size();
   }
   f.length = std::min(f.length, cap);
   f.below_rim = std::min(f.below_rim, f.length);

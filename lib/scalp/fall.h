@@ -9,7 +9,8 @@
 // hair volume, it slides: down loses its part along that surface's normal, as a bead on a
 // frictionless surface, and the step is pulled back to kFallClearance inside the surface. It
 // stops where the slide is flatter than kFallSlope (it rests on a floor: the bottom of a curtain,
-// the end of a braid), where it cannot keep inside, or at `cap`. At the top of the head down is
+// the end of a braid), where it cannot keep inside, where it has gone no lower over kFallStall
+// (it ends where it was lowest), or at `cap`. At the top of the head down is
 // normal to the skin and the slide vanishes, so within kCrownLean of the root the bead takes the
 // tangent toward down (toward −front where down is normal to the skin) however flat: a hair on the
 // crown leans over before it falls.
@@ -31,6 +32,8 @@ constexpr double kHullWallSlope = 0.5;
 constexpr double kFallClearance = 0.05;
 // How far from the root the bead leans over however flat its way (cm).
 constexpr double kCrownLean = 2.0;
+// How far (cm) the bead may go on past its lowest point before it rests there.
+constexpr double kFallStall = 2.0;
 
 // The region as two signed fields with their gradients: the skin (its distance, negative in the
 // head) and the hull (the volume field, negative inside the hair volume).

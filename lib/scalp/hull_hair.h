@@ -14,8 +14,9 @@
 
 namespace hairfit {
 
-// cm of the fall below the rim over which hair turns from lying to hanging (smoothstep).
-constexpr double kHangRamp = 4.0;
+// cm of the fall below the rim over which hair turns from lying to hanging (smoothstep). MakeHuman
+// bob01 / braid01 at 600 guides, coverage: 0.907 / 0.965 over 4 cm, 0.921 / 0.980 over 8 cm.
+constexpr double kHangRamp = 8.0;
 // cm: the longest fall followed (four times a waist-length hair).
 constexpr double kLongestFall = 200.0;
 // cm the tip of a hanging hair stays short of where its fall ends (the layer's floor), so that

@@ -278,9 +278,10 @@ TEST_CASE("hanging hair is a style the shell's hair keeps: the length and tilt a
   CHECK(hanging.hair.from_shell);
   CHECK(hanging.preguides.immersion == "layer");  // hanging roots take the tip construction root by root
   CHECK(parse("").hair.tilt_toward == "thicker");
-  // The shell's hair is styled along its flow, unless it hangs; declared hair stays straight.
+  // The shell's hair is styled along its path (along its fall where it hangs, guides/fall_rest.h);
+  // declared hair stays straight.
   CHECK(parse("").hair.rest_shape == "flow");
-  CHECK(hanging.hair.rest_shape == "straight");
+  CHECK(hanging.hair.rest_shape == "flow");
   CHECK(parse("[hair]\nlength = 10\n").hair.rest_shape == "straight");
   CHECK(parse("[hair]\nrest_shape = \"straight\"\n").hair.rest_shape == "straight");
   CHECK(first_error("[hair]\ntilt_toward = \"falling\"\n").find("choose one of \"down\", \"thicker\", \"hanging\"") != std::string::npos);
