@@ -1,5 +1,6 @@
 // The roots stage: pores, guide clusters and pre-guide roots on the scalp, with their growth
 // directions (docs/design.md §3).
+#include "pipeline/resolved_scene.h"
 #include "pipeline/stage.h"
 #include "pipeline/stage_codec.h"
 #include "scalp/scalp_outputs.h"
@@ -18,6 +19,7 @@ void compute(StageRun& run, const RootSettings& settings, StageReport& stage) {
     stage.add("shell_reach_cm", resolved.shell.reach);
     stage.add("hair_length_cm", o.length);
     stage.add("hair_tilt_degrees", o.tilt);
+    derive_shell_keys(stage, resolved.shell, o.length, o.tilt);
   }
   ScalpRoots made = make_scalp_roots(*v.chart, resolved.inputs, o, run.exec());
   v.roots = std::make_shared<const Roots>(std::move(made.roots));
