@@ -67,7 +67,8 @@ fs::path normal_folder(const fs::path& folder) {
 std::string path_text(const fs::path& path, const fs::path& folder) {
   const fs::path relative = path.lexically_relative(folder);
   const auto ups = std::count(relative.begin(), relative.end(), fs::path(".."));
-  const auto depth = std::distance(folder.relative_path().begin(), folder.relative_path().end());
+  const fs::path below_root = folder.relative_path();
+  const auto depth = std::distance(below_root.begin(), below_root.end());
   const bool same = !relative.empty() && ups < depth && (folder / relative).lexically_normal() == path;
   return quoted((same ? relative : path).generic_string());
 }
