@@ -1,18 +1,18 @@
 #include "pipeline/resolved_scene.h"
 
-#include <cstdio>
 #include <string>
 
+#include "io/number_text.h"
 #include "spec/scene_keys.h"
 
 namespace hairfit {
 
 namespace {
 
+// A figure in a comment, to 4 significant digits.
 std::string figure(double x) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.4g", x);
-  return text;
+  char text[48];
+  return std::string(text, format_general(text, x, 4));
 }
 
 }  // namespace
