@@ -63,8 +63,8 @@ int command_validate(const Arguments& argv) {
   if (scene.hair.from_shell)
     std::printf("  hair     neither hair.length nor hair.tilt given: both are derived from the shell when the scene\n"
                 "           runs (report.json roots.hair_length_cm, hair_tilt_degrees), with the thin-shell defaults\n"
-                "           for the keys not given (spec/reference.md, \"Hair that suits its shell\"); --resolved lists\n"
-                "           them, and a run's scene.resolved.toml the length and tilt it derived\n");
+                "           for the keys not given (spec/reference.md, \"Hair that suits its shell\");\n"
+                "           --resolved lists them, a run's scene.resolved.toml also the length and tilt\n");
   return 0;
 }
 

@@ -117,8 +117,8 @@ class Runner {
     }
   }
 
-  // Loads the stage's value, digest, figures and derived keys from its cache entry. Nothing is changed unless
-  // the whole entry decodes; a rejected entry is reported and the stage recomputed.
+  // Loads the stage's value, digest, figures and derived keys from its cache entry. Nothing is
+  // changed unless the whole entry decodes; a rejected entry is reported and the stage recomputed.
   bool load_cached(const StageDescriptor& descriptor, StageReport& stage) {
     const std::string& name = stage.name;
     std::string problem;

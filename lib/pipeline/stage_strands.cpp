@@ -40,9 +40,11 @@ bool spread_through_layer(const StageRun& run, const StrandOptions& o, StageRepo
   const double thickness = shell_thickness(*v.chart, layer_thickness(*v.volume_field), run.options.threads);
   const double width = 2.0 * o.wisp.tip_radius;
   const bool spread = thickness > width;
-  char source[160];
-  std::snprintf(source, sizeof source, "auto, the layer's thickness T %.4g cm (90th percentile over the scalp) %s "
-                "a wisp's width at its tip, 2·strands.tip_radius = %.4g cm", thickness, spread ? "exceeds" : "is within", width);
+  char source[256];
+  std::snprintf(source, sizeof source,
+                "auto, the layer's thickness T %.4g cm (90th percentile over the scalp) %s a wisp's width at its "
+                "tip, 2·strands.tip_radius = %.4g cm",
+                thickness, spread ? "exceeds" : "is within", width);
   stage.derive("strands.depth", spread ? "\"layer\"" : "\"wisp\"", source);
   return spread;
 }
