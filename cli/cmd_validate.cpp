@@ -3,6 +3,7 @@
 #include "args.h"
 #include "commands.h"
 #include "pipeline/inputs.h"
+#include "spec/resolved_scene.h"
 #include "spec/scene.h"
 
 namespace hairfit::cli {
@@ -18,10 +19,15 @@ void print_map(const char* name, const std::shared_ptr<const GreyMap>& map) {
 }  // namespace
 
 int command_validate(const Arguments& argv) {
-  const Args args(argv, {}, {});
+  const Args args(argv, {}, {"resolved"});
   if (args.positionals().size() != 1) throw UsageError{"expected exactly one SCENE file"};
   const Scene scene = parse_scene(args.positionals()[0]);
   const Inputs inputs = load_inputs(scene);
+  // The scene as a run would resolve it into output.dir, short of what the run derives.
+  if (args.has("resolved")) {
+    std::fputs(resolved_scene_text(scene, {}, scene.output.dir).c_str(), stdout);
+    return 0;
+  }
   const InputsSummary s = summarise_inputs(inputs);
 
   std::printf("%s: valid scene (%s)\n", scene.file.string().c_str(), scene.format.c_str());
@@ -57,7 +63,8 @@ int command_validate(const Arguments& argv) {
   if (scene.hair.from_shell)
     std::printf("  hair     neither hair.length nor hair.tilt given: both are derived from the shell when the scene\n"
                 "           runs (report.json roots.hair_length_cm, hair_tilt_degrees), with the thin-shell defaults\n"
-                "           for the keys not given (spec/reference.md, \"Hair that suits its shell\")\n");
+                "           for the keys not given (spec/reference.md, \"Hair that suits its shell\");\n"
+                "           --resolved lists them, a run's scene.resolved.toml also the length and tilt\n");
   return 0;
 }
 

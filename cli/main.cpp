@@ -19,7 +19,7 @@ struct Command {
 };
 
 const Command kCommands[] = {
-    {"validate", "validate SCENE            check a scene and its inputs; nothing is computed",
+    {"validate", "validate SCENE [--resolved]   check a scene and its inputs; nothing is computed (--resolved: print the scene as a run resolves it, scene.resolved.toml)",
      hairfit::cli::command_validate},
     {"run", "run SCENE [--out DIR] [--until STAGE] [--threads N] [--cache DIR | --no-cache] [--quiet]   run the pipeline, write outputs and report.json",
      hairfit::cli::command_run},

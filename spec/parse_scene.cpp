@@ -145,7 +145,7 @@ class SceneParser {
       const std::string name = prefix.empty() ? std::string(key.str()) : prefix + "." + std::string(key.str());
       if (names_.count(name)) {
         scene_.locations[name] = {file_.string(), where(node.source()).line, where(node.source()).column};
-        read_value(*find_key(name), node);
+        read_value(*find_scene_key(name), node);
       } else if (tables_.count(name) && node.is_table()) {
         visit(*node.as_table(), name);
       } else if (tables_.count(name)) {
@@ -188,7 +188,18 @@ class SceneParser {
     for (const ScenePreset& p : scene_presets())
       if (p.name == scene_.preset)
         for (const auto& [key, value] : p.values)
-          if (!scene_.locations.count(key)) find_key(key)->store(scene_, {value}, {});
+          if (!scene_.locations.count(key)) imply(key, {value}, {}, "preset \"" + p.name + "\"");
+  }
+
+  // Sets a key the file leaves unset by a rule, and remembers the rule for the resolved scene.
+  void imply(const std::string& key, const std::vector<double>& numbers, const std::vector<std::string>& texts,
+             const std::string& rule) {
+    find_scene_key(key)->store(scene_, numbers, texts);
+    scene_.implied[key] = rule;
+  }
+  void shell_default(const std::string& key, const std::vector<double>& numbers,
+                     const std::vector<std::string>& texts = {}) {
+    imply(key, numbers, texts, "shell default");
   }
 
   // Hair that suits its shell: with neither hair.length nor hair.tilt given (nor their maps), the
@@ -196,35 +207,35 @@ class SceneParser {
   // takes the values made for it: growth toward the thicker layer along one smooth field steered
   // by the hull's relief, pre-guides and guides kept in the layer, the guides' looser stop.
   void apply_shell_defaults() {
-    const bool given = scene_.locations.count("hair.length") || scene_.locations.count("hair.tilt") ||
-                       scene_.effects.uses_map("length") || scene_.effects.uses_map("tilt");
+    bool given = scene_.effects.uses_map("length") || scene_.effects.uses_map("tilt");
+    for (const char* key : kShellTriggerKeys) given = given || scene_.locations.count(key);
     if (given) return;
     scene_.hair.from_shell = true;
     for (const auto& [key, value] : {std::pair<const char*, const char*>{"hair.tilt_toward", "thicker"},
                                      {"hair.flow", "relief"},
                                      {"preguides.immersion", "layer"},
                                      {"guides.boundary", "layer"}})
-      if (!scene_.locations.count(key)) find_key(key)->store(scene_, {}, {value});
+      if (!scene_.locations.count(key)) shell_default(key, {}, {value});
     // The growth field averaged over 8 cm rather than 6: MakeHuman ponytail01's guides cross at
     // 0.073–0.095 over six seeds instead of 0.085–0.149, short04's at 0.019–0.038 instead of
     // 0.030–0.047 (bench/results/thin_shells.md).
     if (!scene_.locations.count("hair.flow_smoothing"))
-      find_key("hair.flow_smoothing")->store(scene_, {kShellFlowSmoothing}, {});
+      shell_default("hair.flow_smoothing", {kShellFlowSmoothing});
     // Hair styled along its path: rods straight at rest, loaded at the tip and the root alone, do
     // not follow a flow that turns in the layer, and cross each other (the sculpted busts' guides
     // at 0.12–0.16; styled, 0.008–0.077); nor do they lie on the skull and then hang. Hair that
     // hangs rests along its fall (guides/fall_rest.h), the rest along the flow.
-    if (!scene_.locations.count("hair.rest_shape")) find_key("hair.rest_shape")->store(scene_, {}, {"flow"});
+    if (!scene_.locations.count("hair.rest_shape")) shell_default("hair.rest_shape", {}, {"flow"});
     // Fibres spread about their guides wider than a thin layer is thick: those that skim out of
     // it (most by under 1 mm) are held in.
-    if (!scene_.locations.count("strands.contain")) find_key("strands.contain")->store(scene_, {kShellContain}, {});
+    if (!scene_.locations.count("strands.contain")) shell_default("strands.contain", {kShellContain});
     // A layer deeper than a wisp is wide is filled by its hair only if the fibres spread through
     // it (MakeHuman bob01, 3.4 cm deep: coverage 0.32 with round wisps, 0.57 spread); a thinner
     // one keeps the paper's wisps (short04 and ponytail01, 0.4 cm: spread, more fibres run past the
     // layer's edge and are cut). bench/results/thin_shells.md.
-    if (!scene_.locations.count("strands.depth")) find_key("strands.depth")->store(scene_, {}, {"auto"});
+    if (!scene_.locations.count("strands.depth")) shell_default("strands.depth", {}, {"auto"});
     // Tips that run past the end of a thin layer (the hull's edge) are cut there.
-    if (!scene_.locations.count("strands.cut_tips")) find_key("strands.cut_tips")->store(scene_, {1.0}, {});
+    if (!scene_.locations.count("strands.cut_tips")) shell_default("strands.cut_tips", {1.0});
     // A raw shell that goes on past the scalp's hairline has the skin under it there, not the
     // hair layer down to the neck's axis: MakeHuman short04 / bob01 / ponytail01 put 4.9 / 20.4 /
     // 1.8 % of their fibre points inside the real head with the floor, 0.14 / 4.4 / 0.3 % with the
@@ -232,12 +243,12 @@ class SceneParser {
     // the ears: coverage 0.73 with the floor, 0.67 with the shell), so "auto" keeps the floor
     // there (bench/results/thin_shells.md).
     if (!scene_.locations.count("fields.skin_beyond_hairline"))
-      find_key("fields.skin_beyond_hairline")->store(scene_, {}, {"auto"});
+      shell_default("fields.skin_beyond_hairline", {}, {"auto"});
     // The guides start from pre-guides that already lie in the layer: a looser stop loses nothing
     // there (MakeHuman short04: 0.979 of the nodes inside at 1e-6 and 1e-5, 35.9 and 29.0
     // evaluations a guide). An accuracy preset's own tolerance wins.
     if (!scene_.locations.count("guides.tolerance") && scene_.preset == "default")
-      find_key("guides.tolerance")->store(scene_, {1e-5}, {});
+      shell_default("guides.tolerance", {1e-5});
     // A rod loaded at its end alone runs straight where the skull curves away under a thin layer
     // and bends back too late: weightless guides carry three interior point forces (the layer
     // holding the hair), sampled densely enough that the rod cannot leave the layer between
@@ -245,19 +256,13 @@ class SceneParser {
     // tried from its other start. MakeHuman short04 / bob01 / ponytail01, guide nodes inside:
     // 0.983 / 0.995 / 0.979 without, 0.996 / 0.998 / 0.994 with (bench/results/thin_shells.md).
     if (!scene_.effects.gravity && !scene_.effects.contact && !scene_.locations.count("guides.point_forces"))
-      find_key("guides.point_forces")->store(scene_, {kShellPointForces}, {});
+      shell_default("guides.point_forces", {kShellPointForces});
     if (!scene_.locations.count("guides.samples") && scene_.preset == "default")
-      find_key("guides.samples")->store(scene_, {kShellSamples}, {});
+      shell_default("guides.samples", {kShellSamples});
     if (!scene_.locations.count("guides.outside_penalty"))
-      find_key("guides.outside_penalty")->store(scene_, {kShellOutsidePenalty}, {});
+      shell_default("guides.outside_penalty", {kShellOutsidePenalty});
     if (!scene_.locations.count("guides.boundary_width"))
-      find_key("guides.boundary_width")->store(scene_, {kShellBoundaryWidth}, {});
-  }
-
-  const SceneKey* find_key(const std::string& name) const {
-    for (const SceneKey& k : scene_keys())
-      if (k.name == name) return &k;
-    return nullptr;
+      shell_default("guides.boundary_width", {kShellBoundaryWidth});
   }
 
   static std::string type_name(const toml::node& node) {
@@ -368,6 +373,7 @@ class SceneParser {
           return error(where(node.source()), k.name + " = " + value_text(node) + " has lo > hi; write [lo, hi]");
         if (k.kind == KeyKind::vector3 && Vec3(numbers[0], numbers[1], numbers[2]).norm() == 0.0)
           return error(where(node.source()), k.name + " must be a non-zero direction");
+        if (k.kind == KeyKind::vector3) scene_.directions_as_written[k.name] = Vec3(numbers[0], numbers[1], numbers[2]);
         if (k.kind == KeyKind::point2 && numbers[0] * numbers[0] + numbers[1] * numbers[1] > 1.0 + 1e-12) {
           char point[64];
           std::snprintf(point, sizeof point, "[%g, %g]", numbers[0], numbers[1]);

@@ -20,6 +20,10 @@ inline constexpr const char* kSceneFormat = "hairfit-scene/1";
 
 enum class DensityModel { none, binary, continuous };
 
+// The keys whose absence (with no length or tilt map) makes the run derive the hair from the shell
+// (SceneHair::from_shell); a resolved scene leaves them unset too, so that its run derives them again.
+inline constexpr std::array<const char*, 2> kShellTriggerKeys{"hair.length", "hair.tilt"};
+
 struct SceneUnits {
   std::string length = "cm";  // unit of the mesh coordinates: mm, cm, dm, m, in
   Vec3 down{0, -1, 0};        // world direction of gravity and of "down" on the head (unit)
@@ -55,9 +59,10 @@ struct SceneHair {
   double tilt = 0.0;                        // degrees from the normal toward tilt_toward, without tilt map
   std::array<double, 2> tilt_range{0.0, 90.0};     // degrees, tilt map black → white
   std::string tilt_toward = "down";         // down | thicker (up the hair layer's thickness gradient)
-  // Set by the parser when the file leaves hair.length and hair.tilt unset (and no length or tilt
-  // map is used): the run derives both from the shell (scalp/shell_hair.h), and the keys of the
-  // thin-shell machinery the file does not set take their shell defaults (apply_shell_defaults).
+  // Set by the parser when the file leaves hair.length and hair.tilt unset (kShellTriggerKeys; and
+  // no length or tilt map is used): the run derives both from the shell (scalp/shell_hair.h), and
+  // the keys of the thin-shell machinery the file does not set take their shell defaults
+  // (apply_shell_defaults).
   bool from_shell = false;
   std::string flow = "local";               // field (one smooth growth field) | relief (steered by the hull) | local
   double flow_smoothing = 6.0;              // cm: the growth field averages its guidance over this
@@ -178,6 +183,12 @@ struct Scene {
   // Where each key given in the file was written, by dotted name ("guides.weights.boundary"),
   // so later stages can point at the line behind a problem.
   std::map<std::string, SourceLocation> locations;
+  // The keys the file leaves unset that a rule set, with the rule: "preset \"final\"" or
+  // "shell default" (apply_shell_defaults). The resolved scene names them (spec/resolved_scene.h).
+  std::map<std::string, std::string> implied;
+  // The vector3 keys given in the file, as written (before normalising): the resolved scene repeats
+  // them, since normalising a unit vector again may move its last bit.
+  std::map<std::string, Vec3> directions_as_written;
 
   // A diagnostic at a key's location (or at the file when the key took its default).
   Diagnostic at(const std::string& key, const std::string& message) const;

@@ -8,20 +8,7 @@
 
 namespace hairfit {
 
-namespace {
-
-constexpr double kInf = std::numeric_limits<double>::infinity();
-
-struct Range {
-  double lo = -kInf, hi = kInf;
-  bool lo_open = false, hi_open = false;
-};
-Range closed(double lo, double hi) { return {lo, hi, false, false}; }
-Range above(double lo, double hi = kInf) { return {lo, hi, true, false}; }  // (lo, hi]
-Range any() { return {}; }
-
-// The shortest text of at least 10 significant digits that reads back as exactly x, so `show`
-// gives the value itself (the stage cache keys on it) and the documented defaults stay short.
+// `show` gives the value itself (the stage cache keys on it) and the documented defaults stay short.
 std::string number_text(double x) {
   char buffer[64];
   if (x == std::floor(x) && std::fabs(x) < 1e16) {
@@ -34,6 +21,18 @@ std::string number_text(double x) {
   }
   return buffer;
 }
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+struct Range {
+  double lo = -kInf, hi = kInf;
+  bool lo_open = false, hi_open = false;
+};
+Range closed(double lo, double hi) { return {lo, hi, false, false}; }
+Range above(double lo, double hi = kInf) { return {lo, hi, true, false}; }  // (lo, hi]
+Range any() { return {}; }
 
 std::string toml_string(const std::string& s) { return '"' + s + '"'; }
 
@@ -450,6 +449,12 @@ std::string scene_presets_markdown() {
 const std::vector<SceneKey>& scene_keys() {
   static const std::vector<SceneKey> keys = build_keys();
   return keys;
+}
+
+const SceneKey* find_scene_key(const std::string& name) {
+  for (const SceneKey& k : scene_keys())
+    if (k.name == name) return &k;
+  return nullptr;
 }
 
 std::string scene_keys_markdown() {

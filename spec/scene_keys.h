@@ -45,6 +45,13 @@ struct SceneKey {
 
 const std::vector<SceneKey>& scene_keys();
 
+// The key named `name`, or null.
+const SceneKey* find_scene_key(const std::string& name);
+
+// x as TOML text: the shortest text of at least 10 significant digits that reads back as exactly x
+// (an integer's digits when x is whole).
+std::string number_text(double x);
+
 // The Markdown table of all keys (name, type, unit, default, range, feeds, meaning).
 std::string scene_keys_markdown();
 

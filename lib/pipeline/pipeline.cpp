@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "io/atomic_file.h"
+#include "pipeline/resolved_scene.h"
 #include "pipeline/stage.h"
 #include "pipeline/stage_cache.h"
 #include "pipeline/stage_options.h"
@@ -56,8 +57,12 @@ class Runner {
       if (configured_.count(stage->name)) run_stage(*stage);  // no trace of a stage the scene lacks
       if (stage->name == options_.until) break;
     }
-    if (options_.write_outputs)
+    if (options_.write_outputs) {
+      run_.output(kResolvedSceneFile, [&](const std::filesystem::path& path) {
+        write_text_file_atomically(path, resolved_scene_text(scene_, derived_keys(result_.report), options_.out_dir));
+      });
       write_text_file_atomically(options_.out_dir / "report.json", report_json(result_.report));
+    }
     return std::move(result_);
   }
 
@@ -93,7 +98,7 @@ class Runner {
 
   ProgressReporter* progress() const { return options_.progress; }
 
-  // A cache entry's payload: the stage's digest and figures, then its values.
+  // A cache entry's payload: the stage's digest, figures and derived keys, then its values.
   void store(const StageDescriptor& descriptor, const StageReport& stage) {
     ByteWriter out;
     out.put(stage.digest);
@@ -103,6 +108,7 @@ class Runner {
       out.put<std::uint8_t>(static_cast<std::uint8_t>(value.index()));
       std::visit([&out](const auto& x) { out.put(x); }, value);
     }
+    encode(out, stage.derived);
     descriptor.encode(out, result_.values);
     try {
       cache_->store(stage.name, keys_.at(stage.name), out.take());
@@ -111,8 +117,8 @@ class Runner {
     }
   }
 
-  // Loads the stage's value, digest and figures from its cache entry. Nothing is changed unless
-  // the whole entry decodes; a rejected entry is reported and the stage recomputed.
+  // Loads the stage's value, digest, figures and derived keys from its cache entry. Nothing is
+  // changed unless the whole entry decodes; a rejected entry is reported and the stage recomputed.
   bool load_cached(const StageDescriptor& descriptor, StageReport& stage) {
     const std::string& name = stage.name;
     std::string problem;
@@ -143,6 +149,7 @@ class Runner {
           default: throw CodecError("unknown figure type");
         }
       }
+      loaded.derived = decode_derived_keys(in);
       StageValues v = result_.values;
       descriptor.decode(in, v);
       in.expect_end();

@@ -5,8 +5,16 @@
 #include <chrono>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <stdexcept>
+
+#include "spec/scene_keys.h"
 
 namespace hairfit {
+
+void StageReport::derive(const std::string& key, const std::string& value, const std::string& source) {
+  if (!find_scene_key(key)) throw std::logic_error("StageReport::derive: \"" + key + "\" is no scene key");
+  derived.push_back({key, value, source});
+}
 
 std::string report_json(const RunReport& report) {
   using Json = nlohmann::ordered_json;

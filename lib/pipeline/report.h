@@ -6,6 +6,8 @@
 #include <variant>
 #include <vector>
 
+#include "spec/resolved_scene.h"
+
 namespace hairfit {
 
 using Figure = std::variant<bool, std::int64_t, double, std::string>;
@@ -19,7 +21,15 @@ struct StageReport {
   std::string digest;
   std::vector<std::pair<std::string, Figure>> figures;  // the stage's own counts and measures
 
+  // Scene keys whose value the stage worked out at run time, for scene.resolved.toml; cached with
+  // the figures, so a cached stage reports them too.
+  std::vector<DerivedKey> derived;
+
   void add(const std::string& key, Figure value) { figures.emplace_back(key, std::move(value)); }
+  // Records that scene key `key` (dotted, "hair.length") took `value` (TOML text, or a summary where
+  // it varies per root) at run time, derived from `source` (what, with its figures). Throws
+  // std::logic_error for a name that is no scene key.
+  void derive(const std::string& key, const std::string& value, const std::string& source);
 };
 
 struct OutputFile {

@@ -13,7 +13,7 @@
 
 namespace hairfit {
 
-inline constexpr std::uint32_t kCacheFormatVersion = 5;  // 2: PreGuides::shared_solves; 3: Guide::point_forces, f5; 4: RootSet::hang_weights; 5: Strands::cut_at_scalp
+inline constexpr std::uint32_t kCacheFormatVersion = 6;  // 2: PreGuides::shared_solves; 3: Guide::point_forces, f5; 4: RootSet::hang_weights; 5: Strands::cut_at_scalp; 6: StageReport::derived
 inline constexpr int kEntriesPerStage = 6;
 
 class StageCache {

@@ -50,6 +50,9 @@ void compute(StageRun& run, const FieldsOptions& o, StageReport& stage) {
   std::vector<NrrdVolume> volumes{field_to_nrrd(*v.scalp_distance, threads), field_to_nrrd(*v.volume_field, threads)};
   const bool skin_under_shell =
       o.skin == SkinMode::shell || (o.skin == SkinMode::automatic && !inputs.volume_report.closed());
+  if (o.skin == SkinMode::automatic)
+    stage.derive("fields.skin_beyond_hairline", skin_under_shell ? "\"shell\"" : "\"floor\"",
+                 std::string("auto, the hull being ") + (skin_under_shell ? "open" : "closed"));
   if (skin_under_shell) {
     const SkinBeyondHairline skin = skin_beyond_hairline(inputs.scalp.mesh, *v.scalp_distance, *v.volume_field, threads);
     v.scalp_field = std::make_shared<const DistanceField>(skin.field);

@@ -1,5 +1,6 @@
 // The roots stage: pores, guide clusters and pre-guide roots on the scalp, with their growth
 // directions (docs/design.md §3).
+#include "pipeline/resolved_scene.h"
 #include "pipeline/stage.h"
 #include "pipeline/stage_codec.h"
 #include "scalp/scalp_outputs.h"
@@ -19,12 +20,15 @@ void compute(StageRun& run, const RootSettings& settings, StageReport& stage) {
     stage.add("hair_length_cm", o.length);
     stage.add("hair_tilt_degrees", o.tilt);
     stage.add("hair_hangs_from_hull", resolved.hull.hangs);
-    for (const HullHairRegion& g : hull_hair_regions(*v.chart, resolved.falls, resolved.hull)) {
+    const std::vector<HullHairRegion> regions = hull_hair_regions(*v.chart, resolved.falls, resolved.hull);
+    for (const HullHairRegion& g : regions) {
       const std::string key = "hull_" + g.name + "_";
       stage.add(key + "hanging_share", g.hanging_share);
       stage.add(key + "length_cm", g.median_length);
       stage.add(key + "fall_below_rim_cm", g.median_below_rim);
     }
+    if (resolved.hull.hangs) derive_hull_keys(stage, regions, o.length, o.tilt);
+    else derive_shell_keys(stage, resolved.shell, o.length, o.tilt);
   }
   ScalpRoots made = make_scalp_roots(*v.chart, resolved.inputs, o, run.exec());
   v.roots = std::make_shared<const Roots>(std::move(made.roots));

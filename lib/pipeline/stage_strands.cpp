@@ -1,5 +1,6 @@
 // The strands stage: a wisp of fibres around each guide, kept out of the head and cut at the
 // volume (docs/design.md §7).
+#include <cstdio>
 #include <limits>
 
 #include "core/parallel.h"
@@ -33,10 +34,19 @@ void encode(ByteWriter& out, const StrandsOptions& o) {
 
 // strands.depth = "auto": a round wisp is 2·tip_radius wide at most, so it fills a layer no
 // deeper than that; a deeper layer (its thickness T over the scalp, scalp/shell_hair.h) has its
-// fibres spread through it.
-bool spread_through_layer(const StageRun& run, const StrandOptions& o) {
+// fibres spread through it. Reported as a derived key for the resolved scene.
+bool spread_through_layer(const StageRun& run, const StrandOptions& o, StageReport& stage) {
   const StageValues& v = run.values;
-  return shell_thickness(*v.chart, layer_thickness(*v.volume_field), run.options.threads) > 2.0 * o.wisp.tip_radius;
+  const double thickness = shell_thickness(*v.chart, layer_thickness(*v.volume_field), run.options.threads);
+  const double width = 2.0 * o.wisp.tip_radius;
+  const bool spread = thickness > width;
+  char source[256];
+  std::snprintf(source, sizeof source,
+                "auto, the layer's thickness T %.4g cm (90th percentile over the scalp) %s a wisp's width at its "
+                "tip, 2·strands.tip_radius = %.4g cm",
+                thickness, spread ? "exceeds" : "is within", width);
+  stage.derive("strands.depth", spread ? "\"layer\"" : "\"wisp\"", source);
+  return spread;
 }
 
 std::size_t loop_items(const StageValues& v) { return v.roots->pores.size(); }
@@ -51,7 +61,7 @@ void compute(StageRun& run, const StrandsOptions& o, StageReport& stage) {
     return side != 0 ? side * std::numeric_limits<double>::infinity() : volume->value(p);
   };
   StrandOptions strands = o.strands;
-  if (o.depth_from_layer) strands.layer_depth = spread_through_layer(run, strands);
+  if (o.depth_from_layer) strands.layer_depth = spread_through_layer(run, strands, stage);
   const TriangleGrid scalp_triangles(v.chart->mesh);
   StrandSurroundings around;
   around.volume = volume_distance;
