@@ -1,6 +1,8 @@
 #include "pipeline/stage_pictures.h"
 
 #include <algorithm>
+#include <cstdio>
+#include <string>
 #include <functional>
 
 #include "density/statistics.h"
@@ -34,6 +36,25 @@ std::string stage_needed_for_picture(const std::string& stage) {
 }
 
 namespace {
+
+// What the pre-guides show of the hull's hair: how many hang, how long they are (10th–90th
+// percentile) and how many reach their depth.
+std::string preguide_caption(const PreguideRoots& roots, const PreGuides& preguides) {
+  const RootSet& r = roots.roots;
+  int hanging = 0, reached = 0;
+  std::vector<double> lengths;
+  for (int i = 0; i < r.size(); ++i) hanging += hangs(r, i), lengths.push_back(r.lengths[i]);
+  for (const PreGuide& g : preguides.items) reached += g.reached;
+  std::string caption;
+  if (hanging > 0) caption += ", " + std::to_string(hanging) + " hanging";
+  if (!lengths.empty()) {
+    std::sort(lengths.begin(), lengths.end());
+    char range[64];
+    std::snprintf(range, sizeof range, ", %.0f to %.0f cm", lengths[lengths.size() / 10], lengths[9 * lengths.size() / 10]);
+    caption += range;
+  }
+  return caption + ", " + std::to_string(reached) + " at depth (red; blue: short of it)";
+}
 
 // Two pictures side by side (`stacked`: one above the other) in a width × height image.
 Image two_panels(const Image& left, const Image& right, int width, int height, bool stacked = false) {
@@ -219,7 +240,8 @@ Image render_stage(const std::string& stage, const Scene& scene, const Inputs& i
     }
     curves.width = 2.0;
     drawing.curves.push_back(curves);
-    drawing.title = "pre-guides: " + std::to_string(values.preguides->size());
+    drawing.title = "pre-guides: " + std::to_string(values.preguides->size()) + preguide_caption(*values.preguide_roots,
+                                                                                                 *values.preguides);
   } else if (stage == "guides") {
     lines = values.guides->curves();
     for (std::size_t c = 0; c < lines.count(); ++c) curves.color_ids.push_back(static_cast<int>(c));
