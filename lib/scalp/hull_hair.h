@@ -23,6 +23,8 @@ constexpr double kLongestFall = 200.0;
 // the tip lies in the layer; and the shortest hair that comes of it.
 constexpr double kFallTipMargin = 1.0;
 constexpr double kShortestHullHair = 1.0;
+// cm a fibre of hair from the hull may run past the tip of its guide (scalp/roots.h make_scalp_roots).
+constexpr double kFibrePastGuide = 1.0;
 
 struct HullHair {
   std::vector<double> hang_weights;  // φ ∈ [0, 1] per scalp vertex

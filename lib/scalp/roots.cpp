@@ -10,6 +10,7 @@
 #include "core/random.h"
 #include "scalp/growth_field.h"
 #include "scalp/hanging.h"
+#include "scalp/hull_hair.h"
 #include "scalp/sample_elimination.h"
 
 namespace hairfit {
@@ -319,6 +320,15 @@ ScalpRoots make_scalp_roots(const ScalpChart& ch, const RootInputs& maps, const 
   ScalpRoots r;
   r.roots = make_roots(ch, maps, o, density, pointer(flow), exec.threads);
   r.clusters = make_clusters(ch, r.roots, o, exec);
+  // Hair from the hull: a fibre runs at most kFibrePastGuide past its guide's tip, which was
+  // fitted to the layer. Its pore's length is interpolated between vertices whose falls may part
+  // (one down the back, one to the floor beside the ear), and past the guide's tip it would run
+  // on straight out of the layer (MakeHuman braid01: 0.4 % of the fibres ended over 6 cm from
+  // every guide).
+  if (!maps.vertex_lengths.empty())
+    for (int i = 0; i < r.roots.pores.size(); ++i)
+      r.roots.pores.lengths[i] = std::min(r.roots.pores.lengths[i],
+                                          r.clusters.bases.lengths[r.clusters.pore_cluster[i]] + kFibrePastGuide);
   r.preguides = make_preguide_roots(ch, maps, o, density, pointer(flow), exec.threads);
   return r;
 }
