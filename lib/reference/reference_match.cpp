@@ -80,11 +80,24 @@ double median(std::vector<double> v) {
   return 0.5 * (*std::max_element(v.begin(), v.begin() + half) + upper);
 }
 
-}  // namespace
-
-MatchFigures match_reference(const OrientedPoints& generated, const OrientedPoints& reference, const MatchOptions& o) {
+void check_options(const MatchOptions& o) {
   if (!(o.radius > 0.0) || !(o.max_angle >= 0.0 && o.max_angle <= 180.0))
     throw std::invalid_argument("match_reference: needs radius > 0 and max_angle in [0, 180] degrees");
+}
+
+}  // namespace
+
+std::vector<unsigned char> matched_points(const OrientedPoints& from, const OrientedPoints& to, const MatchOptions& o) {
+  check_options(o);
+  check(from, "first");
+  check(to, "second");
+  std::vector<unsigned char> state = matched(from, to, PointGrid(to.points, o.radius), o);
+  for (unsigned char& s : state) s &= 1;
+  return state;
+}
+
+MatchFigures match_reference(const OrientedPoints& generated, const OrientedPoints& reference, const MatchOptions& o) {
+  check_options(o);
   check(generated, "generated");
   check(reference, "reference");
   MatchFigures f;

@@ -54,4 +54,10 @@ double direction_angle(const Vec3& a, const Vec3& b, bool signed_directions);
 MatchFigures match_reference(const OrientedPoints& generated, const OrientedPoints& reference,
                              const MatchOptions& options = {});
 
+// Per point of `from`: 1 where a point of `to` matches it (within options.radius, turned by at
+// most options.max_angle), else 0: the points precision counts when `from` is the generated hair,
+// recall when it is the reference. For pictures of where the two agree.
+std::vector<unsigned char> matched_points(const OrientedPoints& from, const OrientedPoints& to,
+                                          const MatchOptions& options = {});
+
 }  // namespace hairfit

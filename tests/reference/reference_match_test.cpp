@@ -107,6 +107,7 @@ TEST_CASE("five points against a line: exact precision, recall, reach and median
   CHECK(vectors.reached == lines.reached);
   CHECK(vectors.median_angle == doctest::Approx(30.0).epsilon(1e-14));  // of 0, 30, 60, 0, 180
   check_same(lines, brute_force(generated_five(), reference_line(), MatchOptions{}));
+  CHECK(matched_points(generated_five(), reference_line()) == std::vector<unsigned char>{1, 1, 0, 0, 1});
   check_same(vectors, brute_force(generated_five(), reference_line(), o));
 }
 
