@@ -84,7 +84,7 @@ Image view_picture(ViewName view, const Mesh& scalp, const Mesh& hull, const std
   const auto [lo, hi] = bounding_box(hull);  // every panel at the hull's scale
   RenderOptions render;
   render.threads = threads;
-  return render_3d(d, fit_camera(view, Vec3(0, -1, 0), Vec3(0, 0, 1), lo, hi, 520, 720), render);
+  return render_3d(d, fit_camera(view, Vec3(0, -1, 0), Vec3(0, 0, 1), lo, hi, 400, 560), render);
 }
 
 // Side and back views, three panels each: the reference's sense (its directions' downward
@@ -120,8 +120,8 @@ void write_picture(const fs::path& file, const Mesh& scalp, const Mesh& hull, co
 }
 
 void print_figures(const char* sense, const MatchFigures& m, double coverage) {
-  std::printf("| %s | %.3f | %.3f | %.3f | %.3f | %.1f | %.3f |\n", sense, m.precision, m.recall, m.f, m.reached,
-              m.median_angle, coverage);
+  std::printf("| %s | %.3f | %.3f | %.3f | %.3f | %.1f | %.3f | %.3f |\n", sense, m.precision, m.recall, m.f, m.reached,
+              m.median_angle, m.near, coverage);
 }
 
 void round_trip(const Settings& s, const std::string& style) {
@@ -181,8 +181,8 @@ void round_trip(const Settings& s, const std::string& style) {
               run.figure("guides", "inside_fraction"), run.figure("strands", "inside_fraction"),
               run.figure("guides", "mean_evaluations"), run.usage.cpu(), static_cast<int>(generated.points.size()),
               kPointSpacing);
-  std::printf("| directions | precision | recall | F | reached | median angle ° | coverage |\n"
-              "|---|---:|---:|---:|---:|---:|---:|\n");
+  std::printf("| directions | precision | recall | F | reached | median angle ° | near | coverage |\n"
+              "|---|---:|---:|---:|---:|---:|---:|---:|\n");
   MatchOptions o;
   o.threads = s.run.threads;
   const double coverage = run.figure("strands", "coverage");
@@ -190,7 +190,7 @@ void round_trip(const Settings& s, const std::string& style) {
   MatchOptions signed_o = o;
   signed_o.signed_directions = true;
   print_figures("root to tip", match_reference(generated, reference.samples, signed_o), coverage);
-  std::printf("| issue 47 target | ≥ 0.90 F | | ≥ 0.90 | ≥ 0.95 | | ≥ 0.90 |\n");
+  std::printf("| issue 47 target | | | ≥ 0.90 | ≥ 0.95 | | | ≥ 0.90 |\n");
   if (!s.pictures.empty()) {
     fs::create_directories(s.pictures);
     const fs::path file = s.pictures / (style + ".png");

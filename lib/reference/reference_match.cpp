@@ -112,6 +112,7 @@ MatchFigures match_reference(const OrientedPoints& generated, const OrientedPoin
   f.recall = share(backward, 1);
   f.f = f.precision + f.recall > 0.0 ? 2.0 * f.precision * f.recall / (f.precision + f.recall) : 0.0;
   f.reached = share(backward, 2);
+  f.near = share(forward, 2);
 
   std::vector<double> angles(generated.points.size());
   parallel_for(f.generated, o.threads, [&](int k) {

@@ -40,6 +40,7 @@ struct MatchFigures {
   double recall = 0.0;     // share of reference points with a matching generated point
   double f = 0.0;          // 2PR / (P + R); 0 when both are 0
   double reached = 0.0;    // share of reference points with a generated point within radius, any direction
+  double near = 0.0;       // share of generated points with a reference point within radius, any direction
   // Degrees: the median over generated points of the angle to the nearest reference point (of
   // equally near ones, the first), as options.signed_directions compares them; the mean of the
   // middle two for an even count. 0 without points on either side.

@@ -38,16 +38,18 @@ MatchFigures brute_force(const OrientedPoints& g, const OrientedPoints& r, const
   f.reference = static_cast<int>(r.points.size());
   auto near = [&](const Vec3& a, const Vec3& b) { return (a - b).squaredNorm() <= o.radius * o.radius; };
   auto turns_little = [&](const Vec3& a, const Vec3& b) { return direction_angle(a, b, o.signed_directions) <= o.max_angle; };
-  int precise = 0, recalled = 0, reached = 0;
+  int precise = 0, recalled = 0, reached = 0, near_any = 0;
   std::vector<double> angles;
   for (std::size_t i = 0; i < g.points.size(); ++i) {
-    bool match = false;
+    bool match = false, any = false;
     std::size_t nearest = 0;
     for (std::size_t j = 0; j < r.points.size(); ++j) {
+      any |= near(g.points[i], r.points[j]);
       match |= near(g.points[i], r.points[j]) && turns_little(g.directions[i], r.directions[j]);
       if ((g.points[i] - r.points[j]).squaredNorm() < (g.points[i] - r.points[nearest]).squaredNorm()) nearest = j;
     }
     precise += match;
+    near_any += any;
     angles.push_back(direction_angle(g.directions[i], r.directions[nearest], o.signed_directions));
   }
   for (std::size_t j = 0; j < r.points.size(); ++j) {
@@ -63,6 +65,7 @@ MatchFigures brute_force(const OrientedPoints& g, const OrientedPoints& r, const
   f.recall = static_cast<double>(recalled) / f.reference;
   f.f = f.precision + f.recall > 0 ? 2 * f.precision * f.recall / (f.precision + f.recall) : 0.0;
   f.reached = static_cast<double>(reached) / f.reference;
+  f.near = static_cast<double>(near_any) / f.generated;
   std::sort(angles.begin(), angles.end());
   const std::size_t n = angles.size();
   f.median_angle = n % 2 ? angles[n / 2] : 0.5 * (angles[n / 2 - 1] + angles[n / 2]);
@@ -76,6 +79,7 @@ void check_same(const MatchFigures& a, const MatchFigures& b) {
   CHECK(a.recall == b.recall);
   CHECK(a.f == b.f);
   CHECK(a.reached == b.reached);
+  CHECK(a.near == b.near);
   CHECK(a.median_angle == b.median_angle);
 }
 
@@ -99,6 +103,7 @@ TEST_CASE("five points against a line: exact precision, recall, reach and median
   CHECK(lines.recall == doctest::Approx(7.0 / 10).epsilon(1e-15));
   CHECK(lines.f == doctest::Approx(2 * 0.6 * 0.7 / 1.3).epsilon(1e-15));
   CHECK(lines.reached == doctest::Approx(8.0 / 10).epsilon(1e-15));  // C reaches 3 … 7 too
+  CHECK(lines.near == doctest::Approx(4.0 / 5).epsilon(1e-15));     // all but D
   CHECK(lines.median_angle == 0.0);                                   // of 0, 30, 60, 0, 0
   o.signed_directions = true;
   const MatchFigures vectors = match_reference(generated_five(), reference_line(), o);
