@@ -83,6 +83,16 @@ void check_same(const MatchFigures& a, const MatchFigures& b) {
   CHECK(a.median_angle == b.median_angle);
 }
 
+// Every share (precision, recall, F, reached, near) is `share`, and the median angle is `angle`.
+void check_every_share(const MatchFigures& m, double share, double angle) {
+  CHECK(m.precision == share);
+  CHECK(m.recall == share);
+  CHECK(m.f == share);
+  CHECK(m.reached == share);
+  CHECK(m.near == share);
+  CHECK(m.median_angle == angle);
+}
+
 }  // namespace
 
 TEST_CASE("direction angles: as lines in [0°, 90°], as vectors in [0°, 180°]") {
@@ -118,20 +128,10 @@ TEST_CASE("five points against a line: exact precision, recall, reach and median
 
 TEST_CASE("hair against itself matches everywhere; shifted, turned or reversed copies give known figures") {
   const OrientedPoints r = reference_line();
-  const MatchFigures self = match_reference(r, r);
-  CHECK(self.precision == 1.0);
-  CHECK(self.recall == 1.0);
-  CHECK(self.f == 1.0);
-  CHECK(self.reached == 1.0);
-  CHECK(self.median_angle == 0.0);
+  check_every_share(match_reference(r, r), 1.0, 0.0);
   OrientedPoints far = r;
   for (Vec3& p : far.points) p.z() += 2.5;
-  const MatchFigures apart = match_reference(far, r);
-  CHECK(apart.precision == 0.0);
-  CHECK(apart.recall == 0.0);
-  CHECK(apart.f == 0.0);
-  CHECK(apart.reached == 0.0);
-  CHECK(apart.median_angle == 0.0);
+  check_every_share(match_reference(far, r), 0.0, 0.0);
   OrientedPoints turned = r;
   for (Vec3& d : turned.directions) d = in_plane(50);
   const MatchFigures t = match_reference(turned, r);
