@@ -110,11 +110,11 @@ void write_picture(const fs::path& file, const Mesh& scalp, const Mesh& hull, co
   for (const ViewName view : {ViewName::side, ViewName::back}) {
     const std::string seen = view == ViewName::side ? ", side" : ", back";
     images.push_back(view_picture(view, scalp, hull, sense, sense_colors, threads));
-    captions.push_back("reference: yellow down, purple up" + seen);
+    captions.push_back("reference sense" + seen);
     images.push_back(view_picture(view, scalp, hull, by_recall, match_colors, threads));
-    captions.push_back("reference: green recalled" + seen);
+    captions.push_back("recall" + seen);
     images.push_back(view_picture(view, scalp, hull, by_precision, match_colors, threads));
-    captions.push_back("generated: green precise" + seen);
+    captions.push_back("precision" + seen);
   }
   write_png(file, contact_sheet(images, captions, 3));
 }
