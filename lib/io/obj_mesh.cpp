@@ -121,18 +121,21 @@ int check_obj_text(const std::filesystem::path& path, const std::string& text, i
   return vertices;
 }
 
-// The text tinyobjloader parses: only vertex (`v`) and face (`f`) lines, the others blanked. The
-// mesh needs nothing else, and tinyobjloader reads some other statements unchecked (a `vw` weight
-// of 1e15 overflows an int inside it, found by fuzzing).
-std::string vertex_and_face_lines(const std::string& text) {
+// The text tinyobjloader parses: only vertex (`v`) and face (`f`) lines, and with `texture` the
+// texture coordinates (`vt`), the others blanked. The mesh needs nothing else, and tinyobjloader
+// reads some other statements unchecked (a `vw` weight of 1e15 overflows an int inside it, found
+// by fuzzing).
+std::string vertex_and_face_lines(const std::string& text, bool texture = false) {
   std::string out;
   out.reserve(text.size());
   std::size_t begin = 0;
   while (begin < text.size()) {
     std::size_t end = text.find('\n', begin);
     if (end == std::string::npos) end = text.size();
-    const bool keep = end - begin >= 2 && (text[begin] == 'v' || text[begin] == 'f') &&
-                      (text[begin + 1] == ' ' || text[begin + 1] == '\t');
+    const bool keep = (end - begin >= 2 && (text[begin] == 'v' || text[begin] == 'f') &&
+                       (text[begin + 1] == ' ' || text[begin + 1] == '\t')) ||
+                      (texture && end - begin >= 3 && text.compare(begin, 2, "vt") == 0 &&
+                       (text[begin + 2] == ' ' || text[begin + 2] == '\t'));
     if (keep) out.append(text, begin, end - begin);
     out += '\n';
     begin = end + 1;
@@ -140,9 +143,8 @@ std::string vertex_and_face_lines(const std::string& text) {
   return out;
 }
 
-}  // namespace
-
-LoadedMesh load_obj_mesh(const std::filesystem::path& path, double scale_to_cm) {
+// The whole file, or InputError naming it when it is missing, a folder or unreadable.
+std::string read_obj_text(const std::filesystem::path& path) {
   namespace fs = std::filesystem;
   const std::string file = path.string();
   std::error_code ec;
@@ -150,18 +152,31 @@ LoadedMesh load_obj_mesh(const std::filesystem::path& path, double scale_to_cm) 
   if (fs::is_directory(path, ec)) throw InputError(file, "is a folder, not an OBJ mesh file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(file, "cannot be read (permissions?)");
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+// tinyobjloader's reading of the checked text; `triangulate` false keeps every polygon whole.
+void parse_obj(tinyobj::ObjReader& reader, const std::string& file, const std::string& text, bool triangulate,
+               bool texture) {
+  tinyobj::ObjReaderConfig config;
+  config.triangulate = triangulate;
+  config.vertex_color = false;
+  config.mtl_search_path = "";
+  if (!reader.ParseFromString(vertex_and_face_lines(text, texture), "", config))
+    throw InputError(file, "is not a readable OBJ mesh: " + reader.Error());
+}
+
+}  // namespace
+
+LoadedMesh load_obj_mesh(const std::filesystem::path& path, double scale_to_cm) {
+  const std::string file = path.string();
+  const std::string text = read_obj_text(path);
 
   LoadedMesh result;
   result.file_vertices = check_obj_text(path, text, result.file_faces);
 
-  tinyobj::ObjReaderConfig config;
-  config.triangulate = true;
-  config.vertex_color = false;
-  config.mtl_search_path = "";
   tinyobj::ObjReader reader;
-  if (!reader.ParseFromString(vertex_and_face_lines(text), "", config))
-    throw InputError(file, "is not a readable OBJ mesh: " + reader.Error());
+  parse_obj(reader, file, text, true, false);
 
   const std::vector<tinyobj::real_t>& v = reader.GetAttrib().vertices;
   const int n = static_cast<int>(v.size() / 3);
@@ -228,6 +243,53 @@ LoadedMesh load_obj_mesh(const std::filesystem::path& path, double scale_to_cm) 
   }
   for (Vec3i& t : triangles) t = Vec3i(compact[t[0]], compact[t[1]], compact[t[2]]);
   result.mesh.triangles = std::move(triangles);
+  return result;
+}
+
+TexturedMesh load_obj_textured(const std::filesystem::path& path, double scale_to_cm) {
+  const std::string file = path.string();
+  const std::string text = read_obj_text(path);
+  int faces = 0;
+  check_obj_text(path, text, faces);
+  tinyobj::ObjReader reader;
+  parse_obj(reader, file, text, false, true);
+
+  TexturedMesh result;
+  const std::vector<tinyobj::real_t>& v = reader.GetAttrib().vertices;
+  const int n = static_cast<int>(v.size() / 3);
+  for (int i = 0; i < n; ++i) {
+    result.mesh.positions.push_back(Vec3(v[3 * i], v[3 * i + 1], v[3 * i + 2]) * scale_to_cm);
+    if (!result.mesh.positions.back().allFinite())
+      throw InputError(file, "vertex " + std::to_string(i + 1) + " is beyond the range of numbers once scaled to cm");
+  }
+  const std::vector<tinyobj::real_t>& vt = reader.GetAttrib().texcoords;
+  const int m = static_cast<int>(vt.size() / 2);
+  for (int i = 0; i < m; ++i) {
+    result.texture_coordinates.emplace_back(vt[2 * i], vt[2 * i + 1]);
+    if (!result.texture_coordinates.back().allFinite())
+      throw InputError(file, "texture coordinate " + std::to_string(i + 1) + " is not a finite number pair");
+  }
+  for (const tinyobj::shape_t& shape : reader.GetShapes()) {
+    const std::vector<tinyobj::index_t>& idx = shape.mesh.indices;
+    std::size_t first = 0;
+    for (const unsigned char corners : shape.mesh.num_face_vertices) {
+      for (std::size_t k = 1; k + 1 < corners; ++k) {  // the fan from the polygon's first corner
+        const tinyobj::index_t &a = idx[first], &b = idx[first + k], &c = idx[first + k + 1];
+        for (const tinyobj::index_t* corner : {&a, &b, &c}) {
+          if (corner->vertex_index < 0 || corner->vertex_index >= n)
+            throw InputError(file, "a face refers to vertex " + std::to_string(corner->vertex_index + 1) + " of " +
+                                       std::to_string(n));
+          if (corner->texcoord_index >= m)
+            throw InputError(file, "a face refers to texture coordinate " + std::to_string(corner->texcoord_index + 1) +
+                                       " of " + std::to_string(m));
+        }
+        result.mesh.triangles.emplace_back(a.vertex_index, b.vertex_index, c.vertex_index);
+        result.triangle_texture.emplace_back(a.texcoord_index, b.texcoord_index, c.texcoord_index);
+      }
+      first += corners;
+    }
+  }
+  if (result.mesh.triangles.empty()) throw InputError(file, "has no faces; it must be a polygon mesh in Wavefront OBJ format");
   return result;
 }
 

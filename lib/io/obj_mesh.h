@@ -25,6 +25,19 @@ struct LoadedMesh {
 // Exact duplicate vertices are welded and zero-area triangles dropped; both are counted.
 LoadedMesh load_obj_mesh(const std::filesystem::path& path, double scale_to_cm = 1.0);
 
+// An OBJ mesh exactly as the file numbers it, for data whose vertex numbers mean something (a
+// MakeHuman hair proxy and its fitted copy share them): every `v` in file order, nothing welded or
+// dropped; every `vt`; each polygon split into a fan from its first corner, in file order.
+struct TexturedMesh {
+  Mesh mesh;                             // positions in cm (file coordinates × scale_to_cm)
+  std::vector<Vec2> texture_coordinates;  // `vt` lines, in file order
+  std::vector<Vec3i> triangle_texture;    // per triangle, its corners' texture coordinates (−1: none)
+};
+
+// Throws InputError naming the file as load_obj_mesh does, and for a non-finite texture
+// coordinate, an index out of range or a file without faces.
+TexturedMesh load_obj_textured(const std::filesystem::path& path, double scale_to_cm = 1.0);
+
 // Writes positions, optional per-vertex texture coordinates (`vt`), optional per-vertex colours
 // (`v x y z r g b`, one per position) and triangles.
 void write_obj_mesh(const std::filesystem::path& path, const Mesh& mesh,

@@ -9,11 +9,11 @@
 
 namespace hairfit {
 
-std::vector<Vec3> area_samples(const Mesh& mesh, int samples) {
+std::vector<AreaSample> area_samples_on_triangles(const Mesh& mesh, int samples) {
   std::vector<double> cumulative(mesh.triangles.size());
   double total = 0.0;
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) cumulative[t] = total += triangle_area(mesh, static_cast<int>(t));
-  std::vector<Vec3> out;
+  std::vector<AreaSample> out;
   if (!(total > 0.0) || samples <= 0) return out;
   out.reserve(samples);
   // R2 (Roberts 2018): the additive recurrence with the plastic number's powers.
@@ -27,8 +27,14 @@ std::vector<Vec3> area_samples(const Mesh& mesh, int samples) {
     if (u + v > 1.0) u = 1.0 - u, v = 1.0 - v;
     const Vec3i& tri = mesh.triangles[t];
     const Vec3& a = mesh.positions[tri[0]];
-    out.push_back(a + u * (mesh.positions[tri[1]] - a) + v * (mesh.positions[tri[2]] - a));
+    out.push_back({static_cast<int>(t), a + u * (mesh.positions[tri[1]] - a) + v * (mesh.positions[tri[2]] - a)});
   }
+  return out;
+}
+
+std::vector<Vec3> area_samples(const Mesh& mesh, int samples) {
+  std::vector<Vec3> out;
+  for (const AreaSample& s : area_samples_on_triangles(mesh, samples)) out.push_back(s.point);
   return out;
 }
 

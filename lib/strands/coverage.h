@@ -25,6 +25,12 @@ struct Coverage {
 // (stratified by area), at the R2 low-discrepancy point k folded into the triangle: deterministic,
 // and the same for any thread count.
 std::vector<Vec3> area_samples(const Mesh& mesh, int samples);
+// The same samples, each with the triangle it lies in.
+struct AreaSample {
+  int triangle = 0;
+  Vec3 point = Vec3::Zero();
+};
+std::vector<AreaSample> area_samples_on_triangles(const Mesh& mesh, int samples);
 
 Coverage strand_coverage(const Mesh& hull, const std::vector<Vec3>& strand_points,
                          const std::function<bool(const Vec3&)>& counts, const CoverageOptions& options = {});
