@@ -194,7 +194,7 @@ std::string number(double v) {
 const char* const kCdm = "density.voxel (CDM)";
 const char* const kStall = "density.stall_iterations (CDM)";
 
-// The presets the README recommends, from the one-knob rows: preview takes the knobs that save
+// The presets docs/results/accuracy.md recommends, from the one-knob rows: preview takes the knobs that save
 // time for little error (fewer rod segments, samples and iterations, a looser tolerance) and
 // keeps the voxels (the fields stage costs a few tenths of a second; coarser grids double the
 // error); final buys accuracy where it is cheap (samples, tolerance, iterations). "default" is

@@ -195,7 +195,7 @@ struct Scene {
 };
 
 // An accuracy preset: values for the accuracy knobs that a scene naming it takes for every knob
-// it does not set itself (README "What accuracy costs" measures them).
+// it does not set itself (docs/results/accuracy.md measures them).
 struct ScenePreset {
   std::string name;
   std::string doc;

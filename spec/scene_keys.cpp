@@ -424,7 +424,7 @@ std::string SceneKey::range_text() const {
 
 const std::vector<ScenePreset>& scene_presets() {
   static const std::vector<ScenePreset> presets{
-      // Values from bench_accuracy (README "What accuracy costs"): the field voxels stay at their
+      // Values from bench_accuracy (docs/results/accuracy.md): the field voxels stay at their
       // default in both, since a coarser field doubles the guide error for tenths of a second.
       {"preview", "a quick look while iterating on a scene",
        {{"rod.segments", 32}, {"guides.samples", 8}, {"guides.tolerance", 1e-3}, {"guides.max_iterations", 30}}},
