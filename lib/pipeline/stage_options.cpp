@@ -23,6 +23,7 @@ RootSettings root_settings(const Scene& scene) {
                                                         : TiltToward::down;
   o.flow = scene.hair.flow == "field" ? FlowModel::field : scene.hair.flow == "relief" ? FlowModel::relief : FlowModel::local;
   if (o.flow != FlowModel::local) {  // the growth field's guidance
+    o.comb = scene.hair.comb == "from_crown" ? Comb::from_crown : Comb::into_layer;
     o.flow_smoothing = scene.hair.flow_smoothing;
     o.swirl = scene.hair.swirl;
     o.whorl = Vec2(scene.hair.whorl[0], scene.hair.whorl[1]);
@@ -44,7 +45,10 @@ RootSettings root_settings(const Scene& scene) {
     if (scene.effects.uses_map(map)) s.maps.push_back(map);
   s.from_shell = scene.hair.from_shell;
   if (s.from_shell) s.fall_depth_range = scene.preguides.depth_range;
-  if (o.flow == FlowModel::relief) s.relief_radius = scene.hair.relief_radius;
+  if (o.flow == FlowModel::relief) {
+    s.relief_radius = scene.hair.relief_radius;
+    s.grain_of_normals = scene.hair.relief_grain == "normals";
+  }
   return s;
 }
 
