@@ -3,10 +3,8 @@
 // key at its default), one cold `hairfit run` each; the guides scored against the carved direction.
 //   bench_carved_hulls [--threads T] [--hairfit PATH] [--scratch DIR] [--guides N] [--density D]
 //                      [--set KEY=VALUE]…   (extra scene keys under [hair], for designs side by side)
-// The angle to the carving is that of each guide's tangent (in the plane across the head's radial
-// direction) to the carved line at the node, over the nodes past the first fifth of each guide
-// where one family of grooves carves the hull alone; `against` is the share of nodes on grooves
-// with a known sign (the locks, the fringe) that run tip to root.
+// The guides' angle to the carving and the share against its sign are reference/carved_hull.h's
+// score_carved_flow; the roots' angle is their growth direction's, the field where hair starts.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -24,39 +22,6 @@ using namespace hairfit;
 using namespace hairfit::bench;
 
 namespace {
-
-struct Score {
-  double median_angle = NAN, against = NAN;
-  std::size_t nodes = 0;
-};
-
-Score score_guides(CarvedStyle style, const Curves& guides) {
-  std::vector<double> angles;
-  std::size_t signed_nodes = 0, reversed = 0;
-  for (std::size_t c = 0; c < guides.count(); ++c) {
-    const std::size_t n = guides.size(c);
-    for (std::size_t k = n / 5; k + 1 < n; ++k) {
-      const Vec3& node = guides.point(c, k);
-      const CarvedDirection truth = carved_direction(style, node);
-      if (!(truth.weight > 0.5)) continue;
-      const Vec3 radial = truth.direction.cross(node).cross(truth.direction).normalized();  // off the head
-      Vec3 t = guides.point(c, k + 1) - node;
-      t -= t.dot(radial) * radial;
-      if (!(t.norm() > 1e-9)) continue;
-      const double cosine = t.normalized().dot(truth.direction);
-      angles.push_back(std::acos(std::min(1.0, std::fabs(cosine))) * 180.0 / M_PI);
-      if (truth.root_to_tip) {
-        ++signed_nodes;
-        if (cosine < 0.0) ++reversed;
-      }
-    }
-  }
-  Score s;
-  s.nodes = angles.size();
-  if (!angles.empty()) s.median_angle = median(angles);
-  if (signed_nodes > 0) s.against = static_cast<double>(reversed) / signed_nodes;
-  return s;
-}
 
 // The growth field at the roots: the median angle of each root's growth direction (in the plane
 // across the head's radial direction) to the carved line there.
@@ -123,10 +88,10 @@ int main(int argc, char** argv) {
         s << "[roots]\nguides = " << guides << "\n";
       }
       const RunRecord r = run_hairfit(run.hairfit, dir / "scene.toml", dir / "out", run.threads);
-      const Score score = score_guides(style, read_hair_file(dir / "out" / "guides.hair"));
+      const CarvedFlowScore score = score_carved_flow(style, read_hair_file(dir / "out" / "guides.hair"));
       const double at_roots = score_roots(style, read_ply_points(dir / "out" / "roots.ply"));
       std::printf("| %s | %zu | %.1f | %.1f | %.3f | %zu | %.3f | %.4f | %.4f | %.3f | %.1f | %.2f |\n", name.c_str(),
-                  hull.hull.triangles.size(), at_roots, score.median_angle, score.against, score.nodes,
+                  hull.hull.triangles.size(), at_roots, score.median_degrees, score.against, score.nodes,
                   r.figure("guides", "flow_crossing"), r.figure("guides", "inside_fraction"),
                   r.figure("strands", "inside_fraction"), r.figure("strands", "coverage"),
                   r.figure("guides", "mean_evaluations"), r.stage("guides") ? r.stage("guides")->cpu_seconds : 0.0);

@@ -311,4 +311,35 @@ CarvedDirection carved_direction(CarvedStyle style, const Vec3& p) {
   return out;
 }
 
+CarvedFlowScore score_carved_flow(CarvedStyle style, const Curves& curves) {
+  std::vector<double> angles;
+  CarvedFlowScore s;
+  std::size_t reversed = 0;
+  for (std::size_t c = 0; c < curves.count(); ++c) {
+    const std::size_t n = curves.size(c);
+    for (std::size_t k = n / 5; k + 1 < n; ++k) {
+      const Vec3& node = curves.point(c, k);
+      const CarvedDirection truth = carved_direction(style, node);
+      if (!(truth.weight > 0.5)) continue;
+      const Vec3 radial = truth.direction.cross(node).cross(truth.direction).normalized();  // off the head
+      Vec3 t = curves.point(c, k + 1) - node;
+      t -= t.dot(radial) * radial;
+      if (!(t.norm() > 1e-9)) continue;
+      const double cosine = t.normalized().dot(truth.direction);
+      angles.push_back(std::acos(std::min(1.0, std::fabs(cosine))) * 180.0 / M_PI);
+      if (truth.root_to_tip) {
+        ++s.signed_nodes;
+        if (cosine < 0.0) ++reversed;
+      }
+    }
+  }
+  s.nodes = angles.size();
+  if (!angles.empty()) {
+    std::nth_element(angles.begin(), angles.begin() + angles.size() / 2, angles.end());
+    s.median_degrees = angles[angles.size() / 2];
+  }
+  if (s.signed_nodes > 0) s.against = static_cast<double>(reversed) / s.signed_nodes;
+  return s;
+}
+
 }  // namespace hairfit

@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "core/curves.h"
 #include "core/mesh.h"
 
 namespace hairfit {
@@ -50,5 +51,16 @@ struct CarvedDirection {
 };
 
 CarvedDirection carved_direction(CarvedStyle style, const Vec3& p);
+
+// How closely curves follow the carving: the median angle (degrees, as lines) of each curve's
+// tangent, in the plane across the head's radial direction, to the carved line at the node, over
+// the nodes past the first fifth of each curve (a root's own tilt comes first) where one family
+// carves the hull alone; and of the nodes on grooves with a known sign, the share running tip to root.
+struct CarvedFlowScore {
+  double median_degrees = 0.0, against = 0.0;
+  std::size_t nodes = 0, signed_nodes = 0;
+};
+
+CarvedFlowScore score_carved_flow(CarvedStyle style, const Curves& curves);
 
 }  // namespace hairfit
