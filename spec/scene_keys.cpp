@@ -267,7 +267,7 @@ std::vector<SceneKey> build_keys() {
                       "With a growth field, which way along its lines hair grows: into_layer, toward where the layer "
                       "goes on (the paper's thicker layer, away from where it ends); or from_crown, as carved hair is "
                       "combed: away from the crown and down (the hull's grain signed so), each hair as long as the layer "
-                      "ahead of it, less 2 cm, where it lies (with the shell defaults)."));
+                      "ahead of it, less 2 cm, where it lies (a declared hair.length is the most it gets)."));
   keys.push_back(number("hair.youngs_modulus", REF(hair.youngs_modulus), "dyn/cm²", above(0, 1e15), "rod",
                         "Young's modulus E of a fibre (paper: 3.89e10)."));
   keys.push_back(number("hair.shear_modulus", REF(hair.shear_modulus), "dyn/cm²", above(0, 1e15), "rod",

@@ -59,8 +59,11 @@ std::vector<std::string> root_files(const RootSettings& s) {
   return files;
 }
 
-// Tilting toward the thicker layer or hanging, and hair that suits its shell, read the fields.
-bool roots_read_fields(const RootSettings& s) { return s.options.tilt_toward != TiltToward::down || s.from_shell; }
+// Tilting toward the thicker layer or hanging, hair that suits its shell, and combed hair (its
+// length from the layer ahead) read the fields.
+bool roots_read_fields(const RootSettings& s) {
+  return s.options.tilt_toward != TiltToward::down || s.from_shell || s.options.comb == Comb::from_crown;
+}
 
 ThicknessField layer_thickness(const DistanceField& volume) {
   return [&volume](const Vec3& p) {

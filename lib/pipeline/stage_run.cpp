@@ -75,6 +75,12 @@ const StageRun::ResolvedRoots& StageRun::resolved_roots(const RootSettings& sett
   }
   // After the hull has had its say: hanging hair tilts as "thicker" does where it does not hang.
   if (o.tilt_toward != TiltToward::down) r.inputs.thickness = layer_thickness(*values.volume_field);
+  // Combed hair of a declared length ends where the layer ahead of it does, if that comes sooner.
+  if (o.comb == Comb::from_crown && o.flow != FlowModel::local && r.inputs.vertex_lengths.empty() && !r.inputs.length) {
+    r.inputs.vertex_lengths = combed_lengths(*values.chart, layer_thickness(*values.volume_field), o.length);
+    for (double& l : r.inputs.vertex_lengths) l = std::min(l, o.length);
+    r.inputs.vertex_hang_weights.assign(r.inputs.vertex_lengths.size(), 0.0);
+  }
   if (o.tilt_toward == TiltToward::hanging && r.inputs.vertex_lengths.empty()) {  // after the length is known
     const double longest = longest_hair(r.inputs, o);
     r.inputs.hangs = vertex_hangs(*values.chart, hang_probe(boundary(), values.chart->down, false), longest,
