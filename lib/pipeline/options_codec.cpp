@@ -35,6 +35,7 @@ void encode(ByteWriter& out, const RootOptions& o) {
   out.put(o.tilt);
   out.put(o.tilt_toward);
   out.put(o.flow);
+  out.put(o.comb);
   out.put(o.flow_smoothing);
   out.put(o.swirl);
   out.put(o.whorl);
@@ -58,6 +59,7 @@ void encode(ByteWriter& out, const RootSettings& s) {
   out.put(s.maps);
   out.put<std::uint8_t>(s.from_shell);
   out.put(s.relief_radius);
+  out.put<std::uint8_t>(s.grain_of_normals);
   out.put(s.fall_depth_range);
 }
 

@@ -23,6 +23,7 @@ RootSettings root_settings(const Scene& scene) {
                                                         : TiltToward::down;
   o.flow = scene.hair.flow == "field" ? FlowModel::field : scene.hair.flow == "relief" ? FlowModel::relief : FlowModel::local;
   if (o.flow != FlowModel::local) {  // the growth field's guidance
+    o.comb = scene.hair.comb == "from_crown" ? Comb::from_crown : Comb::into_layer;
     o.flow_smoothing = scene.hair.flow_smoothing;
     o.swirl = scene.hair.swirl;
     o.whorl = Vec2(scene.hair.whorl[0], scene.hair.whorl[1]);
@@ -44,7 +45,10 @@ RootSettings root_settings(const Scene& scene) {
     if (scene.effects.uses_map(map)) s.maps.push_back(map);
   s.from_shell = scene.hair.from_shell;
   if (s.from_shell) s.fall_depth_range = scene.preguides.depth_range;
-  if (o.flow == FlowModel::relief) s.relief_radius = scene.hair.relief_radius;
+  if (o.flow == FlowModel::relief) {
+    s.relief_radius = scene.hair.relief_radius;
+    s.grain_of_normals = scene.hair.relief_grain == "normals";
+  }
   return s;
 }
 
@@ -55,8 +59,11 @@ std::vector<std::string> root_files(const RootSettings& s) {
   return files;
 }
 
-// Tilting toward the thicker layer or hanging, and hair that suits its shell, read the fields.
-bool roots_read_fields(const RootSettings& s) { return s.options.tilt_toward != TiltToward::down || s.from_shell; }
+// Tilting toward the thicker layer or hanging, hair that suits its shell, and combed hair (its
+// length from the layer ahead) read the fields.
+bool roots_read_fields(const RootSettings& s) {
+  return s.options.tilt_toward != TiltToward::down || s.from_shell || s.options.comb == Comb::from_crown;
+}
 
 ThicknessField layer_thickness(const DistanceField& volume) {
   return [&volume](const Vec3& p) {

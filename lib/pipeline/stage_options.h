@@ -23,6 +23,7 @@ struct RootSettings {
   std::vector<std::string> maps;  // the grey maps it reads (effects.maps: density, tilt, length)
   bool from_shell = false;        // length and tilt from the shell (hair.length and hair.tilt unset)
   double relief_radius = 0.0;     // cm around a scalp point the hull's grain is read (flow = relief)
+  bool grain_of_normals = false;  // hair.relief_grain = "normals" (scalp/relief.h relief_grain_of_normals)
   // Hair from the hull: the share of the layer's depth the hair falls at, crown → rim (the
   // pre-guides' immersion, preguides.depth_range).
   std::array<double, 2> fall_depth_range{0.15, 0.6};

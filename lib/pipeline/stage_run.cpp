@@ -37,9 +37,18 @@ const StageRun::ResolvedRoots& StageRun::resolved_roots(const RootSettings& sett
   r.inputs.density = inputs.density_map;
   r.inputs.tilt = inputs.tilt_map;
   r.inputs.length = inputs.length_map;
-  if (o.tilt_toward != TiltToward::down) r.inputs.thickness = layer_thickness(*values.volume_field);
-  if (o.flow == FlowModel::relief)
-    r.inputs.grain = relief_grain(*values.chart, inputs.volume.mesh, settings.relief_radius, options.threads);
+  if (o.flow == FlowModel::relief) {
+    const ScalpChart& chart = *values.chart;
+    if (settings.grain_of_normals) {
+      const ThicknessField thickness = layer_thickness(*values.volume_field);
+      std::vector<double> lift(chart.mesh.positions.size());
+      parallel_for(static_cast<int>(lift.size()), options.threads,
+                   [&](int i) { lift[i] = thickness(chart.mesh.positions[i]).value; });
+      r.inputs.grain = relief_grain_of_normals(chart, inputs.volume.mesh, lift, settings.relief_radius, options.threads);
+    } else {
+      r.inputs.grain = relief_grain(chart, inputs.volume.mesh, settings.relief_radius, options.threads);
+    }
+  }
   if (settings.from_shell) {  // hair that suits its shell: length and tilt from the layer
     r.shell = shell_hair(*values.chart, layer_thickness(*values.volume_field), options.threads);
     if (r.shell.layer_ends) {
@@ -53,13 +62,24 @@ const StageRun::ResolvedRoots& StageRun::resolved_roots(const RootSettings& sett
     r.falls = vertex_falls(chart, fall_region(boundary(), chart.down, chart.front), kLongestFall,
                            [&](const Vec3& p) { return immersion_share(depth_range, height_of(chart, p)); },
                            options.threads);
-    r.hull = hull_hair(r.falls, o.length);
-    if (r.hull.hangs) {
+    // Hair combed from the crown lies as far as the layer ahead of it goes.
+    r.hull = o.comb == Comb::from_crown
+                 ? hull_hair(r.falls, combed_lengths(chart, layer_thickness(*values.volume_field), o.length))
+                 : hull_hair(r.falls, o.length);
+    if (r.hull.hangs || o.comb == Comb::from_crown) {
       r.inputs.vertex_hang_weights = r.hull.hang_weights;
       r.inputs.vertex_lengths = r.hull.lengths;
       o.tilt_toward = TiltToward::hanging;
       if (!r.shell.layer_ends) o.tilt = kMaxShellTilt;
     }
+  }
+  // After the hull has had its say: hanging hair tilts as "thicker" does where it does not hang.
+  if (o.tilt_toward != TiltToward::down) r.inputs.thickness = layer_thickness(*values.volume_field);
+  // Combed hair of a declared length ends where the layer ahead of it does, if that comes sooner.
+  if (o.comb == Comb::from_crown && o.flow != FlowModel::local && r.inputs.vertex_lengths.empty() && !r.inputs.length) {
+    r.inputs.vertex_lengths = combed_lengths(*values.chart, layer_thickness(*values.volume_field), o.length);
+    for (double& l : r.inputs.vertex_lengths) l = std::min(l, o.length);
+    r.inputs.vertex_hang_weights.assign(r.inputs.vertex_lengths.size(), 0.0);
   }
   if (o.tilt_toward == TiltToward::hanging && r.inputs.vertex_lengths.empty()) {  // after the length is known
     const double longest = longest_hair(r.inputs, o);

@@ -73,7 +73,7 @@ std::vector<Vec3> vertex_gradients(const Mesh& mesh, const std::vector<double>& 
 }  // namespace
 
 std::vector<double> layer_end_distance(const ScalpChart& ch, const std::vector<double>& thickness,
-                                       const ThicknessField& field, double probe) {
+                                       const ThicknessField& field, double probe, bool from_rim_only) {
   const Mesh& mesh = ch.mesh;
   const int n = static_cast<int>(mesh.positions.size());
   std::vector<char> end(n, 0);
@@ -94,6 +94,19 @@ std::vector<double> layer_end_distance(const ScalpChart& ch, const std::vector<d
     out.normalize();
     // Just beyond the hairline, a little off the skin: outside the hull, the layer ends here.
     if (!(field(p + probe * out + 0.25 * probe * normal).value > 0.0)) end[v] = 1;
+  }
+  if (from_rim_only) {  // keep the ends joined to the rim through ends: a groove's or a field's speck is no end
+    std::vector<char> kept(n, 0);
+    std::vector<int> stack;
+    for (int v : ch.boundary)
+      if (end[v] && !kept[v]) kept[v] = 1, stack.push_back(v);
+    while (!stack.empty()) {
+      const int v = stack.back();
+      stack.pop_back();
+      for (int j : neighbours[v])
+        if (end[j] && !kept[j]) kept[j] = 1, stack.push_back(j);
+    }
+    end = std::move(kept);
   }
   std::vector<int> sources;
   for (int i = 0; i < n; ++i)
@@ -151,7 +164,9 @@ DirectionField make_growth_field(const ScalpChart& ch, const RootInputs& in, con
   if (o.tilt_toward != TiltToward::down)
     parallel_for(n, exec.threads, [&](int i) { thickness[i] = in.thickness(mesh.positions[i]).value; });
   std::vector<Vec3> guidance(n);
-  if (o.tilt_toward == TiltToward::down) {
+  if (o.comb == Comb::from_crown) {  // combed from the crown: down, and back across the top
+    for (int i = 0; i < n; ++i) guidance[i] = down_guidance(ch.vertex_normals[i], ch.down, ch.front);
+  } else if (o.tilt_toward == TiltToward::down) {
     for (int i = 0; i < n; ++i) guidance[i] = growth_guidance(ch.vertex_normals[i], Vec3::Zero(), o, ch.down, ch.front);
   } else {
     const std::vector<Vec3> gradient = vertex_gradients(mesh, thickness);
@@ -176,13 +191,16 @@ DirectionField make_growth_field(const ScalpChart& ch, const RootInputs& in, con
       guidance[i] = a.norm() > 1e-12 ? Vec3(urgency * a.normalized() + (1.0 - urgency) * local) : local;
     }
   }
-  // The hull's grain steers it where it is sure: a line, turned to agree with the guidance so far.
+  // The hull's grain steers it where it is sure: a line, turned to agree with the guidance so far
+  // (combed from the crown: with the tangent toward down, which the guidance is only where it is sure).
   if (o.flow == FlowModel::relief && in.grain.size() == guidance.size())
     for (int i = 0; i < n; ++i) {
       const Vec3& g = in.grain[i];
       const double sure = std::min(1.0, g.norm());
       if (!(sure > 0.0)) continue;
-      const Vec3 along = g.dot(guidance[i]) < 0.0 ? Vec3(-g / g.norm()) : Vec3(g / g.norm());
+      const Vec3 sign = o.comb == Comb::from_crown ? tangent_toward_down(ch.vertex_normals[i], ch.down, ch.front)
+                                                   : guidance[i];
+      const Vec3 along = g.dot(sign) < 0.0 ? Vec3(-g / g.norm()) : Vec3(g / g.norm());
       guidance[i] = sure * along + (1.0 - sure) * guidance[i];
     }
   add_declared_style(ch, o, guidance);

@@ -38,8 +38,9 @@ constexpr double kLayerEndProbe = 0.5;
 // vertex the hull does not cover (thickness ≤ 0), or a hairline vertex beyond which the hull does
 // not go on (the field reads outside the hull `probe` beyond it, a quarter of that off the skin).
 // Infinite where no end is reachable. `thickness` holds the field's value at each vertex.
+// With `from_rim_only`, only the ends joined to the scalp's rim through ends count.
 std::vector<double> layer_end_distance(const ScalpChart& chart, const std::vector<double>& thickness,
-                                       const ThicknessField& field, double probe);
+                                       const ThicknessField& field, double probe, bool from_rim_only = false);
 
 // With FlowModel::relief, inputs.grain (one line per vertex, scalp/relief.h) then takes over by
 // its anisotropy, turned to agree with the guidance below.

@@ -4,21 +4,40 @@
 #include <array>
 #include <cmath>
 
+#include <stdexcept>
+
 #include "core/smoothstep.h"
+#include "scalp/growth_field.h"
 
 namespace hairfit {
 
 HullHair hull_hair(const std::vector<Fall>& falls, double lying_length) {
+  return hull_hair(falls, std::vector<double>(falls.size(), lying_length));
+}
+
+HullHair hull_hair(const std::vector<Fall>& falls, const std::vector<double>& lying_lengths) {
+  if (lying_lengths.size() != falls.size()) throw std::invalid_argument("hull_hair: one lying length per fall");
   HullHair h;
   h.hang_weights.reserve(falls.size());
   h.lengths.reserve(falls.size());
-  for (const Fall& f : falls) {
+  for (std::size_t i = 0; i < falls.size(); ++i) {
+    const Fall& f = falls[i];
     const double phi = smoothstep(f.below_rim / kHangRamp);
     h.hang_weights.push_back(phi);
-    h.lengths.push_back(std::max(kShortestHullHair, phi * (f.length - kFallTipMargin) + (1.0 - phi) * lying_length));
+    h.lengths.push_back(std::max(kShortestHullHair, phi * (f.length - kFallTipMargin) + (1.0 - phi) * lying_lengths[i]));
     h.hangs = h.hangs || phi > 0.0;
   }
   return h;
+}
+
+std::vector<double> combed_lengths(const ScalpChart& chart, const ThicknessField& thickness, double fallback) {
+  const int n = static_cast<int>(chart.mesh.positions.size());
+  std::vector<double> layer(n);
+  for (int i = 0; i < n; ++i) layer[i] = thickness(chart.mesh.positions[i]).value;
+  std::vector<double> lengths = layer_end_distance(chart, layer, thickness, kLayerEndProbe, /*from_rim_only=*/true);
+  for (double& l : lengths)
+    l = std::isfinite(l) ? std::clamp(l - kCombedTipMargin, kShortestHullHair, kLongestCombedHair) : fallback;
+  return lengths;
 }
 
 namespace {

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "scalp/fall.h"
+#include "scalp/roots.h"
 
 namespace hairfit {
 
@@ -35,6 +36,20 @@ struct HullHair {
 // φ = smoothstep(below_rim / kHangRamp), ℓ = max(kShortestHullHair,
 // φ·(fall length − kFallTipMargin) + (1 − φ)·`lying_length`), per fall.
 HullHair hull_hair(const std::vector<Fall>& falls, double lying_length);
+// The same with a lying length per fall (per scalp vertex).
+HullHair hull_hair(const std::vector<Fall>& falls, const std::vector<double>& lying_lengths);
+
+// cm a combed hair's tip stays short of where the layer ahead of it ends (the carved hulls of
+// reference/carved_hull.h, flow crossing: 0.14–0.20 at 1 cm, 0.14–0.18 at 2 cm, 0.15–0.19 at 3 cm),
+// and the longest such hair.
+constexpr double kCombedTipMargin = 2.0;
+constexpr double kLongestCombedHair = 40.0;
+
+// Hair combed from the crown (hair.comb = "from_crown"): per scalp vertex, as long as the layer
+// ahead of it, the distance along the scalp to where the layer ends (layer_end_distance, ends
+// joined to the rim only) less kCombedTipMargin, in [kShortestHullHair, kLongestCombedHair]; `fallback` where the layer does
+// not end.
+std::vector<double> combed_lengths(const ScalpChart& chart, const ThicknessField& thickness, double fallback);
 
 // What a region of the scalp derived from the hull: its roots' share that hangs (φ > ½), and the
 // median length and median fall below the rim of its vertices.

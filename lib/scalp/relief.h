@@ -23,4 +23,18 @@ constexpr double kSureAnisotropy = 0.25;
 // Rim edges (on one triangle only: a card's or a sheet's border) count with β = π/2.
 std::vector<Vec3> relief_grain(const ScalpChart& chart, const Mesh& hull, double radius, int threads);
 
+// hair.relief_grain = "normals" (issue 48): the grain read from the spread of the hull's face
+// normals over the hull above each scalp vertex (`lift`: cm along the vertex normal to the hull, the
+// layer's thickness there), so that a thick layer's grain is read on its own surface and not from
+// whatever edges lie within reach of the skin. Grooves tilt the normals across themselves only: the
+// covariance of the normals' tangential parts about their mean (the mean removes the layer's own
+// slope) has its minor eigenvector along them. It is taken at ½, 1 and 2 × `radius` and the most
+// anisotropic kept, since grooves are 0.3–2 cm wide; sure is min(1, a / kSureSpread) with
+// a = (λ1 − λ2)/(λ1 + λ2), which is 1 for ideal parallel grooves and falls with the head's own
+// curvature, scan noise and grooves that run several ways.
+constexpr double kSureSpread = 0.5;
+
+std::vector<Vec3> relief_grain_of_normals(const ScalpChart& chart, const Mesh& hull, const std::vector<double>& lift,
+                                          double radius, int threads);
+
 }  // namespace hairfit

@@ -24,6 +24,8 @@ enum class TiltToward { down, thicker, hanging };
 // (scalp/growth_field.h), the same field steered by the hull's grain (relief, scalp/relief.h), or
 // each root's own down or thickness gradient (local, the paper's rule, root by root).
 enum class FlowModel { field, local, relief };
+// Which way along the growth field's lines hair grows (hair.comb).
+enum class Comb { into_layer, from_crown };
 
 // The hair layer's thickness at a point (cm) and its gradient (world axes), for TiltToward::thicker:
 // the pipeline passes −Φ_volume, the depth below the hair-volume boundary.
@@ -57,6 +59,7 @@ struct RootOptions {
   double tilt = 0.0;                          // degrees from the normal (toward tilt_toward), without tilt map
   TiltToward tilt_toward = TiltToward::down;
   FlowModel flow = FlowModel::local;
+  Comb comb = Comb::into_layer;
   double flow_smoothing = 6.0;                // cm: the growth field averages its guidance over this
   double swirl = 0.0;                         // degrees: growth away from the layer's end turns clockwise by this
   Vec2 whorl = Vec2::Zero();                  // chart point of a declared crown whorl

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "scalp/hanging.h"
+#include "scalp/growth_field.h"
 #include "scalp/hull_hair.h"
 #include "tests/scalp/scalp_meshes.h"
 
@@ -171,4 +172,50 @@ TEST_CASE("hair from the hull: lying above the rim, hanging past kHangRamp below
   CHECK(h.lengths[2] == doctest::Approx(0.5 * (20.0 - kFallTipMargin) + 0.5 * 6.0).epsilon(1e-15));
   CHECK(h.lengths[3] == kShortestHullHair);
   CHECK_FALSE(hull_hair({falls[0]}, 6.0).hangs);
+}
+
+TEST_CASE("combed hair: as long as the layer ahead to the rim, less the margin; a speck of no layer is no end") {
+  // A sphere's cap of radius 9 to 60° from the pole; the layer covers it and ends past the rim.
+  constexpr double kRadius = 9.0, kRim = M_PI / 3.0;
+  const Mesh cap = test::ring_disk(
+      36,
+      [&](double r, double phi) {
+        const double theta = r * kRim;
+        return Vec3(kRadius * std::sin(theta) * std::cos(phi), kRadius * std::cos(theta),
+                    kRadius * std::sin(theta) * std::sin(phi));
+      },
+      [](const Vec3& p) { return p; });
+  const ScalpChart chart = make_scalp_chart(cap, Vec3(0, 0, 1), Vec3(0, -1, 0), "cap.obj");
+  const Vec3 speck = chart.mesh.positions[0];  // the pole
+  auto polar = [](const Vec3& p) { return std::acos(std::clamp(p.normalized().y(), -1.0, 1.0)); };
+  const ThicknessField layer = [&](const Vec3& p) {
+    return LayerThickness{polar(p) <= kRim + 1e-9 ? 1.0 : -1.0, Vec3::Zero()};
+  };
+  const std::vector<double> lengths = combed_lengths(chart, layer, 25.0);
+  // The pole: the geodesic to the rim, 9·π/3 = 9.42 cm, by edges on 36 rings: no shorter than the
+  // meridian's chords (each ring step Δ shrinks to 2·sin(Δ/2)), and up to 8 % longer where the
+  // shortest way by edges zigzags across the rings.
+  const double step = kRim / 36.0, chord = std::sin(0.5 * step) / (0.5 * step);
+  const double exact = chord * kRadius * kRim - kCombedTipMargin;
+  CHECK(lengths[0] >= exact - 1e-9);
+  CHECK(lengths[0] <= exact * 1.04);
+  for (std::size_t v = 0; v < lengths.size(); ++v) {
+    CAPTURE(v);
+    const double ahead = kRadius * (kRim - polar(chart.mesh.positions[v]));  // geodesic, meridian to the rim
+    CHECK(lengths[v] >= std::max(kShortestHullHair, chord * ahead - kCombedTipMargin) - 1e-6);
+    CHECK(lengths[v] <= std::max(kShortestHullHair, 1.08 * ahead - kCombedTipMargin) + 1e-6);
+  }
+  // No layer in a speck at the pole: the paper's layer end counts it, the combed length does not.
+  const ThicknessField specked = [&](const Vec3& p) {
+    return LayerThickness{(p - speck).norm() < 0.1 ? -1.0 : layer(p).value, Vec3::Zero()};
+  };
+  const std::vector<double> combed = combed_lengths(chart, specked, 25.0);
+  CHECK(combed[0] == doctest::Approx(lengths[0]));
+  std::vector<double> thickness(chart.mesh.positions.size());
+  for (std::size_t v = 0; v < thickness.size(); ++v) thickness[v] = specked(chart.mesh.positions[v]).value;
+  CHECK(layer_end_distance(chart, thickness, specked, kLayerEndProbe)[0] == 0.0);
+  CHECK(layer_end_distance(chart, thickness, specked, kLayerEndProbe, true)[0] == doctest::Approx(lengths[0] + kCombedTipMargin));
+  // A layer that never ends: the fallback.
+  const ThicknessField everywhere = [](const Vec3&) { return LayerThickness{1.0, Vec3::Zero()}; };
+  for (double l : combed_lengths(chart, everywhere, 25.0)) CHECK(l == 25.0);
 }
