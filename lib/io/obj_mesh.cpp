@@ -171,16 +171,13 @@ void parse_obj(tinyobj::ObjReader& reader, const std::string& file, const std::s
     throw InputError(file, "is not a readable OBJ mesh: " + reader.Error());
 }
 
-// Significant digits for the coordinates: 9 (%.9g: 10⁻⁸ of the mesh's size for a mesh about the
-// origin), and one more for every factor of 10 by which the farthest coordinate exceeds the mesh's
-// size, so a mesh 10⁴ sizes from the origin keeps the same resolution (at most 17, a double's
-// round trip).
+// Significant digits for the coordinates: 9 (%.9g: 10⁻⁸ of the mesh's size about the origin);
+// a mesh far from the origin gets all 17, so it reads back exactly.
 int position_digits(const Mesh& mesh) {
   if (mesh.positions.empty()) return 9;
   const auto [lo, hi] = bounding_box(mesh);
   const double size = (hi - lo).maxCoeff(), farthest = lo.cwiseAbs().cwiseMax(hi.cwiseAbs()).maxCoeff();
-  if (!(size > 0.0) || !(farthest > 10.0 * size)) return 9;
-  return std::min(17, 9 + static_cast<int>(std::floor(std::log10(farthest / size))));
+  return digits_for_far_data(9, farthest, size) > 9 ? 17 : 9;
 }
 
 }  // namespace
