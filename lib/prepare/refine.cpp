@@ -8,14 +8,11 @@ namespace hairfit {
 
 namespace {
 
-std::uint64_t edge_key(int a, int b) {
-  return (static_cast<std::uint64_t>(std::min(a, b)) << 32) | static_cast<std::uint32_t>(std::max(a, b));
-}
 
 // One round: every triangle into four, the midpoints numbered in the order the triangles meet
 // their edges (deterministic).
 void split_once(Mesh& mesh, std::vector<Vec3>& colors) {
-  std::unordered_map<std::uint64_t, int> midpoint;
+  std::unordered_map<long long, int> midpoint;
   midpoint.reserve(mesh.triangles.size() * 2);
   const bool with_colors = colors.size() == mesh.positions.size();
   auto middle = [&](int a, int b) {
@@ -41,17 +38,18 @@ void split_once(Mesh& mesh, std::vector<Vec3>& colors) {
 }  // namespace
 
 double median_edge_length(const Mesh& mesh) {
-  std::vector<std::uint64_t> edges;
+  std::vector<std::pair<long long, double>> edges;  // each edge once, by its key
   edges.reserve(3 * mesh.triangles.size());
   for (const Vec3i& t : mesh.triangles)
-    for (int k = 0; k < 3; ++k) edges.push_back(edge_key(t[k], t[(k + 1) % 3]));
+    for (int k = 0; k < 3; ++k)
+      edges.emplace_back(edge_key(t[k], t[(k + 1) % 3]), (mesh.positions[t[k]] - mesh.positions[t[(k + 1) % 3]]).norm());
   std::sort(edges.begin(), edges.end());
-  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end(), [](const auto& x, const auto& y) { return x.first == y.first; }),
+              edges.end());
   if (edges.empty()) return 0.0;
   std::vector<double> lengths;
   lengths.reserve(edges.size());
-  for (std::uint64_t e : edges)
-    lengths.push_back((mesh.positions[static_cast<int>(e >> 32)] - mesh.positions[static_cast<int>(e & 0xffffffffu)]).norm());
+  for (const auto& e : edges) lengths.push_back(e.second);
   std::nth_element(lengths.begin(), lengths.begin() + lengths.size() / 2, lengths.end());
   return lengths[lengths.size() / 2];
 }
