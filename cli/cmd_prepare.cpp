@@ -12,6 +12,7 @@
 #include "args.h"
 #include "commands.h"
 #include "io/obj_mesh.h"
+#include "pipeline/prepared_scene.h"
 #include "prepare/prepare.h"
 
 namespace hairfit::cli {
@@ -114,7 +115,7 @@ int command_prepare(const Arguments& argv) {
   const double prepare_seconds = seconds_since(prepare_start);
   const std::string dir = *args.text("out");
   const Clock::time_point write_start = Clock::now();
-  write_prepared(p, scan, o, dir);
+  write_validated_prepared(p, scan, o, dir);
   const double write_seconds = seconds_since(write_start);
 
   double max_thickness = 0.0;
@@ -130,6 +131,7 @@ int command_prepare(const Arguments& argv) {
   std::printf("  front    (%.3g, %.3g, %.3g) %s\n", p.front.x(), p.front.y(), p.front.z(), p.front_how.c_str());
   std::printf("  checks   disks, outward, inside (winding %.3f), no intersections, shared hairline: passed\n",
               p.checks.deepest_winding);
+  std::printf("  run      the written scene passes run's own input checks (hairfit validate)\n");
   std::printf("  wrote    %s/volume.obj, scalp.obj, scene.toml, prepare.json\n", dir.c_str());
   // Wall clock, printed only (prepare.json stays the same for the same scan and options).
   std::printf("  time     %.2f s: reading the scan %.2f s, preparing %.2f s, writing %.2f s\n",

@@ -159,6 +159,20 @@ Vec3 triangle_centroid(const Mesh& mesh, int triangle) {
   return (mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) / 3.0;
 }
 
+Vec3 frame_origin(const Vec3& lo, const Vec3& hi) {
+  const double size = (hi - lo).maxCoeff();
+  if (!(size > 0.0) || !(hi - lo).allFinite()) return Vec3::Zero();
+  const double quantum = std::ldexp(1.0, std::ilogb(size) + 5);  // 2^(⌊log₂ size⌋ + 5) ∈ (16, 32] sizes
+  Vec3 origin;
+  for (int axis = 0; axis < 3; ++axis) origin[axis] = quantum * std::round(0.5 * (lo[axis] + hi[axis]) / quantum);
+  return origin;
+}
+
+int digits_for_far_data(int digits, double farthest, double size) {
+  if (!(size > 0.0) || !(farthest > 10.0 * size) || !std::isfinite(farthest)) return digits;
+  return std::min(17, digits + static_cast<int>(std::floor(std::log10(farthest / size))));
+}
+
 std::pair<Vec3, Vec3> bounding_box(const Mesh& mesh) {
   Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
   for (const Vec3i& t : mesh.triangles)

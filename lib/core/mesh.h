@@ -56,6 +56,19 @@ Vec3 triangle_centroid(const Mesh& mesh, int triangle);
 // Axis-aligned bounds of the used positions: {min, max}.
 std::pair<Vec3, Vec3> bounding_box(const Mesh& mesh);
 
+// The point to compute a mesh about, from its bounding box [lo, hi]: the box's middle rounded to a
+// multiple of Q, the power of two at least 16 times the box's size. Data about the origin (within
+// 8 sizes of it) keeps the origin, so its arithmetic is untouched; data far from it is computed
+// within 9 sizes of this point, where doubles resolve it as they do about the origin; and the
+// same data moved by a multiple of Q gets the same coordinates about its point, bit for bit.
+Vec3 frame_origin(const Vec3& lo, const Vec3& hi);
+
+// Significant digits to write coordinates with so that points `farthest` from the origin keep
+// the step `digits` give to data about the origin, relative to the data's `size`: `digits`, plus
+// one for every factor of 10 by which farthest exceeds 10 × size (at most 17, a double's round
+// trip).
+int digits_for_far_data(int digits, double farthest, double size);
+
 // Signed solid angle of the triangle with vertices a, b, c (relative to the viewpoint), by Van
 // Oosterom and Strackee's formula: positive when the viewpoint lies behind the triangle (on the
 // side its normal (b−a)×(c−a) points away from), as the inside of a closed outward-oriented mesh

@@ -7,7 +7,7 @@
 
 namespace hairfit {
 
-void write_guides_csv(const std::filesystem::path& path, const Guides& guides) {
+void write_guides_csv(const std::filesystem::path& path, const Guides& guides, const Vec3& origin) {
   // With guides.point_forces = K, K·3 more columns at the end: F5 and each point force.
   const std::size_t point_forces = guides.items.empty() ? 0 : guides.items.front().point_forces.size();
   write_file_atomically(path, [&](std::ostream& out) {
@@ -32,7 +32,7 @@ void write_guides_csv(const std::filesystem::path& path, const Guides& guides) {
     for (std::size_t i = 0; i < guides.items.size(); ++i) {
       const Guide& g = guides.items[i];
       line = std::to_string(i);
-      vector(g.root);
+      vector(origin == Vec3::Zero() ? g.root : Vec3(g.root + origin));
       number(g.length);
       vector(g.force);
       vector(g.root_moment);

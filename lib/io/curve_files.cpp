@@ -1,5 +1,7 @@
 #include "io/curve_files.h"
 
+#include "core/mesh.h"
+
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -43,11 +45,11 @@ class Text {
     size_ += std::to_chars(end, end + 24, value).ptr - end;
     return *this;
   }
-  // x, y and z at %.7g, separated by `separator`.
-  Text& point(const Vec3& p, const char* separator) {
-    number(p.x(), 7) << separator;
-    number(p.y(), 7) << separator;
-    return number(p.z(), 7);
+  // x, y and z at %.7g (or `digits`), separated by `separator`.
+  Text& point(const Vec3& p, const char* separator, int digits = 7) {
+    number(p.x(), digits) << separator;
+    number(p.y(), digits) << separator;
+    return number(p.z(), digits);
   }
   void write_to(std::ostream& out) const { out.write(text_.data(), static_cast<std::streamsize>(size_)); }
 
@@ -67,6 +69,15 @@ class Text {
 template <class T>
 void put(std::ostream& out, T value) {
   out.write(reinterpret_cast<const char*>(&value), sizeof value);
+}
+
+// 7 digits for curves about the origin, more for curves far from it (the same step relative to
+// their size).
+int point_digits(const Curves& curves) {
+  if (curves.points.empty()) return 7;
+  Vec3 lo = curves.points.front(), hi = lo;
+  for (const Vec3& p : curves.points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  return digits_for_far_data(7, lo.cwiseAbs().cwiseMax(hi.cwiseAbs()).maxCoeff(), (hi - lo).maxCoeff());
 }
 
 void require_finite(const Curves& curves, const std::filesystem::path& path) {
@@ -168,6 +179,7 @@ void write_obj_curves(const std::filesystem::path& path, const Curves& curves, i
   // The `v` lines in blocks of points, then the `l` lines in blocks of curves, each block's text
   // formatted on its own (in parallel) and written in order.
   constexpr std::size_t kPoints = 8192, kCurves = 2048;
+  const int digits = point_digits(curves);
   const std::size_t point_blocks = (curves.points.size() + kPoints - 1) / kPoints;
   const std::size_t curve_blocks = (curves.count() + kCurves - 1) / kCurves;
   std::vector<Text> blocks(1 + point_blocks + curve_blocks);
@@ -180,7 +192,7 @@ void write_obj_curves(const std::filesystem::path& path, const Curves& curves, i
       const std::size_t end = std::min(curves.points.size(), (b + 1) * kPoints);
       for (std::size_t i = b * kPoints; i < end; ++i) {
         text << "v ";
-        text.point(curves.points[i], " ") << "\n";
+        text.point(curves.points[i], " ", digits) << "\n";
       }
       return;
     }
@@ -218,9 +230,10 @@ void write_usda_curves(const std::filesystem::path& path, const Curves& curves, 
     for (std::size_t c = 0; c < curves.count(); ++c) out << (c ? ", " : "") << curves.size(c);
     out << "]\n    point3f[] points = [";
     Text values;
+    const int digits = point_digits(curves);
     for (std::size_t i = 0; i < curves.points.size(); ++i) {
       values << (i ? ", (" : "(");
-      values.point(curves.points[i], ", ") << ")";
+      values.point(curves.points[i], ", ", digits) << ")";
     }
     values << "]\n    float[] widths = [";
     for (std::size_t i = 0; i < curves.points.size(); ++i) {

@@ -53,9 +53,11 @@ bool is_face_token(std::string_view s) {
 }
 
 // Line-level checks tinyobjloader does not make: it reads "nan" as a number silently and has no
-// line numbers in its messages. Returns the vertex count. (A scan of the text in place: string
-// streams and a regular expression take 9 000 instructions a line.)
-int check_obj_text(const std::filesystem::path& path, const std::string& text, int& faces) {
+// line numbers in its messages. Returns every vertex's coordinates in file order, each the double
+// nearest its text (strtod): tinyobjloader keeps 32-bit floats (a step of 10⁻³ cm at 10⁴ cm from
+// the origin) and its double build sums digit by digit, off by an ulp. (A scan of the text in
+// place: string streams and a regular expression take 9 000 instructions a line.)
+std::vector<Vec3> check_obj_text(const std::filesystem::path& path, const std::string& text, int& faces) {
   const std::string file = path.string();
   const std::size_t probe = std::min<std::size_t>(text.size(), 4096);
   if (std::memchr(text.data(), '\0', probe) != nullptr)
@@ -64,6 +66,7 @@ int check_obj_text(const std::filesystem::path& path, const std::string& text, i
   const std::string_view all(text);
   int line_number = 0, vertices = 0;
   faces = 0;
+  std::vector<Vec3> positions;
   std::vector<std::pair<int, std::string_view>> face_lines;
   for (std::size_t begin = 0; begin < all.size();) {
     std::size_t end = all.find('\n', begin);
@@ -74,6 +77,7 @@ int check_obj_text(const std::filesystem::path& path, const std::string& text, i
     if (line.size() >= 2 && line[0] == 'v' && (line[1] == ' ' || line[1] == '\t')) {
       ++vertices;
       std::size_t at = 2;
+      Vec3& position = positions.emplace_back();
       for (int axis = 0; axis < 3; ++axis) {
         const std::string token(next_token(line, at));
         char* number_end = nullptr;
@@ -88,6 +92,7 @@ int check_obj_text(const std::filesystem::path& path, const std::string& text, i
                                            "; every vertex needs three finite numbers",
                                        whole}});
         }
+        position[axis] = value;
       }
     } else if (line.size() >= 2 && line[0] == 'f' && (line[1] == ' ' || line[1] == '\t')) {
       ++faces;
@@ -118,7 +123,7 @@ int check_obj_text(const std::filesystem::path& path, const std::string& text, i
       }
     }
   }
-  return vertices;
+  return positions;
 }
 
 // The text tinyobjloader parses: only vertex (`v`) and face (`f`) lines, and with `texture` the
@@ -166,6 +171,15 @@ void parse_obj(tinyobj::ObjReader& reader, const std::string& file, const std::s
     throw InputError(file, "is not a readable OBJ mesh: " + reader.Error());
 }
 
+// Significant digits for the coordinates: 9 (%.9g: 10⁻⁸ of the mesh's size about the origin);
+// a mesh far from the origin gets all 17, so it reads back exactly.
+int position_digits(const Mesh& mesh) {
+  if (mesh.positions.empty()) return 9;
+  const auto [lo, hi] = bounding_box(mesh);
+  const double size = (hi - lo).maxCoeff(), farthest = lo.cwiseAbs().cwiseMax(hi.cwiseAbs()).maxCoeff();
+  return digits_for_far_data(9, farthest, size) > 9 ? 17 : 9;
+}
+
 }  // namespace
 
 LoadedMesh load_obj_mesh(const std::filesystem::path& path, double scale_to_cm) {
@@ -173,13 +187,17 @@ LoadedMesh load_obj_mesh(const std::filesystem::path& path, double scale_to_cm) 
   const std::string text = read_obj_text(path);
 
   LoadedMesh result;
-  result.file_vertices = check_obj_text(path, text, result.file_faces);
+  const std::vector<Vec3> file_positions = check_obj_text(path, text, result.file_faces);
+  result.file_vertices = static_cast<int>(file_positions.size());
 
   tinyobj::ObjReader reader;
   parse_obj(reader, file, text, true, false);
 
   const std::vector<tinyobj::real_t>& v = reader.GetAttrib().vertices;
   const int n = static_cast<int>(v.size() / 3);
+  if (n != result.file_vertices)  // both count the `v` lines parse_obj keeps
+    throw InputError(file, "the OBJ reader sees " + std::to_string(n) + " vertices where the file has " +
+                               std::to_string(result.file_vertices) + " `v` lines; check the `v` lines");
   // tinyobjloader keeps colours only when every vertex has them (vertex_color = false: no fallback).
   const std::vector<tinyobj::real_t>& rgb = reader.GetAttrib().colors;
   const bool with_colors = n > 0 && rgb.size() == v.size();
@@ -187,7 +205,7 @@ LoadedMesh load_obj_mesh(const std::filesystem::path& path, double scale_to_cm) 
   // first vertex at its position (weld_points at tolerance 0); welded vertices keep the order of
   // their first appearance, and the first one's colour.
   std::vector<Vec3> at(n);
-  for (int i = 0; i < n; ++i) at[i] = Vec3(v[3 * i], v[3 * i + 1], v[3 * i + 2]) * scale_to_cm;
+  for (int i = 0; i < n; ++i) at[i] = file_positions[i] * scale_to_cm;
   for (int i = 0; i < n; ++i)
     if (!at[i].allFinite())
       throw InputError(file, "vertex " + std::to_string(i + 1) + " is beyond the range of numbers once scaled to cm; " +
@@ -250,15 +268,16 @@ TexturedMesh load_obj_textured(const std::filesystem::path& path, double scale_t
   const std::string file = path.string();
   const std::string text = read_obj_text(path);
   int faces = 0;
-  check_obj_text(path, text, faces);
+  const std::vector<Vec3> file_positions = check_obj_text(path, text, faces);
   tinyobj::ObjReader reader;
   parse_obj(reader, file, text, false, true);
 
   TexturedMesh result;
-  const std::vector<tinyobj::real_t>& v = reader.GetAttrib().vertices;
-  const int n = static_cast<int>(v.size() / 3);
+  const int n = static_cast<int>(file_positions.size());
+  if (static_cast<int>(reader.GetAttrib().vertices.size() / 3) != n)
+    throw InputError(file, "the OBJ reader sees another number of vertices than the file's `v` lines; check them");
   for (int i = 0; i < n; ++i) {
-    result.mesh.positions.push_back(Vec3(v[3 * i], v[3 * i + 1], v[3 * i + 2]) * scale_to_cm);
+    result.mesh.positions.push_back(file_positions[i] * scale_to_cm);
     if (!result.mesh.positions.back().allFinite())
       throw InputError(file, "vertex " + std::to_string(i + 1) + " is beyond the range of numbers once scaled to cm");
   }
@@ -301,10 +320,11 @@ void write_obj_mesh(const std::filesystem::path& path, const Mesh& mesh,
   auto number = [&](double v, int precision) { text.append(buffer, format_general(buffer, v, precision)); };
   auto index = [&](int i) { text.append(buffer, std::to_chars(buffer, buffer + sizeof buffer, i).ptr); };
   const bool with_colors = colors.size() == mesh.positions.size();
+  const int digits = position_digits(mesh);
   for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
     const Vec3& p = mesh.positions[i];
     text += "v";
-    for (int k = 0; k < 3; ++k) text += ' ', number(p[k], 9);
+    for (int k = 0; k < 3; ++k) text += ' ', number(p[k], digits);
     if (with_colors)
       for (int k = 0; k < 3; ++k) text += ' ', number(colors[i][k], 4);
     text += '\n';

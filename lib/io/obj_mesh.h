@@ -19,7 +19,8 @@ struct LoadedMesh {
   std::vector<Vec3> colors;
 };
 
-// Reads an OBJ file through tinyobjloader, triangulating polygons. Throws InputError naming the
+// Reads an OBJ file through tinyobjloader, triangulating polygons; coordinates are read in double
+// precision, each the double nearest its text. Throws InputError naming the
 // file (and the line, where one is at fault) for a missing, unreadable or binary file, a
 // non-finite coordinate, a face index out of range, or a mesh without any usable triangle.
 // Exact duplicate vertices are welded and zero-area triangles dropped; both are counted.
@@ -38,8 +39,9 @@ struct TexturedMesh {
 // coordinate, an index out of range or a file without faces.
 TexturedMesh load_obj_textured(const std::filesystem::path& path, double scale_to_cm = 1.0);
 
-// Writes positions, optional per-vertex texture coordinates (`vt`), optional per-vertex colours
-// (`v x y z r g b`, one per position) and triangles.
+// Writes positions (9 significant digits, more for a mesh far from the origin: as fine a step
+// relative to its size), optional per-vertex texture coordinates (`vt`), optional per-vertex
+// colours (`v x y z r g b`, one per position) and triangles.
 void write_obj_mesh(const std::filesystem::path& path, const Mesh& mesh,
                     const std::vector<Vec2>& texture_coordinates = {}, const std::vector<Vec3>& colors = {});
 

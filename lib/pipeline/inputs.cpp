@@ -40,6 +40,11 @@ CleanMesh clean(const Mesh& raw) {
   return clean_mesh(raw, kWeldShare * (box.second - box.first).norm());
 }
 
+void move_by(Mesh& mesh, const Vec3& shift) {
+  if (shift == Vec3::Zero()) return;
+  for (Vec3& x : mesh.positions) x += shift;
+}
+
 Mesh reversed(Mesh mesh) {
   for (Vec3i& t : mesh.triangles) std::swap(t[1], t[2]);
   return mesh;
@@ -126,6 +131,10 @@ Inputs load_inputs(const Scene& scene, int threads) {
   if (threads > 1) volume = std::async(std::launch::async, [&] { return load_obj_mesh(scene.inputs.volume, to_cm); });
   in.scalp = load_obj_mesh(scene.inputs.scalp, to_cm);
   require_plausible_coordinates(in.scalp.mesh, scalp_file, scene.units.length);
+  // Far from the origin, everything is computed about a point near the scalp (Inputs::origin).
+  const auto [scalp_low, scalp_high] = bounding_box(in.scalp.mesh);
+  in.origin = frame_origin(scalp_low, scalp_high);
+  move_by(in.scalp.mesh, -in.origin);
   CleanMesh scalp = clean(in.scalp.mesh);
   in.scalp_report = scalp.report;
   in.scalp.mesh = std::move(scalp.mesh);
@@ -137,6 +146,7 @@ Inputs load_inputs(const Scene& scene, int threads) {
   }
   in.volume = volume.valid() ? volume.get() : load_obj_mesh(scene.inputs.volume, to_cm);
   require_plausible_coordinates(in.volume.mesh, volume_file, scene.units.length);
+  move_by(in.volume.mesh, -in.origin);
   CleanMesh hull = clean(in.volume.mesh);
   if (hull.mesh.triangles.empty())
     throw InputError(volume_file, "the hair volume has no triangle of non-zero area left once its duplicate and "
@@ -149,6 +159,7 @@ Inputs load_inputs(const Scene& scene, int threads) {
   if (scene.output.occluder) {
     in.occluder = load_obj_mesh(*scene.output.occluder, to_cm).mesh;
     require_plausible_coordinates(*in.occluder, scene.output.occluder->string(), scene.units.length);
+    move_by(*in.occluder, -in.origin);
   }
 
   in.scalp_inside_share = enclose_scalp(scene, in, threads);

@@ -20,6 +20,10 @@ struct Inputs {
   double scalp_inside_share = 0.0;  // share of the scalp (one probe per triangle) inside the hull (HairRegion)
   std::shared_ptr<const GreyMap> density_map, tilt_map, length_map;  // only the maps effects.maps uses (else null)
   std::optional<Mesh> occluder;  // output.occluder in cm, for the pictures only
+  // Every mesh above is moved by −origin: the run computes about this point (core/mesh.h,
+  // frame_origin of the scalp; the origin itself for data about it) and its
+  // writers move what they write back by +origin, into the scene's own frame.
+  Vec3 origin = Vec3::Zero();
 };
 
 struct InputsSummary {

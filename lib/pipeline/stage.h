@@ -42,6 +42,17 @@ class StageRun {
   // How the stage's loops run: the run's threads, and its progress bar (empty when it reports
   // nothing).
   Exec exec() const;
+  // Curves moved from the run's frame into the scene's (by inputs.origin, pipeline/inputs.h), for
+  // the writers: every position a run writes is in the scene's frame.
+  Curves in_scene_frame(Curves curves) const {
+    if (inputs.origin != Vec3::Zero())
+      for (Vec3& x : curves.points) x += inputs.origin;
+    return curves;
+  }
+  NrrdVolume in_scene_frame(NrrdVolume volume) const {
+    volume.origin += inputs.origin;
+    return volume;
+  }
   // Writes out_dir/relative by `write(path)` and lists it among the run's outputs.
   template <class Write>
   void output(const std::string& relative, Write write) {

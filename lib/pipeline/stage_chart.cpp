@@ -38,7 +38,7 @@ ConfiguredStage configure(const Scene& scene) {
 }
 
 void write(StageRun& run, const Scene&) {
-  run.output("chart.obj", [&](const std::filesystem::path& p) { write_chart_obj(p, *run.values.chart); });
+  run.output("chart.obj", [&](const std::filesystem::path& p) { write_chart_obj(p, *run.values.chart, run.inputs.origin); });
 }
 
 }  // namespace

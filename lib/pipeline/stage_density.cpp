@@ -98,7 +98,7 @@ void write(StageRun& run, const Scene& scene) {
   const Vec3 up = -scene.units.down;
   const Vec3 left_right = scene.units.front.cross(up);
   run.output("density/sagittal.nrrd", [&](const std::filesystem::path& p) {
-    write_nrrd(p, slice_to_nrrd(centre_slice(*run.values.fibre_density, left_right, up)));
+    write_nrrd(p, run.in_scene_frame(slice_to_nrrd(centre_slice(*run.values.fibre_density, left_right, up))));
   });
 }
 

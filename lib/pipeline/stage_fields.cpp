@@ -115,10 +115,10 @@ void write(StageRun& run, const Scene&) {
     if (v.scalp_field != v.scalp_distance) run.field_volumes->push_back(field_to_nrrd(*v.scalp_field, threads));
   }
   const std::vector<NrrdVolume>& volumes = *run.field_volumes;
-  run.output("fields/scalp.nrrd", [&](const std::filesystem::path& p) { write_nrrd(p, volumes[0]); });
-  run.output("fields/volume.nrrd", [&](const std::filesystem::path& p) { write_nrrd(p, volumes[1]); });
+  run.output("fields/scalp.nrrd", [&](const std::filesystem::path& p) { write_nrrd(p, run.in_scene_frame(volumes[0])); });
+  run.output("fields/volume.nrrd", [&](const std::filesystem::path& p) { write_nrrd(p, run.in_scene_frame(volumes[1])); });
   if (volumes.size() > 2)
-    run.output("fields/skin.nrrd", [&](const std::filesystem::path& p) { write_nrrd(p, volumes[2]); });
+    run.output("fields/skin.nrrd", [&](const std::filesystem::path& p) { write_nrrd(p, run.in_scene_frame(volumes[2])); });
   run.field_volumes.reset();
 }
 

@@ -112,8 +112,10 @@ ConfiguredStage configure(const Scene& scene) {
 
 void write(StageRun& run, const Scene&) {
   const Guides& guides = *run.values.guides;
-  run.output("guides.obj", [&](const std::filesystem::path& p) { write_obj_curves(p, guides.curves(), run.options.threads); });
-  run.output("guides.csv", [&](const std::filesystem::path& p) { write_guides_csv(p, guides); });
+  run.output("guides.obj", [&](const std::filesystem::path& p) {
+    write_obj_curves(p, run.in_scene_frame(guides.curves()), run.options.threads);
+  });
+  run.output("guides.csv", [&](const std::filesystem::path& p) { write_guides_csv(p, guides, run.inputs.origin); });
 }
 
 }  // namespace

@@ -82,7 +82,7 @@ void write(StageRun& run, const Scene&) {
   const PreGuides& preguides = *run.values.preguides;
   Curves curves;
   for (int i = 0; i < preguides.size(); ++i) curves.add(preguides.items[i].shape.nodes, i);
-  run.output("preguides.obj", [&](const std::filesystem::path& p) { write_obj_curves(p, curves, run.options.threads); });
+  run.output("preguides.obj", [&](const std::filesystem::path& p) { write_obj_curves(p, run.in_scene_frame(curves), run.options.threads); });
 }
 
 }  // namespace

@@ -77,7 +77,7 @@ ConfiguredStage configure(const Scene& scene) {
 
 void write(StageRun& run, const Scene&) {
   const StageValues& v = run.values;
-  run.output("roots.ply", [&](const std::filesystem::path& p) { write_roots_ply(p, *v.roots, *v.clusters); });
+  run.output("roots.ply", [&](const std::filesystem::path& p) { write_roots_ply(p, *v.roots, *v.clusters, run.inputs.origin); });
 }
 
 }  // namespace

@@ -156,8 +156,8 @@ void write(StageRun& run, const Scene& scene) {
         else write_ply_curves(p, curves);
       });
     };
-    write_as("strands", fibres);
-    if (format != "obj") write_as("guides", guide_curves);  // guides.obj comes from the guides stage
+    write_as("strands", run.in_scene_frame(fibres));
+    if (format != "obj") write_as("guides", run.in_scene_frame(guide_curves));  // guides.obj comes from the guides stage
   }
 }
 

@@ -14,6 +14,7 @@
 #include "prepare/scalp_level_set.h"
 #include "prepare/surface_checks.h"
 #include "scalp/shell_hair.h"
+#include "prepare/refine.h"
 #include "prepare/weld.h"
 #include "spec/scene.h"
 
@@ -147,16 +148,16 @@ Mesh with_scalp(Mesh base, const std::vector<int>& shared, const Prepared& p, bo
 
 // The checks that failed, each a clause ("the hull is not a disk"), joined by "; ": empty when all
 // passed.
-std::string failures(const PrepareChecks& c) {
+std::string failures(const PrepareChecks& c, const Vec3& origin) {
   std::vector<std::string> failed;
   if (!c.hull_disk) failed.push_back("the hull is not a disk");
   if (!c.scalp_disk) failed.push_back("the scalp is not a disk");
   if (c.scalp_inward_triangles)
     failed.push_back(std::to_string(c.scalp_inward_triangles) + " scalp triangles face inward (e.g. at " +
-                     vec_text(c.first_inward) + ")");
+                     vec_text(c.first_inward + origin) + ")");
   if (c.intersections)
     failed.push_back("hull, floor and scalp intersect (" + std::to_string(c.intersections) + " pairs, e.g. at " +
-                     vec_text(c.first_intersection) + ")");
+                     vec_text(c.first_intersection + origin) + ")");
   if (!(c.deepest_winding > 0.5)) failed.push_back("the scalp is not inside the hull");
   if (!c.hairline_shared) failed.push_back("the scalp's hairline differs from the hull's");
   std::string text;
@@ -184,7 +185,7 @@ PrepareChecks check(const Prepared& p, int threads, CheckScope scope = CheckScop
   const int deepest = static_cast<int>(std::max_element(p.scalp.thickness.begin(), p.scalp.thickness.end()) -
                                        p.scalp.thickness.begin());
   c.deepest_winding = winding_number(p.scalp.volume, scalp.positions[deepest]);
-  if (stop_early && !failures(c).empty()) return c;  // the checks not yet run read as passed
+  if (stop_early && !failures(c, Vec3::Zero()).empty()) return c;  // the checks not yet run read as passed
   // Facing: just outside each scalp triangle (1e-3 cm along its normal) lies the layer, inside the
   // hull closed by the reversed scalp.
   std::vector<int> on_hull(scalp.positions.size(), -1);
@@ -221,11 +222,10 @@ double max_thickness(const Prepared& p) {
   return p.scalp.thickness.empty() ? 0.0 : *std::max_element(p.scalp.thickness.begin(), p.scalp.thickness.end());
 }
 
-}  // namespace
-
-Prepared prepare_scan(const Mesh& raw_scan, const std::vector<Vec3>& colors, const PrepareOptions& o,
-                      const std::string& file) {
+Prepared prepare_centred(const Mesh& raw_scan, const std::vector<Vec3>& colors, const PrepareOptions& o,
+                         const std::string& file, const Vec3& origin) {
   Prepared p;
+  p.origin = origin;  // in scan units until the scale is known
   const auto [lo, hi] = bounding_box(raw_scan);
   const double tolerance = o.weld_tolerance >= 0.0 ? o.weld_tolerance : 1e-6 * (hi - lo).norm();
   const Welded welded = weld_vertices(raw_scan, tolerance);
@@ -233,12 +233,20 @@ Prepared prepare_scan(const Mesh& raw_scan, const std::vector<Vec3>& colors, con
   std::vector<Vec3> welded_colors;
   if (colors.size() == raw_scan.positions.size())
     for (int old : welded.new_to_old) welded_colors.push_back(colors[old]);
-  const Mesh& scan = welded.mesh;
+  // A coarse scan (median edge beyond 1/40 of its size: 1 cm on a bust) is split into smaller
+  // flat triangles first (refine.h), and prepare.json says so.
+  const Refined refined = refine_coarse_scan(welded.mesh, welded_colors, (hi - lo).maxCoeff() / 40.0);
+  p.refine_splits = refined.splits;
+  p.median_edge_before = refined.median_edge_before;
+  p.median_edge_after = refined.median_edge_after;
+  welded_colors = refined.colors;
+  const Mesh& scan = refined.mesh;
 
   const SelectionField field = selection_field(scan, welded_colors, o.selection, file);
   p.hull = cut_hull(scan, field, o.hull, file);
   detect_directions(p.hull, o, p);
   p.scale_to_cm = scale_for(scan, p.up, o, file);
+  p.origin *= p.scale_to_cm;  // where the checks' messages place what they found, in cm
   for (Vec3& x : p.hull.mesh.positions) x *= p.scale_to_cm;
   p.hull.centre *= p.scale_to_cm;
   p.hull.selected_area *= p.scale_to_cm * p.scale_to_cm;
@@ -266,7 +274,7 @@ Prepared prepare_scan(const Mesh& raw_scan, const std::vector<Vec3>& colors, con
         radial_failed = std::to_string(folded) + " of the radial scalp's triangles face the head centre (it folds)";
       } else {
         p.checks = check(p, o.threads, o.scalp_method == "auto" ? CheckScope::until_failure : CheckScope::all);
-        radial_failed = failures(p.checks);
+        radial_failed = failures(p.checks, p.origin);
         if (radial_failed.empty() || o.scalp_method == "radial") p.scalp_how = "radial: the hull is star-shaped about the head centre";
       }
     }
@@ -293,7 +301,7 @@ Prepared prepare_scan(const Mesh& raw_scan, const std::vector<Vec3>& colors, con
       try {
         p.scalp = make_level_set_scalp(p.hull, skin, grid, file, o.threads);
         p.checks = check(p, o.threads);
-        failed = failures(p.checks);
+        failed = failures(p.checks, p.origin);
       } catch (const InputError& e) {
         failed = e.what();
       }
@@ -310,10 +318,31 @@ Prepared prepare_scan(const Mesh& raw_scan, const std::vector<Vec3>& colors, con
       throw InputError(file, "the level-set scalp derived from this hull fails its checks at every voxel tried (" +
                                  tried + "); try a smaller --crown-thickness or a longer --ramp, or repair the scan near the hairline");
   }
-  const std::string failed = failures(p.checks);
+  const std::string failed = failures(p.checks, p.origin);
   if (!failed.empty())
     throw InputError(file, "the scalp derived from this hull (" + p.scalp.method + ") fails its checks: " + failed +
                                "; try a smaller --crown-thickness or a longer --ramp, or repair the scan near the hairline");
+  return p;
+}
+
+}  // namespace
+
+Prepared prepare_scan(const Mesh& input_scan, const std::vector<Vec3>& colors, const PrepareOptions& input_options,
+                      const std::string& file) {
+  // Everything is computed about the data's centre (frame_origin) and moved back at the end.
+  const auto [lo, hi] = bounding_box(input_scan);
+  const Vec3 origin = frame_origin(lo, hi);
+  Mesh raw_scan = input_scan;
+  for (Vec3& x : raw_scan.positions) x -= origin;
+  PrepareOptions o = input_options;
+  o.selection.point -= origin;
+  o.selection.centre -= origin;
+  Prepared p = prepare_centred(raw_scan, colors, o, file, origin);
+  const Vec3 shift = origin * p.scale_to_cm;
+  p.origin = shift;
+  for (Mesh* mesh : {&p.hull.mesh, &p.scalp.scalp, &p.scalp.volume})
+    for (Vec3& x : mesh->positions) x += shift;
+  p.hull.centre += shift;
   return p;
 }
 
@@ -374,6 +403,9 @@ void write_prepared(const Prepared& p, const std::filesystem::path& scan, const 
   record["front"] = vec(p.front);
   record["front_how"] = p.front_how;
   record["welded_vertices"] = p.welded_vertices;
+  record["refined"] = {{"splits", p.refine_splits},
+                       {"median_edge_before_cm", p.median_edge_before * p.scale_to_cm},
+                       {"median_edge_after_cm", p.median_edge_after * p.scale_to_cm}};
   record["hull"] = {{"triangles", p.hull.mesh.triangles.size()},
                     {"area_cm2", p.hull.kept_area},
                     {"selected_triangles", p.hull.selected_triangles},

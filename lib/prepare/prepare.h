@@ -47,9 +47,16 @@ struct Prepared {
   Vec3 up = Vec3::UnitY(), front = Vec3::UnitZ();
   std::string up_how, front_how;  // "declared", or how they were detected
   int welded_vertices = 0;
+  int refine_splits = 0;  // rounds a coarse scan's triangles were split into four (refine.h)
+  double median_edge_before = 0.0, median_edge_after = 0.0;  // scan units
   std::string scalp_how;  // which method made the scalp, and why
   PrepareChecks checks;
+  // The meshes are in the scan's own frame (scaled to cm); they were computed about this point
+  // (cm), near the data (core/mesh.h, frame_origin), where doubles resolve a head's details whatever its
+  // distance from the origin. The checks' positions (first_inward, …) are in that centred frame.
+  Vec3 origin = Vec3::Zero();
 };
+
 
 // Everything but the writing. Throws InputError naming `file` for bad options, a selection that
 // catches nothing or no one connected region, a mask without colours, a hull the scalp cannot be

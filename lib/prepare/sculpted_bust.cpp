@@ -117,43 +117,26 @@ double ear_flap_value(const BustShape& s, const Vec3& p) {
   return std::max({shell, span, sides});
 }
 
-Mat3 tilt_rotation() {
-  return (Eigen::AngleAxisd(20.0 * kDegree, Vec3::UnitX()) * Eigen::AngleAxisd(12.0 * kDegree, Vec3::UnitZ()))
-      .toRotationMatrix();
-}
-
 struct Sculpture {
   BustShape shape = base_shape();
   std::array<Braid, 2> braids{make_braid(shape, 1.0), make_braid(shape, -1.0)};
-  Mat3 tilt = tilt_rotation();
 
-  double value(BustStyle style, const Vec3& world) const {
-    const Vec3 p = style == BustStyle::tilted ? Vec3(tilt.transpose() * world) : world;
+  double value(const SculptFeatures& f, const Vec3& world) const {
+    const Vec3 p = f.tilt.transpose() * world;
     double v = above_layer(shape, p);
-    switch (style) {
-      case BustStyle::plain:
-      case BustStyle::tilted:
-        break;
-      case BustStyle::bun: {
-        const Vec3 u = Vec3(0.0, 0.3, -1.0).normalized();
-        v = smooth_min(v, (p - on_hair(shape, u, 0.8)).norm() - 3.3, 1.0);
-        break;
-      }
-      case BustStyle::braids:
-        for (const Braid& braid : braids) v = smooth_min(v, braid_value(braid, p), 0.4);
-        break;
-      case BustStyle::bows:
-        for (double side : {1.0, -1.0}) v = smooth_min(v, bow_value(shape, p, side), 0.3);
-        break;
-      case BustStyle::ears:
-        v = std::min(v, ear_flap_value(shape, p));
-        break;
+    if (f.bun) {
+      const Vec3 u = Vec3(0.0, 0.3, -1.0).normalized();
+      v = smooth_min(v, (p - on_hair(shape, u, 0.8)).norm() - 3.3, 1.0);
     }
+    if (f.braids)
+      for (const Braid& braid : braids) v = smooth_min(v, braid_value(braid, p), 0.4);
+    if (f.bows)
+      for (double side : {1.0, -1.0}) v = smooth_min(v, bow_value(shape, p, side), 0.3);
+    if (f.ears) v = std::min(v, ear_flap_value(shape, p));
     return v;
   }
-  bool hair(BustStyle style, const Vec3& world) const {
-    const Vec3 p = style == BustStyle::tilted ? Vec3(tilt.transpose() * world) : world;
-    return above_skin(shape, p) > 0.04;
+  bool hair(const SculptFeatures& f, const Vec3& world) const {
+    return above_skin(shape, Vec3(f.tilt.transpose() * world)) > 0.04;
   }
 };
 
@@ -182,27 +165,45 @@ std::string bust_style_name(BustStyle style) {
   return "?";
 }
 
-double sculpted_bust_value(BustStyle style, const Vec3& p) { return sculpture().value(style, p); }
-bool sculpted_bust_hair(BustStyle style, const Vec3& p) { return sculpture().hair(style, p); }
+SculptFeatures sculpt_features(BustStyle style) {
+  SculptFeatures f;
+  f.bun = style == BustStyle::bun;
+  f.braids = style == BustStyle::braids;
+  f.bows = style == BustStyle::bows;
+  f.ears = style == BustStyle::ears;
+  if (style == BustStyle::tilted)
+    f.tilt = (Eigen::AngleAxisd(20.0 * kDegree, Vec3::UnitX()) * Eigen::AngleAxisd(12.0 * kDegree, Vec3::UnitZ()))
+                 .toRotationMatrix();
+  return f;
+}
 
-BustScan make_sculpted_bust(BustStyle style, double spacing) {
+double sculpted_bust_value(BustStyle style, const Vec3& p) { return sculpture().value(sculpt_features(style), p); }
+bool sculpted_bust_hair(BustStyle style, const Vec3& p) { return sculpture().hair(sculpt_features(style), p); }
+
+BustScan make_sculpted_bust(BustStyle style, double spacing) { return make_sculpted_bust(sculpt_features(style), spacing); }
+
+BustScan make_sculpted_bust(const SculptFeatures& features, double spacing) {
   // Every style fits in this box (the bun reaches z ≈ −16.5, the neck's cut y = −22; the tilted
-  // head turns by 23° at most).
-  const Vec3 low(-15.0, -24.0, -18.5), high(15.0, 17.0, 16.0);
+  // head turns by 23° at most); a head tilted further gets the box of the bust's bounding sphere
+  // about the head, 26 cm (the neck's cut).
+  const double turned = std::acos(std::clamp(0.5 * (features.tilt.trace() - 1.0), -1.0, 1.0)) / kDegree;
+  const Vec3 low = turned <= 23.5 ? Vec3(-15.0, -24.0, -18.5) : Vec3(-26.5, -26.5, -26.5);
+  const Vec3 high = turned <= 23.5 ? Vec3(15.0, 17.0, 16.0) : Vec3(26.5, 26.5, 26.5);
   SampleGrid grid;
   grid.origin = low;
   grid.spacing = spacing;
   for (int axis = 0; axis < 3; ++axis) grid.dims[axis] = static_cast<int>(std::ceil((high[axis] - low[axis]) / spacing)) + 1;
   std::vector<double> values(grid.nodes());
+  const Sculpture& sculpted = sculpture();
   parallel_for(grid.dims.z(), 0, [&](int k) {
     for (int j = 0; j < grid.dims.y(); ++j)
-      for (int i = 0; i < grid.dims.x(); ++i) values[grid.node(i, j, k)] = sculpted_bust_value(style, grid.position(i, j, k));
+      for (int i = 0; i < grid.dims.x(); ++i) values[grid.node(i, j, k)] = sculpted.value(features, grid.position(i, j, k));
   });
   ZeroSet surface = marching_tetrahedra(grid, values);
   BustScan scan;
   scan.mesh = std::move(surface.mesh);
   for (const Vec3& p : scan.mesh.positions) {
-    const double* c = sculpted_bust_hair(style, p) ? kHairColor : kSkinColor;
+    const double* c = sculpted.hair(features, p) ? kHairColor : kSkinColor;
     scan.colors.emplace_back(c[0], c[1], c[2]);
     scan.directions.push_back(direction_of(p));
   }

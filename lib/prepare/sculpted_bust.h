@@ -18,6 +18,14 @@ enum class BustStyle { plain, bun, braids, bows, ears, tilted };
 const std::vector<BustStyle>& all_bust_styles();
 std::string bust_style_name(BustStyle style);  // "plain", "bun", …
 
+// What a sculpted bust carries: any of the bun, the braids, the bows and the ear flaps at once,
+// and the whole bust turned by `tilt` (about the head centre). BustStyle names one feature each.
+struct SculptFeatures {
+  bool bun = false, braids = false, bows = false, ears = false;
+  Mat3 tilt = Mat3::Identity();
+};
+SculptFeatures sculpt_features(BustStyle style);
+
 // The implicit function of the style's bust at p (cm, y up, face +z): negative inside, within a
 // few percent of the signed distance near the surface.
 double sculpted_bust_value(BustStyle style, const Vec3& p);
@@ -27,5 +35,6 @@ bool sculpted_bust_hair(BustStyle style, const Vec3& p);
 
 // The bust sampled on a grid of `spacing` cm (BustScan::directions: unit position vectors).
 BustScan make_sculpted_bust(BustStyle style, double spacing = 0.3);
+BustScan make_sculpted_bust(const SculptFeatures& features, double spacing = 0.3);
 
 }  // namespace hairfit

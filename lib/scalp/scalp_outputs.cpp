@@ -7,19 +7,23 @@
 
 namespace hairfit {
 
-void write_chart_obj(const std::filesystem::path& path, const ScalpChart& chart) {
+void write_chart_obj(const std::filesystem::path& path, const ScalpChart& chart, const Vec3& origin) {
   std::vector<Vec2> vt(chart.chart.size());
   for (std::size_t v = 0; v < vt.size(); ++v) vt[v] = Vec2((chart.chart[v].x() + 1) / 2, (chart.chart[v].y() + 1) / 2);
-  write_obj_mesh(path, chart.mesh, vt);
+  if (origin == Vec3::Zero()) return write_obj_mesh(path, chart.mesh, vt);
+  Mesh moved = chart.mesh;
+  for (Vec3& x : moved.positions) x += origin;
+  write_obj_mesh(path, moved, vt);
 }
 
-void write_roots_ply(const std::filesystem::path& path, const Roots& roots, const Clusters& clusters) {
+void write_roots_ply(const std::filesystem::path& path, const Roots& roots, const Clusters& clusters, const Vec3& origin) {
   const RootSet& s = roots.pores;
   const int n = s.size();
   if (static_cast<int>(clusters.pore_cluster.size()) != n)
     throw std::invalid_argument("write_roots_ply: clusters were made from other roots");
   PlyPoints ply;
   ply.positions = s.positions;
+  for (Vec3& x : ply.positions) x += origin;
   auto column = [&](const char* name, bool is_int, auto&& value) {
     PlyColumn c{name, is_int, std::vector<double>(n)};
     for (int i = 0; i < n; ++i) c.values[i] = value(i);

@@ -13,6 +13,7 @@
 #include "io/png_chunks.h"
 #include "io/png_image.h"
 #include "io/png_map.h"
+#include "../support/run_hairfit.h"
 #include "../support/scratch.h"
 
 using namespace hairfit;
@@ -113,9 +114,45 @@ TEST_CASE("OBJ errors name the file, the line and the fix") {
             .find("is a binary file") != std::string::npos);
   CHECK(error_of([&] { load_obj_mesh(write("short.obj", "v 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")); })
             .find("fewer than 3 coordinates") != std::string::npos);
-  // Finite as text, but beyond the reader's single precision (or the scale to cm): named, not welded as inf.
-  CHECK(error_of([&] { load_obj_mesh(write("huge.obj", "v 0 0 0\nv 1e39 0 0\nv 0 1 0\nf 1 2 3\n")); })
+  // Finite as text, but beyond a double once scaled to cm: named, not welded as inf.
+  CHECK(error_of([&] { load_obj_mesh(write("huge.obj", "v 0 0 0\nv 1e307 0 0\nv 0 1 0\nf 1 2 3\n"), 100.0); })
             .find("vertex 2 is beyond the range of numbers once scaled to cm") != std::string::npos);
+}
+
+TEST_CASE("OBJ coordinates far from the origin are read as the doubles nearest their text") {
+  // 4·10⁵ cm from the origin a float's step is 0.03 cm: these three vertices 10⁻⁴ cm apart would
+  // collapse into one and the triangle be dropped. Each coordinate is the double strtod gives.
+  const std::string x0 = "400000.0001", x1 = "400000.0002", y = "-123456.78901234", z = "0.1";
+  const LoadedMesh m = load_obj_mesh(write("far.obj", "v " + x0 + " " + y + " " + z + "\nv " + x1 + " " + y + " " + z +
+                                                          "\nv " + x0 + " -123456.78891234 " + z + "\nf 1 2 3\n"));
+  REQUIRE(m.mesh.positions.size() == 3);
+  CHECK(m.dropped_degenerate == 0);
+  CHECK(m.mesh.positions[0] == Vec3(std::strtod(x0.c_str(), nullptr), std::strtod(y.c_str(), nullptr), 0.1));
+  CHECK(m.mesh.positions[1].x() == std::strtod(x1.c_str(), nullptr));
+  CHECK(m.mesh.positions[2].y() == std::strtod("-123456.78891234", nullptr));
+  // Text without an exact float: 0.1 is read as the double 0.1, not the float 0.1f.
+  CHECK(m.mesh.positions[0].z() != static_cast<double>(0.1f));
+}
+
+TEST_CASE("OBJ writing keeps a far mesh's resolution relative to its size") {
+  // The same small triangle about the origin and 10⁴ of its sizes away: both written, read back
+  // within 10⁻⁸ of their size (9 digits about the origin, 13 far away).
+  Mesh near;
+  near.positions = {Vec3(0.123456789123, 1.0, 2.0), Vec3(3.0, -2.987654321987, 1.0), Vec3(-1.0, 0.5, 2.000000123)};
+  near.triangles = {Vec3i(0, 1, 2)};
+  Mesh far = near;
+  const Vec3 shift(6.0e4, -4.0e4, 2.5e4);
+  for (Vec3& p : far.positions) p += shift;
+  const fs::path near_file = temp_dir() / "near.obj", far_file = temp_dir() / "far_written.obj";
+  write_obj_mesh(near_file, near);
+  write_obj_mesh(far_file, far);
+  const LoadedMesh near_back = load_obj_mesh(near_file), far_back = load_obj_mesh(far_file);
+  for (int v = 0; v < 3; ++v) {
+    CHECK((near_back.mesh.positions[v] - near.positions[v]).norm() < 1e-8 * 6.0);
+    CHECK((far_back.mesh.positions[v] - far.positions[v]).norm() < 1e-8 * 6.0);
+  }
+  // The mesh about the origin is written as before: %.9g.
+  CHECK(hairfit::testing::read_all(near_file.string()).substr(0, 30) == "v 0.123456789 1 2\nv 3 -2.98765");
 }
 
 TEST_CASE("OBJ write → read round trip keeps positions and triangles") {
