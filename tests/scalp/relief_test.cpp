@@ -28,9 +28,14 @@ Vec3 groove_direction(const Vec3& u) {
   return u.normalized().cross(gradient).normalized();
 }
 
-}  // namespace
+// The scalp cap of radius R to kCap from the pole, and over it the sphere of radius R + 1 with
+// grooves 0.3 cm deep along the lines φ + kTwist·θ = const, and the same sphere smooth.
+struct GroovedCase {
+  ScalpChart chart;
+  Mesh hull, smooth;
+};
 
-TEST_CASE("relief grain: along grooves that swirl from the crown (mean error under 10°, none over 30°); none over a smooth hull") {
+GroovedCase grooved_case() {
   const Mesh cap = test::ring_disk(
       24,
       [](double r, double phi) {
@@ -46,6 +51,15 @@ TEST_CASE("relief grain: along grooves that swirl from the crown (mean error und
     p *= R + 1.0 - 0.3 * (0.5 + 0.5 * std::cos(2.0 * M_PI * s));
   }
   for (Vec3& p : smooth.positions) p *= R + 1.0;
+  return {chart, hull, smooth};
+}
+
+}  // namespace
+
+TEST_CASE("relief grain: along grooves that swirl from the crown (mean error under 10°, none over 30°); none over a smooth hull") {
+  const GroovedCase grooved = grooved_case();
+  const ScalpChart& chart = grooved.chart;
+  const Mesh &hull = grooved.hull, &smooth = grooved.smooth;
   const std::vector<Vec3> grain = relief_grain(chart, hull, 1.5, 2);
   int checked = 0;
   double worst = 0.0, mean = 0.0, lowest = 1.0;
@@ -121,21 +135,9 @@ TEST_CASE("relief grain of normals: parallel grooves over a flat scalp read exac
 }
 
 TEST_CASE("relief grain of normals: along grooves that swirl from the crown, read on the hull 1 cm above") {
-  const Mesh cap = test::ring_disk(
-      24,
-      [](double r, double phi) {
-        const double theta = r * kCap;
-        return Vec3(R * std::sin(theta) * std::cos(phi), R * std::cos(theta), R * std::sin(theta) * std::sin(phi));
-      },
-      [](const Vec3& p) { return p; });
-  const ScalpChart chart = make_scalp_chart(cap, Vec3(0, 0, 1), Vec3(0, -1, 0), "cap.obj");
-  Mesh hull = icosphere(6, 1.0);
-  Mesh smooth = hull;
-  for (Vec3& p : hull.positions) {
-    const double s = kGrooves * (azimuth(p) + kTwist * polar(p)) / (2.0 * M_PI);
-    p *= R + 1.0 - 0.3 * (0.5 + 0.5 * std::cos(2.0 * M_PI * s));
-  }
-  for (Vec3& p : smooth.positions) p *= R + 1.0;
+  const GroovedCase grooved = grooved_case();
+  const ScalpChart& chart = grooved.chart;
+  const Mesh &hull = grooved.hull, &smooth = grooved.smooth;
   const std::vector<double> lift(chart.mesh.positions.size(), 0.85);
   const std::vector<Vec3> grain = relief_grain_of_normals(chart, hull, lift, 1.5, 2);
   int checked = 0;
