@@ -40,10 +40,7 @@ const StageRun::ResolvedRoots& StageRun::resolved_roots(const RootSettings& sett
   if (o.flow == FlowModel::relief) {
     const ScalpChart& chart = *values.chart;
     if (settings.grain_of_normals) {
-      const ThicknessField thickness = layer_thickness(*values.volume_field);
-      std::vector<double> lift(chart.mesh.positions.size());
-      parallel_for(static_cast<int>(lift.size()), options.threads,
-                   [&](int i) { lift[i] = thickness(chart.mesh.positions[i]).value; });
+      const std::vector<double> lift = vertex_thickness(chart, layer_thickness(*values.volume_field), options.threads);
       r.inputs.grain = relief_grain_of_normals(chart, inputs.volume.mesh, lift, settings.relief_radius, options.threads);
     } else {
       r.inputs.grain = relief_grain(chart, inputs.volume.mesh, settings.relief_radius, options.threads);
@@ -64,7 +61,7 @@ const StageRun::ResolvedRoots& StageRun::resolved_roots(const RootSettings& sett
                            options.threads);
     // Hair combed from the crown lies as far as the layer ahead of it goes.
     r.hull = o.comb == Comb::from_crown
-                 ? hull_hair(r.falls, combed_lengths(chart, layer_thickness(*values.volume_field), o.length))
+                 ? hull_hair(r.falls, combed_lengths(chart, layer_thickness(*values.volume_field), o.length, options.threads))
                  : hull_hair(r.falls, o.length);
     if (r.hull.hangs || o.comb == Comb::from_crown) {
       r.inputs.vertex_hang_weights = r.hull.hang_weights;
@@ -76,8 +73,8 @@ const StageRun::ResolvedRoots& StageRun::resolved_roots(const RootSettings& sett
   // After the hull has had its say: hanging hair tilts as "thicker" does where it does not hang.
   if (o.tilt_toward != TiltToward::down) r.inputs.thickness = layer_thickness(*values.volume_field);
   // Combed hair of a declared length ends where the layer ahead of it does, if that comes sooner.
-  if (o.comb == Comb::from_crown && o.flow != FlowModel::local && r.inputs.vertex_lengths.empty() && !r.inputs.length) {
-    r.inputs.vertex_lengths = combed_lengths(*values.chart, layer_thickness(*values.volume_field), o.length);
+  if (o.comb == Comb::from_crown && r.inputs.vertex_lengths.empty() && !r.inputs.length) {
+    r.inputs.vertex_lengths = combed_lengths(*values.chart, layer_thickness(*values.volume_field), o.length, options.threads);
     for (double& l : r.inputs.vertex_lengths) l = std::min(l, o.length);
     r.inputs.vertex_hang_weights.assign(r.inputs.vertex_lengths.size(), 0.0);
   }

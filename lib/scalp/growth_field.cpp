@@ -72,6 +72,12 @@ std::vector<Vec3> vertex_gradients(const Mesh& mesh, const std::vector<double>& 
 
 }  // namespace
 
+std::vector<double> vertex_thickness(const ScalpChart& ch, const ThicknessField& thickness, int threads) {
+  std::vector<double> values(ch.mesh.positions.size());
+  parallel_for(static_cast<int>(values.size()), threads, [&](int i) { values[i] = thickness(ch.mesh.positions[i]).value; });
+  return values;
+}
+
 std::vector<double> layer_end_distance(const ScalpChart& ch, const std::vector<double>& thickness,
                                        const ThicknessField& field, double probe, bool from_rim_only) {
   const Mesh& mesh = ch.mesh;
@@ -160,9 +166,8 @@ void add_declared_style(const ScalpChart& ch, const RootOptions& o, std::vector<
 DirectionField make_growth_field(const ScalpChart& ch, const RootInputs& in, const RootOptions& o, const Exec& exec) {
   const Mesh& mesh = ch.mesh;
   const int n = static_cast<int>(mesh.positions.size());
-  std::vector<double> thickness(n, 0.0);
-  if (o.tilt_toward != TiltToward::down)
-    parallel_for(n, exec.threads, [&](int i) { thickness[i] = in.thickness(mesh.positions[i]).value; });
+  const std::vector<double> thickness =
+      o.tilt_toward != TiltToward::down ? vertex_thickness(ch, in.thickness, exec.threads) : std::vector<double>(n, 0.0);
   std::vector<Vec3> guidance(n);
   if (o.comb == Comb::from_crown) {  // combed from the crown: down, and back across the top
     for (int i = 0; i < n; ++i) guidance[i] = down_guidance(ch.vertex_normals[i], ch.down, ch.front);

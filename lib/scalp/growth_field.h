@@ -31,6 +31,9 @@ Vec3 down_guidance(const Vec3& normal, const Vec3& down, const Vec3& front);
 Vec3 growth_guidance(const Vec3& normal, const Vec3& thickness_gradient, const RootOptions& options,
                      const Vec3& down, const Vec3& front);
 
+// The layer's thickness at each scalp vertex.
+std::vector<double> vertex_thickness(const ScalpChart& chart, const ThicknessField& thickness, int threads);
+
 // How far off the skin and beyond the hairline the hull is probed for whether the layer goes on (cm).
 constexpr double kLayerEndProbe = 0.5;
 

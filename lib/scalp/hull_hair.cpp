@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-
 #include <stdexcept>
 
 #include "core/smoothstep.h"
@@ -30,11 +29,9 @@ HullHair hull_hair(const std::vector<Fall>& falls, const std::vector<double>& ly
   return h;
 }
 
-std::vector<double> combed_lengths(const ScalpChart& chart, const ThicknessField& thickness, double fallback) {
-  const int n = static_cast<int>(chart.mesh.positions.size());
-  std::vector<double> layer(n);
-  for (int i = 0; i < n; ++i) layer[i] = thickness(chart.mesh.positions[i]).value;
-  std::vector<double> lengths = layer_end_distance(chart, layer, thickness, kLayerEndProbe, /*from_rim_only=*/true);
+std::vector<double> combed_lengths(const ScalpChart& chart, const ThicknessField& thickness, double fallback, int threads) {
+  std::vector<double> lengths = layer_end_distance(chart, vertex_thickness(chart, thickness, threads), thickness,
+                                                   kLayerEndProbe, /*from_rim_only=*/true);
   for (double& l : lengths)
     l = std::isfinite(l) ? std::clamp(l - kCombedTipMargin, kShortestHullHair, kLongestCombedHair) : fallback;
   return lengths;

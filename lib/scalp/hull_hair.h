@@ -49,7 +49,8 @@ constexpr double kLongestCombedHair = 40.0;
 // ahead of it, the distance along the scalp to where the layer ends (layer_end_distance, ends
 // joined to the rim only) less kCombedTipMargin, in [kShortestHullHair, kLongestCombedHair]; `fallback` where the layer does
 // not end.
-std::vector<double> combed_lengths(const ScalpChart& chart, const ThicknessField& thickness, double fallback);
+std::vector<double> combed_lengths(const ScalpChart& chart, const ThicknessField& thickness, double fallback,
+                                   int threads = 1);
 
 // What a region of the scalp derived from the hull: its roots' share that hangs (φ > ½), and the
 // median length and median fall below the rim of its vertices.

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/parallel.h"
 #include "scalp/growth_field.h"
 
 namespace hairfit {
@@ -19,13 +18,6 @@ ShellHair hair_for_shell(double thickness, double reach) {
 }
 
 namespace {
-
-std::vector<double> vertex_thickness(const ScalpChart& ch, const ThicknessField& field, int threads) {
-  const int n = static_cast<int>(ch.mesh.positions.size());
-  std::vector<double> thickness(n, 0.0);
-  parallel_for(n, threads, [&](int i) { thickness[i] = field(ch.mesh.positions[i]).value; });
-  return thickness;
-}
 
 double percentile_90(std::vector<double> values) {
   if (values.empty()) return 0.0;

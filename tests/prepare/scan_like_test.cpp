@@ -20,6 +20,7 @@
 #include "prepare/scan_like.h"
 #include "prepare/surface_checks.h"
 #include "spec/scene.h"
+#include "mask_options.h"
 #include "../support/independent_check.h"
 #include "../support/report_figure.h"
 #include "../support/run_in_process.h"
@@ -29,17 +30,10 @@
 
 using namespace hairfit;
 using hairfit::testing::figure;
+using hairfit::testing::mask_options;
 namespace fs = std::filesystem;
 
 namespace {
-
-PrepareOptions mask_options() {
-  PrepareOptions o;
-  o.selection.kind = HairSelection::Kind::mask;
-  o.selection.color = Vec3(kHairColor[0], kHairColor[1], kHairColor[2]);
-  o.threads = 2;
-  return o;
-}
 
 // The case prepared through the files a user has: the scan written as OBJ, read back, prepared and
 // written with run's own validation; returns the scene folder.

@@ -16,6 +16,7 @@
 #include "prepare/sculpted_bust.h"
 #include "prepare/surface_checks.h"
 #include "spec/scene.h"
+#include "mask_options.h"
 #include "../support/independent_check.h"
 #include "../support/report_figure.h"
 #include "../support/run_in_process.h"
@@ -25,20 +26,8 @@
 
 using namespace hairfit;
 using hairfit::testing::figure;
+using hairfit::testing::mask_options;
 namespace fs = std::filesystem;
-
-namespace {
-
-PrepareOptions mask_options() {
-  PrepareOptions o;
-  o.selection.kind = HairSelection::Kind::mask;
-  o.selection.color = Vec3(kHairColor[0], kHairColor[1], kHairColor[2]);
-  o.threads = 2;
-  return o;
-}
-
-
-}  // namespace
 
 TEST_CASE("sculpted busts are closed raw scans of genus 0 with the hair painted") {
   for (BustStyle style : all_bust_styles()) {
