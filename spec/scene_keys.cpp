@@ -375,7 +375,8 @@ std::vector<SceneKey> build_keys() {
                         "Share of the cost that density.stall_iterations iterations must lower it by to go on."));
   keys.push_back(integer("density.spread", REF(density.spread), "", closed(0, 100), "density",
                          "The models' fibre part: passes that move the grown fibres down their own density gradient "
-                         "(density.voxel apart) before the keep-out pass and the cut; 0: the guides alone."));
+                         "(density.voxel apart; the density per unit of the hair's region, so a thin layer's faces "
+                         "do not push fibres out) before the keep-out pass and the cut; 0: the guides alone."));
 
   keys.push_back(integer("strands.points", REF(strands.points), "", closed(2, 65536), "strands",
                          "Points per fibre, root to tip."));

@@ -50,6 +50,9 @@ void smooth_axis(std::vector<double>& v, const Vec3i& dims, int a, int threads) 
   v.swap(out);
 }
 
+// Passes of the [1 2 1]/4 filter over the spread's density.
+constexpr int kSpreadSmoothing = 2;
+
 }  // namespace
 
 PointDensity point_density(const std::vector<Vec3>& points, const Vec3& lower, double h, const Vec3i& dims,
@@ -80,6 +83,21 @@ PointDensity point_density(const std::vector<Vec3>& points, const Vec3& lower, d
   return d;
 }
 
+void normalise_by_region(PointDensity& density, const RegionTest& region, int smoothing, int threads) {
+  const Vec3i& dims = density.dims;
+  std::vector<double> share(density.values.size());
+  parallel_for_ranges(dims.y() * dims.z(), 64, threads, [&](int begin, int end) {
+    for (int line = begin; line < end; ++line) {
+      const int j = line % dims.y(), k = line / dims.y();
+      for (int i = 0; i < dims.x(); ++i)
+        share[node_index(dims, i, j, k)] = region(density.lower + density.h * Vec3(i, j, k)) ? 1.0 : 0.0;
+    }
+  });
+  for (int s = 0; s < smoothing; ++s)
+    for (int a = 0; a < 3; ++a) smooth_axis(share, dims, a, threads);
+  for (std::size_t v = 0; v < share.size(); ++v) density.values[v] /= std::max(share[v], kRegionShareFloor);
+}
+
 Vec3 PointDensity::gradient(const Vec3& p) const {
   Vec3i base;
   Vec3 t;
@@ -106,7 +124,8 @@ double seen_density(const PointDensity& density) {
   return sum > 0.0 ? squares / sum : 0.0;
 }
 
-void spread_fibres(std::vector<Vec3>& points, std::size_t n, const DensitySpread& spread, int threads) {
+void spread_fibres(std::vector<Vec3>& points, std::size_t n, const DensitySpread& spread, int threads,
+                   const RegionTest& region) {
   if (spread.passes <= 0 || points.empty()) return;
   if (n < 2 || points.size() % n != 0)
     throw std::invalid_argument("spread_fibres: " + std::to_string(points.size()) + " points are not fibres of " +
@@ -134,7 +153,8 @@ void spread_fibres(std::vector<Vec3>& points, std::size_t n, const DensitySpread
     for (const Vec3& p : points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
     const Vec3 lower = lo - Vec3::Constant(2.0 * h);
     const Vec3i dims = ((hi - lower) / h).array().ceil().cast<int>() + 3;
-    const PointDensity density = point_density(points, lower, h, dims, 2, threads);
+    PointDensity density = point_density(points, lower, h, dims, kSpreadSmoothing, threads);
+    if (region) normalise_by_region(density, region, kSpreadSmoothing, threads);
     const double mean = seen_density(density);
     if (!(mean > 0.0)) return;
     const double scale = spread.step * h * h / mean;

@@ -7,6 +7,7 @@
 // fibre then takes back its segment lengths from the root on.
 #pragma once
 #include <cstddef>
+#include <functional>
 #include <vector>
 
 #include "core/types.h"
@@ -42,9 +43,23 @@ PointDensity point_density(const std::vector<Vec3>& points, const Vec3& lower, d
 // The density a point sees on average: Σρ² / Σρ over the nodes (0 on an empty lattice).
 double seen_density(const PointDensity& density);
 
+// Whether a point lies in the hair's region (inside the volume, in front of the scalp).
+using RegionTest = std::function<bool(const Vec3&)>;
+
+// The density per unit of the region's own volume, a normalised convolution (Knutsson and Westin
+// 1993): each node's smoothed point density divided by the region's share of that node's
+// smoothing stencil, the indicator of the region at the nodes smoothed alike. Without it a thin
+// layer's two faces read as a fall in density, and the spread pushes fibres out through them
+// rather than along the layer. Nodes whose share is below kRegionShareFloor keep their density
+// divided by that floor: a node so far outside holds almost no points, and a point there is not
+// pushed by round-off in the share. The stencil equals point_density's smoothing.
+constexpr double kRegionShareFloor = 1.0 / 16.0;
+void normalise_by_region(PointDensity& density, const RegionTest& region, int smoothing, int threads = 1);
+
 // Spreads `points` (fibres of `n` points each, root first, one after another) in place as
-// DensitySpread says. Roots never move and every segment keeps its length (to round-off).
-// Deterministic for any thread count.
-void spread_fibres(std::vector<Vec3>& points, std::size_t n, const DensitySpread& spread, int threads = 1);
+// DensitySpread says. Roots never move and every segment keeps its length (to round-off). With
+// `region`, the density is normalise_by_region's. Deterministic for any thread count.
+void spread_fibres(std::vector<Vec3>& points, std::size_t n, const DensitySpread& spread, int threads = 1,
+                   const RegionTest& region = nullptr);
 
 }  // namespace hairfit

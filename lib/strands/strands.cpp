@@ -306,7 +306,7 @@ GrownStrands make_strands(const Curves& guides, const Pores& pores, const Strand
         fibre_along(tracks[pores.guide[i]], pores.positions[i], pores.lengths[i], extent[pores.guide[i]], stations,
                     nullptr, out.points.data() + n * i, layout.data());
       });
-    spread_fibres(out.points, n, options.spread, exec.threads);
+    spread_fibres(out.points, n, options.spread, exec.threads, around.hair_region);
   }
   const bool fibres_ready = pre_grown || (options.spread.passes > 0 && !layered);
   std::vector<std::int8_t>* outside_volume = sides && cutting ? &sides->outside_volume : nullptr;

@@ -119,6 +119,9 @@ struct StrandSurroundings {
   // With StrandOptions::layer_depth: p moved the share `weight` of the way from its own layer depth
   // to `depth` (field/layer_depth.h), less beyond the hull, where the layer has ended.
   std::function<Vec3(const Vec3& p, double depth, double weight)> to_layer_depth;
+  // Optional: whether p lies in the hair's region; the density spread (StrandOptions::spread)
+  // then evens the fibres out per unit of the region (normalise_by_region), not of space.
+  RegionTest hair_region;
 };
 
 // The strands, and what the field values looked up on the way said about every point.

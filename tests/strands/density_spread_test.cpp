@@ -139,3 +139,64 @@ TEST_CASE("spread_fibres evens out a crowded bundle and keeps roots and segment 
   spread.passes = 1;
   CHECK_THROWS_AS(spread_fibres(same, n + 1, spread), std::invalid_argument);
 }
+
+TEST_CASE("normalise_by_region: a region filled evenly reads even up to its faces") {
+  // One point on every node of the half-space x < 0.45 (h = 0.1): the deposit is the region's own
+  // indicator, so after the same smoothing the density divided by the region's share is exactly 1
+  // at every node where the share reaches the floor, the faces included.
+  const Vec3 lower(0, 0, 0);
+  const double h = 0.1;
+  const Vec3i dims(10, 6, 6);
+  const RegionTest region = [](const Vec3& p) { return p.x() < 0.45; };
+  std::vector<Vec3> points;
+  for (int k = 0; k < dims.z(); ++k)
+    for (int j = 0; j < dims.y(); ++j)
+      for (int i = 0; i < dims.x(); ++i)
+        if (region(lower + h * Vec3(i, j, k))) points.push_back(lower + h * Vec3(i, j, k));
+  PointDensity raw = point_density(points, lower, h, dims, 2);
+  PointDensity even = raw;
+  normalise_by_region(even, region, 2);
+  int at_floor = 0;
+  for (int k = 0; k < dims.z(); ++k)
+    for (int j = 0; j < dims.y(); ++j)
+      for (int i = 0; i < dims.x(); ++i) {
+        if (raw.at(i, j, k) >= kRegionShareFloor) {
+          CHECK(even.at(i, j, k) == doctest::Approx(1.0).epsilon(1e-12));
+        } else {
+          ++at_floor;
+          CHECK(even.at(i, j, k) == doctest::Approx(raw.at(i, j, k) / kRegionShareFloor).epsilon(1e-12));
+        }
+      }
+  CHECK(at_floor > 0);
+  // Between the last two nodes before the face (x = 0.35, mid-lattice in y and z): the raw
+  // density falls toward the face, the normalised one is flat.
+  const Vec3 p = lower + h * Vec3(3.5, 2.5, 2.5);
+  CHECK(raw.gradient(p).x() < -0.1);
+  CHECK(std::abs(even.gradient(p).x()) < 1e-9);
+}
+
+TEST_CASE("spread_fibres in a thin layer moves the fibres along it, not out of it") {
+  // The bundle (along z) squashed into the layer |y| ≤ 0.15: spread by space, its points are
+  // pushed out through the layer's faces as well; spread by the region, far fewer are.
+  const int n = 12, count = 200;
+  std::vector<Vec3> grown = bundle(count, n);
+  for (Vec3& p : grown) p.y() *= 0.5;
+  double thickest = 0.0;
+  for (const Vec3& p : grown) thickest = std::max(thickest, std::abs(p.y()));
+  REQUIRE(thickest < 0.15);
+  const RegionTest layer = [](const Vec3& p) { return std::abs(p.y()) <= 0.15; };
+  DensitySpread spread;
+  spread.passes = 3;
+  spread.voxel = 0.1;
+  std::vector<Vec3> by_space = grown, by_region = grown;
+  spread_fibres(by_space, n, spread, 1);
+  spread_fibres(by_region, n, spread, 1, layer);
+  auto outside = [&](const std::vector<Vec3>& points) {
+    int out = 0;
+    for (const Vec3& p : points) out += !layer(p);
+    return out;
+  };
+  MESSAGE("points out of the layer: by space ", outside(by_space), ", by region ", outside(by_region));
+  CHECK(outside(by_region) < outside(by_space) / 4);
+  CHECK(most_in_a_cell(by_region, n, 0.1) < most_in_a_cell(grown, n, 0.1));
+}
