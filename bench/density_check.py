@@ -4,8 +4,8 @@
 Reads the file itself (not the pipeline's density grid), bins every segment by its midpoint into
 cubic voxels of edge --voxel cm (cells aligned at the origin), and prints, over the occupied voxels:
 the coefficient of variation (population std / mean) of segments per voxel, and the share of all
-segments that lie in voxels holding more than --crowd × the mean. Optional --slice PNG writes a
-projection (segments per column along x, summed over a slab |x - x0| < --slab cm) for pictures.
+segments that lie in voxels holding more than --crowd × the mean. bench/density_models.py runs the
+models side by side with it.
 
     /usr/bin/python3 bench/density_check.py out/hair.hair [--voxel 0.5] [--crowd 4]
 """
