@@ -142,6 +142,7 @@ struct SceneDensity {
   double strength = 1.0;    // c_ρ (CDM)
   int stall_iterations = 3;       // a guide's refinement with F4 stops after this many iterations …
   double stall_tolerance = 1e-4;  // … that together lowered its cost by less than this share
+  int spread = 3;                 // passes spreading the fibres down their own density (0: off)
 };
 
 struct SceneStrands {

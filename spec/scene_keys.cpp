@@ -373,6 +373,10 @@ std::vector<SceneKey> build_keys() {
                          "not) lowered its cost by less than density.stall_tolerance of it; 0: never."));
   keys.push_back(number("density.stall_tolerance", REF(density.stall_tolerance), "", closed(0, 1), "density",
                         "Share of the cost that density.stall_iterations iterations must lower it by to go on."));
+  keys.push_back(integer("density.spread", REF(density.spread), "", closed(0, 100), "density",
+                         "The models' fibre part: passes that move the grown fibres down their own density gradient "
+                         "(density.voxel apart; the density per unit of the hair's region, so a thin layer's faces "
+                         "do not push fibres out) before the keep-out pass and the cut; 0: the guides alone."));
 
   keys.push_back(integer("strands.points", REF(strands.points), "", closed(2, 65536), "strands",
                          "Points per fibre, root to tip."));

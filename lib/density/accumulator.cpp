@@ -45,7 +45,8 @@ void occupy_tubes(const GridGeometry& grid, std::vector<double>& values, const s
       int k_first, k_last;
       z_layers(grid, std::min(f.a.z(), f.b.z()) - r, std::max(f.a.z(), f.b.z()) + r, k_first, k_last);
       if (k_last + 1 < k_begin || k_first - 1 >= k_end) continue;
-      for (const Vec3i& c : frustum_cells(grid, f, shape, k_begin, k_end))
+      // A cell already occupied (by this tube, an earlier one or an earlier batch) stays 1.
+      for (const Vec3i& c : frustum_cells_unsettled(grid, f, shape, values, k_begin, k_end))
         values[grid.index(c.x(), c.y(), c.z())] = 1.0;
     }
   }

@@ -245,8 +245,11 @@ double distance_to_frustum(const Vec3& p, const Frustum& f) {
   return (p - closest_on_frustum(p, f, frustum_axis(f))).norm();
 }
 
-std::vector<Vec3i> frustum_cells(const GridGeometry& grid, const Frustum& f, OccupancyShape shape, int k_begin,
-                                 int k_end) {
+namespace {
+
+// frustum_cells and frustum_cells_unsettled: the cells not `settled`, or all for a null one.
+std::vector<Vec3i> cells_of_frustum(const GridGeometry& grid, const Frustum& f, OccupancyShape shape,
+                                    const std::vector<double>* settled, int k_begin, int k_end) {
   check_frustum(f);
   std::vector<Vec3i> cells;
   const Axis ax = frustum_axis(f);
@@ -279,6 +282,7 @@ std::vector<Vec3i> frustum_cells(const GridGeometry& grid, const Frustum& f, Occ
   for (int k = first.z(); k <= last.z(); ++k) {
     for (int j = first.y(); j <= last.y(); ++j) {
       for (int i = first.x(); i <= last.x(); ++i) {
+        if (settled && (*settled)[grid.index(i, j, k)] != 0.0) continue;
         const Vec3 lower = grid.node(i, j, k), upper = lower + Vec3::Constant(h);
         bool hit;
         if (shape == OccupancyShape::obb) {
@@ -301,6 +305,20 @@ std::vector<Vec3i> frustum_cells(const GridGeometry& grid, const Frustum& f, Occ
     }
   }
   return cells;
+}
+
+}  // namespace
+
+std::vector<Vec3i> frustum_cells(const GridGeometry& grid, const Frustum& f, OccupancyShape shape, int k_begin,
+                                 int k_end) {
+  return cells_of_frustum(grid, f, shape, nullptr, k_begin, k_end);
+}
+
+std::vector<Vec3i> frustum_cells_unsettled(const GridGeometry& grid, const Frustum& f, OccupancyShape shape,
+                                           const std::vector<double>& settled, int k_begin, int k_end) {
+  if (settled.size() != static_cast<std::size_t>(grid.count()))
+    throw std::invalid_argument("frustum_cells_unsettled: the settled cells are not the grid's");
+  return cells_of_frustum(grid, f, shape, &settled, k_begin, k_end);
 }
 
 std::vector<int64_t> tube_cells(const GridGeometry& grid, const Tube& tube, OccupancyShape shape) {

@@ -57,6 +57,11 @@ double distance_to_frustum(const Vec3& p, const Frustum& f);
 // radius.
 std::vector<Vec3i> frustum_cells(const GridGeometry& grid, const Frustum& f, OccupancyShape shape,
                                  int k_begin = 0, int k_end = -1);
+// frustum_cells without the cells `settled` marks (nonzero at the cell's grid index): those it
+// neither tests nor returns. The binary model passes its occupancy, since a cell already occupied
+// stays occupied whatever the frustum does; most cells of a crowded grid are skipped unasked.
+std::vector<Vec3i> frustum_cells_unsettled(const GridGeometry& grid, const Frustum& f, OccupancyShape shape,
+                                           const std::vector<double>& settled, int k_begin = 0, int k_end = -1);
 
 // Every cell the tube occupies (union over its segments), distinct, sorted by grid index.
 // Throws std::invalid_argument when points and radii differ in count.

@@ -49,7 +49,7 @@ std::vector<int> all_indices(int count);
 
 // The relative cost decrease at which a guide's first, density-free solve stops when a density
 // solve follows (make_guides_with_density).
-constexpr double kFirstSolveTolerance = 1e-3;
+constexpr double kFirstSolveTolerance = 1e-2;
 
 // What a solve is for: a guide of the result (every figure of Guide), or only the start of a
 // density solve (the loads, the shape, the counts; the cost and its terms stay 0).

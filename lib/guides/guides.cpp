@@ -161,8 +161,10 @@ DensityGuides make_guides_with_density(const RootSet& bases, const PreGuides& pr
   // The first solves do not see the density: the guides the scene would have without a density
   // model (FirstSolves, as make_guides). They are only the second solves' start, and those
   // minimise the whole objective to options.tolerance, so they stop at a relative decrease of
-  // kFirstSolveTolerance: on the paper-scale scene 17 % fewer evaluations, with mean cost, density
-  // spread and followed mismatch within run-to-run scatter (bench/results/density_stall.md).
+  // kFirstSolveTolerance. On the paper-scale scene 1e-2 takes 17.7 evaluations a guide where 1e-3
+  // took 20.1, with F4 10.43 against 10.71, every node inside and the followed mismatch 0.0208
+  // against 0.0205; 1e-1 leaves nodes outside (0.99955) and 1 leaves the guides unfinished
+  // (bench/results/density_stall.md).
   GuideOptions first_options = options;
   first_options.tolerance = std::max(options.tolerance, kFirstSolveTolerance);
   std::vector<Guide> plain;

@@ -19,7 +19,8 @@ static_assert(sizeof(PreguideOptions) == 184, "PreguideOptions changed: update o
 static_assert(sizeof(GuideOptions) == 264, "GuideOptions changed: update options_codec.cpp");
 static_assert(sizeof(DensityTermOptions) == 40, "DensityTermOptions changed: update options_codec.cpp");
 static_assert(sizeof(WispShape) == 32, "WispShape changed: update options_codec.cpp");
-static_assert(sizeof(StrandOptions) == 56, "StrandOptions changed: update options_codec.cpp");
+static_assert(sizeof(DensitySpread) == 32, "DensitySpread changed: update options_codec.cpp");
+static_assert(sizeof(StrandOptions) == 88, "StrandOptions changed: update options_codec.cpp");
 #endif
 
 void encode(ByteWriter& out, const FieldSpec& spec) {
@@ -146,6 +147,10 @@ void encode(ByteWriter& out, const StrandOptions& o) {
   out.put(o.cut_threshold);
   out.put<std::uint8_t>(o.cut_tips);
   out.put<std::uint8_t>(o.layer_depth);
+  out.put<std::int32_t>(o.spread.passes);
+  out.put(o.spread.voxel);
+  out.put(o.spread.step);
+  out.put(o.spread.settle);
 }
 
 }  // namespace hairfit

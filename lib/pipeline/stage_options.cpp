@@ -163,6 +163,10 @@ StrandOptions strand_options(const Scene& scene) {
     o.cut_tips = scene.strands.cut_tips;
   }
   o.layer_depth = scene.strands.depth == "layer";
+  if (scene.effects.density != DensityModel::none) {  // the models' fibre part (strands/density_spread.h)
+    o.spread.passes = scene.density.spread;
+    o.spread.voxel = scene.density.voxel;
+  }
   return o;
 }
 

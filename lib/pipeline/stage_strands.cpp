@@ -71,6 +71,8 @@ void compute(StageRun& run, const StrandsOptions& o, StageReport& stage) {
                  v.scalp_distance.get());
   if (o.contain > 0.0) around.out_of_head.into_volume = into_volume(*v.volume_field, o.contain);
   if (strands.layer_depth) around.to_layer_depth = layer_placement(*v.scalp_field, *v.volume_field);
+  const Boundary b = run.boundary();
+  around.hair_region = [&b](const Vec3& p) { return b.beyond_volume(p) <= 0.0 && b.beyond_scalp(p) <= 0.0; };
   GrownStrands grown = make_strands(v.guides->curves(), run.pores(), strands, around, run.exec(),
                                     std::move(run.deposited_fibres));
   run.deposited_fibres = {};
@@ -86,7 +88,6 @@ void compute(StageRun& run, const StrandsOptions& o, StageReport& stage) {
   // count). A root is its pore, a point of the scalp by construction; through the interpolated
   // fields one near a thin hairline reads either side of it, so roots are not counted
   // (spec/reference.md, report figures).
-  const Boundary b = run.boundary();
   std::vector<std::array<int, 3>> counts(fibres.count(), {0, 0, 0});  // inside, in head, outside volume
   parallel_for(static_cast<int>(fibres.count()), threads, [&](int c) {
     for (std::size_t k = fibres.offsets[c] + 1; k < fibres.offsets[c + 1]; ++k) {

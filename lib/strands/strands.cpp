@@ -298,6 +298,17 @@ GrownStrands make_strands(const Curves& guides, const Pores& pores, const Strand
   } else {
     out.points.resize(slots);  // not zeroed: every slot is written on the thread that grows its fibre
   }
+  if (options.spread.passes > 0 && !layered) {
+    if (!pre_grown)
+      parallel_for(count, exec.threads, [&](int i) {
+        thread_local std::vector<WispPoint> layout;
+        layout.resize(n);
+        fibre_along(tracks[pores.guide[i]], pores.positions[i], pores.lengths[i], extent[pores.guide[i]], stations,
+                    nullptr, out.points.data() + n * i, layout.data());
+      });
+    spread_fibres(out.points, n, options.spread, exec.threads, around.hair_region);
+  }
+  const bool fibres_ready = pre_grown || (options.spread.passes > 0 && !layered);
   std::vector<std::int8_t>* outside_volume = sides && cutting ? &sides->outside_volume : nullptr;
   std::vector<std::int8_t>* in_head = sides && out_of_head ? &sides->in_head : nullptr;
   if (sides) {
@@ -322,7 +333,7 @@ GrownStrands make_strands(const Curves& guides, const Pores& pores, const Strand
       };
     const ChordsLeft left = fibre_kept_out(tracks[pores.guide[i]], pores.positions[i], pores.lengths[i],
                                            extent[pores.guide[i]], stations, out_of_head, root_normal, points,
-                                           scratch.layout.data(), head, pre_grown, layered ? &place : nullptr);
+                                           scratch.layout.data(), head, fibres_ready, layered ? &place : nullptr);
     // A chord the keep-out pass leaves through the scalp (where both its ends lie clear of the
     // head, as at the scalp's rim, it has nothing to move) ends the fibre before it: the hair
     // stops at the skin. One from the root cannot be cut away: it and the rest are counted.

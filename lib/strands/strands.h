@@ -12,6 +12,7 @@
 #include "core/exec.h"
 #include "hair/wisp.h"
 #include "strands/cutting.h"
+#include "strands/density_spread.h"
 
 namespace hairfit {
 
@@ -28,6 +29,10 @@ struct StrandOptions {
   // pore as in the wisp: turned toward a depth it could dip under a curved scalp beside the pore,
   // where a chord from the root cannot be lifted.
   bool layer_depth = false;
+  // The density models' fibre part (strands/density_spread.h): the grown fibres spread down their
+  // own density gradient before the keep-out pass and the cut. Not with layer_depth, whose
+  // placement grows the fibres again inside the keep-out pass.
+  DensitySpread spread;
 };
 
 // The share of the layer's depth kept clear at either side when fibres spread through it.
@@ -114,6 +119,9 @@ struct StrandSurroundings {
   // With StrandOptions::layer_depth: p moved the share `weight` of the way from its own layer depth
   // to `depth` (field/layer_depth.h), less beyond the hull, where the layer has ended.
   std::function<Vec3(const Vec3& p, double depth, double weight)> to_layer_depth;
+  // Optional: whether p lies in the hair's region; the density spread (StrandOptions::spread)
+  // then evens the fibres out per unit of the region (normalise_by_region), not of space.
+  RegionTest hair_region;
 };
 
 // The strands, and what the field values looked up on the way said about every point.

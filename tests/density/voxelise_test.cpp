@@ -233,3 +233,24 @@ TEST_CASE("tubes: cells, occupied share and the paper's δ(s_i)") {
   // A zero-length frustum occupies nothing.
   CHECK(frustum_cells(g, Frustum{Vec3(1, 1, 1), Vec3(1, 1, 1), 0.5, 0.5}, OccupancyShape::frustum).empty());
 }
+
+TEST_CASE("tubes: the cells not yet settled are the frustum's cells less the settled ones") {
+  GridGeometry g;
+  g.origin = Vec3(-1, -1, -1);
+  g.voxel = 0.25;
+  g.dims = Vec3i(8, 8, 8);
+  for (int item = 0; item < 40; ++item) {
+    const Frustum f = random_frustum(item);
+    // Every third cell settled, by a pattern the frustum knows nothing of.
+    std::vector<double> settled(g.count(), 0.0);
+    for (int64_t c = 0; c < g.count(); ++c) settled[c] = (c * 7 + item) % 3 == 0 ? 1.0 : 0.0;
+    std::set<int64_t> expected;
+    for (int64_t c : marked(g, f, OccupancyShape::frustum))
+      if (settled[c] == 0.0) expected.insert(c);
+    std::set<int64_t> got;
+    for (const Vec3i& c : frustum_cells_unsettled(g, f, OccupancyShape::frustum, settled)) got.insert(g.index(c.x(), c.y(), c.z()));
+    CHECK(got == expected);
+  }
+  CHECK_THROWS_AS(frustum_cells_unsettled(g, random_frustum(1), OccupancyShape::frustum, std::vector<double>(3, 0.0)),
+                  std::invalid_argument);
+}
