@@ -26,28 +26,43 @@ void locate(const Vec3& p, const Vec3& lower, double h, const Vec3i& dims, Vec3i
   }
 }
 
-// One pass of [1 2 1]/4 along axis `a` (values beyond the lattice are 0), each line on its own.
-void smooth_axis(std::vector<double>& v, const Vec3i& dims, int a, int threads) {
-  const int b = (a + 1) % 3, c = (a + 2) % 3;
-  const int lines = dims[b] * dims[c], length = dims[a];
-  std::vector<double> out(v.size());
-  parallel_for_ranges(lines, 256, threads, [&](int begin, int end) {
-    for (int line = begin; line < end; ++line) {
-      Vec3i at;
-      at[b] = line % dims[b];
-      at[c] = line / dims[b];
-      auto index = [&](int s) {
-        at[a] = s;
-        return node_index(dims, at.x(), at.y(), at.z());
-      };
-      for (int s = 0; s < length; ++s) {
-        const double left = s > 0 ? v[index(s - 1)] : 0.0;
-        const double right = s + 1 < length ? v[index(s + 1)] : 0.0;
-        out[index(s)] = 0.25 * left + 0.5 * v[index(s)] + 0.25 * right;
+// One pass of [1 2 1]/4 along axis `a` (values beyond the lattice are 0) into `out` (resized,
+// every value written), which then swaps with v. Rows along x are walked in memory order whatever
+// the axis, so the neighbours along y and z stream through the cache as whole rows.
+void smooth_axis(std::vector<double>& v, std::vector<double>& out, const Vec3i& dims, int a, int threads) {
+  const std::ptrdiff_t stride = a == 0 ? 1 : a == 1 ? dims.x() : static_cast<std::ptrdiff_t>(dims.x()) * dims.y();
+  out.resize(v.size());
+  parallel_for_ranges(dims.y() * dims.z(), 64, threads, [&](int begin, int end) {
+    for (int row = begin; row < end; ++row) {
+      const int j = row % dims.y(), k = row / dims.y();
+      const std::size_t first = node_index(dims, 0, j, k);
+      const double* in = v.data() + first;
+      double* to = out.data() + first;
+      if (a == 0) {
+        for (int i = 0; i < dims.x(); ++i) {
+          const double left = i > 0 ? in[i - 1] : 0.0;
+          const double right = i + 1 < dims.x() ? in[i + 1] : 0.0;
+          to[i] = 0.25 * left + 0.5 * in[i] + 0.25 * right;
+        }
+        continue;
+      }
+      const int at = a == 1 ? j : k;
+      const bool has_left = at > 0, has_right = at + 1 < dims[a];
+      for (int i = 0; i < dims.x(); ++i) {
+        const double left = has_left ? in[i - stride] : 0.0;
+        const double right = has_right ? in[i + stride] : 0.0;
+        to[i] = 0.25 * left + 0.5 * in[i] + 0.25 * right;
       }
     }
   });
   v.swap(out);
+}
+
+// `passes` passes of smooth_axis along x, y and z, through one scratch lattice.
+void smooth(std::vector<double>& v, const Vec3i& dims, int passes, int threads) {
+  std::vector<double> scratch;
+  for (int s = 0; s < passes; ++s)
+    for (int a = 0; a < 3; ++a) smooth_axis(v, scratch, dims, a, threads);
 }
 
 // Passes of the [1 2 1]/4 filter over the spread's density.
@@ -78,8 +93,7 @@ PointDensity point_density(const std::vector<Vec3>& points, const Vec3& lower, d
       d.values[node_index(dims, base.x() + di, base.y() + dj, base.z() + dk)] += w;
     }
   }
-  for (int s = 0; s < smoothing; ++s)
-    for (int a = 0; a < 3; ++a) smooth_axis(d.values, dims, a, threads);
+  smooth(d.values, dims, smoothing, threads);
   return d;
 }
 
@@ -93,8 +107,7 @@ void normalise_by_region(PointDensity& density, const RegionTest& region, int sm
         share[node_index(dims, i, j, k)] = region(density.lower + density.h * Vec3(i, j, k)) ? 1.0 : 0.0;
     }
   });
-  for (int s = 0; s < smoothing; ++s)
-    for (int a = 0; a < 3; ++a) smooth_axis(share, dims, a, threads);
+  smooth(share, dims, smoothing, threads);
   for (std::size_t v = 0; v < share.size(); ++v) density.values[v] /= std::max(share[v], kRegionShareFloor);
 }
 
@@ -103,6 +116,19 @@ Vec3 PointDensity::gradient(const Vec3& p) const {
   Vec3 t;
   locate(p, lower, h, dims, base, t);
   Vec3 g = Vec3::Zero();
+  if ((base.array() >= 1).all() && (base.array() + 2 < dims.array()).all()) {
+    // Every stencil inside the lattice: the same sums, by strides.
+    const std::ptrdiff_t stride[3] = {1, dims.x(), static_cast<std::ptrdiff_t>(dims.x()) * dims.y()};
+    const double* origin = values.data() + node_index(dims, base.x(), base.y(), base.z());
+    for (int corner = 0; corner < 8; ++corner) {
+      const int di = corner & 1, dj = (corner >> 1) & 1, dk = corner >> 2;
+      const double w = (di ? t.x() : 1.0 - t.x()) * (dj ? t.y() : 1.0 - t.y()) * (dk ? t.z() : 1.0 - t.z());
+      if (w == 0.0) continue;
+      const double* v = origin + di * stride[0] + dj * stride[1] + dk * stride[2];
+      for (int a = 0; a < 3; ++a) g[a] += w * (v[stride[a]] - v[-stride[a]]) / (2 * h);
+    }
+    return g;
+  }
   for (int corner = 0; corner < 8; ++corner) {
     const int n[3] = {base.x() + (corner & 1), base.y() + ((corner >> 1) & 1), base.z() + (corner >> 2)};
     const double w = ((corner & 1) ? t.x() : 1.0 - t.x()) * (((corner >> 1) & 1) ? t.y() : 1.0 - t.y()) *
