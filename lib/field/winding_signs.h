@@ -48,6 +48,7 @@ class GridWindingSigns {
 
   const GridCrossings& crossings() const { return crossings_; }
   const RimBound& rims() const { return rims_; }
+  const WindingSoup& soup() const { return soup_; }
 
  private:
   struct Box {
@@ -72,6 +73,9 @@ class RobustSigns {
   // field and the soups before it leave outside. `counts` sums over the soups.
   std::vector<std::uint8_t> decide(const std::vector<int64_t>& nodes, const std::vector<double>& distance, int threads,
                                    GridWindingSigns::Counts* counts = nullptr) const;
+
+  const DistanceField* negative_in() const { return negative_in_; }
+  const std::vector<std::unique_ptr<GridWindingSigns>>& soups() const { return soups_; }
 
  private:
   const DistanceField* negative_in_;

@@ -276,6 +276,20 @@ TEST_CASE("robust sign: a crumpled soup's nodes right next to its surface (withi
   CHECK(c.band_wrong == 0);
 }
 
+TEST_CASE("robust sign: crumpled cubes' samples beyond the band") {
+  // Trials 53 and 86 of the sweep below (voxel 0.094, band 3; voxel 0.081, band 2), where the
+  // coarse cells' agreement and the flood from the band gave 41 and 17 far samples the wrong sign.
+  for (int trial : {53, 86}) {
+    Random rng(50, RandomStage::test, trial);
+    const Mesh m = crumpled(2, 1, rng);
+    const double voxel = rng.uniform(0.06, 0.2), band = 1 + trial / 3 % 3;
+    const ExactCheck c = exact_check(m, voxel, band);
+    CHECK(c.far > 50000);
+    CHECK(c.band_wrong == 0);
+    CHECK(c.far_wrong == 0);
+  }
+}
+
 // The sweep the fixed cases come from (skipped: some minutes).
 TEST_CASE("robust sign: crumpled soups sweep" * doctest::skip(true)) {
   for (int trial = 0; trial < 90; ++trial) {
