@@ -151,21 +151,20 @@ CoarseAxis coarse_axis(int fine_count, int coarse_count, int c) {
 }
 
 
-// Signs every far sample (beyond the band) as the robust inside decides it, certified. Two far
-// nodes are more than r ≥ h from the surface, so no triangle meets the grid edge between them
-// (a point on it lies within h/2 of one of them): along a path of far-to-far edges w has no
-// jumps and changes by at most G·(path length), G bounding |∇w| over the box the path stays in
-// (rim_bound.h; 0 on a soup without rims). So in each coarse cell, a far sample takes the soup's
-// sign at the far corner that a breadth-first search over far-to-far edges reaches it from, where
-// G times that path is below the corner's margin |w − ½| (from an estimate and its error bound;
-// no margin is needed where G is 0 and the corner's decided sign is the soup's own); the head's
-// field (`negative_in`) is read at the sample itself. Every other far sample, and all of them
-// for several soups, goes to the robust inside's own decision. A cell writes only the samples it
-// holds (its lowest index; the last cell along an axis also holds the nodes past the last coarse
-// node), so cells run in parallel.
+// Signs every far sample (beyond the band) as the robust inside decides it, certified. Along a
+// path of grid edges, w(b) = w(a) + J + ∫ ∇w · dx, with J the exact sum of the soup's jumps on
+// the path's edges (grid_crossings.h) and |∫ ∇w · dx| ≤ G·(path length), G bounding |∇w| over the
+// box the path stays in (rim_bound.h; 0 on a soup without rims). So in each coarse cell, a far
+// sample takes w's side of ½ from the far corner that a breadth-first search over far samples
+// reaches it from: that corner's estimate plus the jumps on the way, where it lies farther from ½
+// than the estimate's error bound plus G times the path. The head's field (`negative_in`) is read
+// at the sample itself. Every other far sample, and all of them for several soups, goes to the
+// robust inside's own decision. A cell writes only the samples it holds (its lowest index; the
+// last cell along an axis also holds the nodes past the last coarse node), so cells run in
+// parallel.
 void sign_far_samples(const GridGeometry& grid, const FarField& far, int c, const RobustSigns& inside,
                       const std::vector<std::uint8_t>& in_band, std::vector<double>& values, int threads) {
-  constexpr double kRoundoff = 1e-9;  // the margin's own sum
+  constexpr double kRoundoff = 1e-9;  // adding an integer to the estimate, and the slack's own sum
   const int nx = grid.dims.x(), ny = grid.dims.y(), nz = grid.dims.z();
   const int cx = far.dims.x(), cy = far.dims.y(), cz = far.dims.z();
   const double h = grid.voxel, inf = std::numeric_limits<double>::infinity();
@@ -173,29 +172,21 @@ void sign_far_samples(const GridGeometry& grid, const FarField& far, int c, cons
   const GridWindingSigns* soup = inside.soups().size() == 1 ? inside.soups()[0].get() : nullptr;
   const bool rimless = soup && soup->rims().rims() == 0;
   auto coarse_at = [&](int i, int j, int k) { return i + int64_t(cx) * (j + int64_t(cy) * k); };
-  // Per far coarse node: the soup's sign there (−1 inside, +1 outside, 0 none certified) and margin.
-  std::vector<signed char> corner_sign(far.values.size(), 0);
-  std::vector<double> corner_margin(far.values.size(), 0.0);
+  // Per far coarse node: the soup's estimate there (a bound of −1: none).
+  std::vector<WindingEstimate> corner(far.values.size(), WindingEstimate{0.0, -1.0});
   if (soup) {
     parallel_for(cz, threads, [&](int k) {
       for (int j = 0; j < cy; ++j)
         for (int i = 0; i < cx; ++i) {
           const int64_t q = coarse_at(i, j, k), fine = grid.index(c * i, c * j, c * k);
-          if (in_band[fine] || !std::isfinite(far.values[q])) continue;
-          if (rimless && !negative_in) {  // the decided sign is the soup's; w is constant off the surface
-            corner_sign[q] = far.values[q] < 0 ? -1 : 1, corner_margin[q] = inf;
-            continue;
-          }
-          const WindingEstimate e = soup->soup().estimate(grid.node(fine));
-          const double margin = std::abs(e.value - 0.5) - e.error_bound - kRoundoff;
-          if (margin > 0) corner_sign[q] = e.value > 0.5 ? -1 : 1, corner_margin[q] = margin;
+          if (!in_band[fine] && std::isfinite(far.values[q])) corner[q] = soup->soup().estimate(grid.node(fine));
         }
     });
   }
   const int cells_x = cx - 1, cells_y = cy - 1, cells_z = cz - 1;
   std::vector<std::vector<int64_t>> undecided(cells_z);  // per layer of cells
   parallel_for(cells_z, threads, [&](int ck) {
-    std::vector<int> seed, steps, queue;
+    std::vector<int> seed, steps, jumps, queue;
     for (int cj = 0; cj < cells_y; ++cj)
       for (int ci = 0; ci < cells_x; ++ci) {
         // The cell's closed box, and past it the nodes the last cell along an axis holds.
@@ -214,15 +205,18 @@ void sign_far_samples(const GridGeometry& grid, const FarField& far, int c, cons
         const int size = w.x() * w.y() * w.z();
         seed.assign(size, -1);
         steps.assign(size, 0);
+        jumps.assign(size, 0);
         queue.clear();
         double g = inf;
         if (soup) {
+          // A gradient bound above (|w − ½| at a corner + 2)/h decides nothing (unless the jumps
+          // on the way add more than 2): the bound may stop there.
           double widest = 0.0;
           for (int q = 0; q < 8; ++q) {
             const int i = lo.x() + (q & 1) * c, j = lo.y() + (q >> 1 & 1) * c, k = lo.z() + (q >> 2) * c;
             const int64_t coarse = coarse_at(i / c, j / c, k / c);
-            if (!corner_sign[coarse]) continue;
-            widest = std::max(widest, corner_margin[coarse]);
+            if (corner[coarse].error_bound < 0) continue;
+            widest = std::max(widest, std::abs(corner[coarse].value - 0.5) + 2.0);
             seed[local(i, j, k)] = int(coarse), queue.push_back(local(i, j, k));
           }
           if (!queue.empty())
@@ -232,14 +226,18 @@ void sign_far_samples(const GridGeometry& grid, const FarField& far, int c, cons
           for (std::size_t q = 0; q < queue.size(); ++q) {
             const int at = queue[q];
             const int i = lo.x() + at % w.x(), j = lo.y() + at / w.x() % w.y(), k = lo.z() + at / (w.x() * w.y());
-            const int next[6][3] = {{i + 1, j, k}, {i - 1, j, k}, {i, j + 1, k}, {i, j - 1, k}, {i, j, k + 1}, {i, j, k - 1}};
-            for (const auto& n : next) {
-              if (n[0] < lo.x() || n[1] < lo.y() || n[2] < lo.z() || n[0] > hi.x() || n[1] > hi.y() || n[2] > hi.z()) continue;
-              const int there = local(n[0], n[1], n[2]);
-              if (seed[there] >= 0 || in_band[grid.index(n[0], n[1], n[2])]) continue;
-              seed[there] = seed[at], steps[there] = steps[at] + 1;
-              queue.push_back(there);
-            }
+            const Vec3i v(i, j, k);
+            for (int axis = 0; axis < 3; ++axis)
+              for (int step : {1, -1}) {
+                Vec3i n = v;
+                n[axis] += step;
+                if (n[axis] < lo[axis] || n[axis] > hi[axis]) continue;
+                const int there = local(n.x(), n.y(), n.z());
+                if (seed[there] >= 0 || in_band[grid.index(n.x(), n.y(), n.z())]) continue;
+                seed[there] = seed[at], steps[there] = steps[at] + 1;
+                jumps[there] = jumps[at] + soup->crossings().along(axis, soup->crossings().line(axis, i, j, k), v[axis], n[axis]);
+                queue.push_back(there);
+              }
           }
         }
         for (int k = lo.z(); k <= held_hi.z(); ++k)
@@ -249,11 +247,13 @@ void sign_far_samples(const GridGeometry& grid, const FarField& far, int c, cons
               if (in_band[n]) continue;
               const int at = local(i, j, k);
               const int from = seed[at];
-              if (from < 0 || !(g * h * steps[at] < corner_margin[from])) {
+              const double value = from < 0 ? 0.5 : corner[from].value + jumps[at];
+              const double slack = from < 0 ? inf : corner[from].error_bound + g * h * steps[at] + kRoundoff;
+              if (!(std::abs(value - 0.5) > slack)) {
                 undecided[ck].push_back(n);
                 continue;
               }
-              const bool in = corner_sign[from] < 0 || (negative_in && negative_in->value(grid.node(n)) < 0.0);
+              const bool in = value > 0.5 || (negative_in && negative_in->value(grid.node(n)) < 0.0);
               values[n] = in ? -std::abs(values[n]) : std::abs(values[n]);
             }
       }
