@@ -9,6 +9,7 @@
 
 #include "core/fast_winding.h"
 #include "core/random.h"
+#include "core/shapes.h"
 #include "field/distance_field.h"
 #include "field/hair_region.h"
 #include "test_meshes.h"
@@ -288,6 +289,29 @@ TEST_CASE("robust sign: crumpled cubes' samples beyond the band") {
     CHECK(c.band_wrong == 0);
     CHECK(c.far_wrong == 0);
   }
+}
+
+TEST_CASE("robust sign: an open hull's region with the reversed scalp inside it, beyond the band too") {
+  // The soup holds the scalp, which is not the field's mesh: far samples lie on both sides of it,
+  // and H jumps between them. (A search that took no jumps between far samples passes this case
+  // too; the grooved fixture's relief test, tests/pipeline, is what showed it wrong.)
+  const Mesh hull = test::open_cap(3, 1.0, 0.3), scalp = spherical_cap(0.7, 6, 16, 0.6);
+  const HairRegion region(hull, scalp, false, 2);
+  const FastWindingNumber hull_direct(hull), scalp_direct(scalp);
+  const double voxel = 0.07;
+  const DistanceField f = make_distance_field(hull, spec_for(voxel, 1, 0.3), 2, RobustInside{{region.soup(hull, scalp)}});
+  int far = 0, wrong = 0;
+  for (int k = 0; k < f.dims().z(); ++k)
+    for (int j = 0; j < f.dims().y(); ++j)
+      for (int i = 0; i < f.dims().x(); ++i) {
+        const double s = f.sample(i, j, k);
+        if (std::abs(s) < 1e-9 * voxel) continue;
+        const Vec3 p = f.origin() + voxel * Vec3(i, j, k);
+        far += !f.in_band(i, j, k);
+        wrong += (hull_direct.direct(p) - scalp_direct.direct(p) > 0.5) != (s < 0);
+      }
+  CHECK(far > 10000);
+  CHECK(wrong == 0);
 }
 
 // The sweep the fixed cases come from (skipped: some minutes).
