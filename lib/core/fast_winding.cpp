@@ -322,13 +322,8 @@ bool FastWindingNumber::above(const Vec3& p, double threshold) const {
   // The rigorous bound is some ten times the actual error: at beta = 2 it reaches ½ near a closed
   // surface and decides ½ for under half of the points in its box, at 3 for nearly all of them.
   // So the estimates start at beta 3 at least and double twice before the direct sum.
-  double beta = std::max(beta_, 3.0);
-  for (int pass = 0; pass < 3; ++pass, beta *= 2.0) {
-    const WindingEstimate e = evaluate(p, beta * beta);
-    if (e.value - threshold > e.error_bound) return true;
-    if (threshold - e.value > e.error_bound) return false;
-  }
-  return direct(p) > threshold;
+  return certified_above(
+      threshold, beta_, [&](double beta) { return evaluate(p, beta * beta); }, [&] { return direct(p); });
 }
 
 }  // namespace hairfit

@@ -44,6 +44,9 @@ class FastWindingNumber {
   // some ten times the actual error); the direct sum decides elsewhere, i.e. within about the
   // bound of the threshold (on or right next to the surface, for a closed mesh and threshold ½).
   bool above(const Vec3& p, double threshold) const;
+  // The betas above() tries before the direct sum, the first at least `beta`.
+  static constexpr double kFirstCertifiedBeta = 3.0;
+  static constexpr int kCertifiedPasses = 3;
 
   std::size_t size() const { return size_; }  // triangles of the mesh, zero-area ones included
   double beta() const { return beta_; }
@@ -110,5 +113,21 @@ class FastWindingNumber {
   std::vector<Extent> triangle_extents_;
   std::vector<Corners> corners_;
 };
+
+// Whether a winding number exceeds `threshold`, decided as FastWindingNumber::above decides it:
+// `estimate(β)` is its hierarchical estimate with accuracy parameter β and the error bound, which
+// decides where the value lies farther from the threshold than the bound, tried at
+// b = max(first_beta, 3), 2b and 4b; `direct()` is the direct sum, which decides elsewhere. For a
+// weighted sum of several soups' winding numbers, the estimates' values and bounds add.
+template <class Estimate, class Direct>
+bool certified_above(double threshold, double first_beta, Estimate&& estimate, Direct&& direct) {
+  double beta = first_beta > FastWindingNumber::kFirstCertifiedBeta ? first_beta : FastWindingNumber::kFirstCertifiedBeta;
+  for (int pass = 0; pass < FastWindingNumber::kCertifiedPasses; ++pass, beta *= 2.0) {
+    const WindingEstimate e = estimate(beta);
+    if (e.value - threshold > e.error_bound) return true;
+    if (threshold - e.value > e.error_bound) return false;
+  }
+  return direct() > threshold;
+}
 
 }  // namespace hairfit

@@ -151,111 +151,110 @@ CoarseAxis coarse_axis(int fine_count, int coarse_count, int c) {
 }
 
 
-// Whether the test must decide every pending sample of the (disagreeing) coarse cell at `base`:
-// where it is a seam of the inside at its own scale (is_seam), the sign changes inside it in empty
-// space, where no flood from the band can tell where; where its corners all share a sign, the band
-// samples that disagree with them bound a pocket the corners do not see, and a flood from them
-// could run past it.
-bool ask_every_sample(const FarField& far, int64_t base, double spacing) {
-  const int64_t dy = far.dims.x(), dz = int64_t(far.dims.x()) * far.dims.y();
-  double corners[8];
-  bool positive = false, negative = false;
-  for (int q = 0; q < 8; ++q) {
-    corners[q] = far.values[base + (q & 1) + dy * (q >> 1 & 1) + dz * (q >> 2)];
-    positive = positive || corners[q] > 0;
-    negative = negative || corners[q] < 0;
-  }
-  return !(positive && negative) || is_seam(corners, spacing);
-}
-
-// Signs the pending far samples of every coarse cell whose corners and band samples differ: a
-// flood through the cell's far samples from the samples whose sign is known (the band's, the
-// coarse nodes', and far samples of agreeing cells), in index order; where two signs meet, where
-// nothing reaches, and in cells ask_every_sample names, the robust inside decides, all such
-// samples at once. A cell writes only the samples it holds (lowest index), so cells run in
+// Signs every far sample (beyond the band) as the robust inside decides it, certified. Along a
+// path of grid edges, w(b) = w(a) + J + ∫ ∇w · dx, with J the exact sum of the soup's jumps on
+// the path's edges (grid_crossings.h) and |∫ ∇w · dx| ≤ G·(path length), G bounding |∇w| over the
+// box the path stays in (rim_bound.h; 0 on a soup without rims). So in each coarse cell, a far
+// sample takes w's side of ½ from the far corner that a breadth-first search over far samples
+// reaches it from: that corner's estimate plus the jumps on the way, where it lies farther from ½
+// than the estimate's error bound plus G times the path. The head's field (`negative_in`) is read
+// at the sample itself. Every other far sample, and all of them for several soups, goes to the
+// robust inside's own decision. A cell writes only the samples it holds (its lowest index; the
+// last cell along an axis also holds the nodes past the last coarse node), so cells run in
 // parallel.
-void settle_pending(const GridGeometry& grid, const FarField& far, int c, const RobustSigns& inside,
-                    const std::vector<std::uint8_t>& in_band, std::vector<char>& pending, std::vector<double>& values,
-                    int threads) {
+void sign_far_samples(const GridGeometry& grid, const FarField& far, int c, const RobustSigns& inside,
+                      const std::vector<std::uint8_t>& in_band, std::vector<double>& values, int threads) {
+  constexpr double kRoundoff = 1e-9;  // adding an integer to the estimate, and the slack's own sum
   const int nx = grid.dims.x(), ny = grid.dims.y(), nz = grid.dims.z();
   const int cx = far.dims.x(), cy = far.dims.y(), cz = far.dims.z();
-  auto owner = [c](int n, int cells) { return std::min(n / c, cells - 1); };
-  std::vector<std::vector<int64_t>> undecided(cz - 1);  // per layer of cells
-  parallel_for(cz - 1, threads, [&](int ck) {
-    const int w = c + 1, cells_x = cx - 1, cells_y = cy - 1, cells_z = cz - 1;
-    std::vector<signed char> sign(w * w * w);
-    std::vector<char> conflict(w * w * w);
-    std::vector<int> queue;
+  const double h = grid.voxel, inf = std::numeric_limits<double>::infinity();
+  const DistanceField* negative_in = inside.negative_in();
+  const GridWindingSigns* soup = inside.soups().size() == 1 ? inside.soups()[0].get() : nullptr;
+  const bool rimless = soup && soup->rims().rims() == 0;
+  auto coarse_at = [&](int i, int j, int k) { return i + int64_t(cx) * (j + int64_t(cy) * k); };
+  // Per far coarse node: the soup's estimate there (a bound of −1: none).
+  std::vector<WindingEstimate> corner(far.values.size(), WindingEstimate{0.0, -1.0});
+  if (soup) {
+    parallel_for(cz, threads, [&](int k) {
+      for (int j = 0; j < cy; ++j)
+        for (int i = 0; i < cx; ++i) {
+          const int64_t q = coarse_at(i, j, k), fine = grid.index(c * i, c * j, c * k);
+          if (!in_band[fine] && std::isfinite(far.values[q])) corner[q] = soup->soup().estimate(grid.node(fine));
+        }
+    });
+  }
+  const int cells_x = cx - 1, cells_y = cy - 1, cells_z = cz - 1;
+  std::vector<std::vector<int64_t>> undecided(cells_z);  // per layer of cells
+  parallel_for(cells_z, threads, [&](int ck) {
+    std::vector<int> seed, steps, jumps, queue;
     for (int cj = 0; cj < cells_y; ++cj)
       for (int ci = 0; ci < cells_x; ++ci) {
-        const int i0 = c * ci, j0 = c * cj, k0 = c * ck;
-        // The samples this cell holds, and whether any is pending.
-        auto held = [&](int i, int j, int k) {
-          return owner(i, cells_x) == ci && owner(j, cells_y) == cj && owner(k, cells_z) == ck;
-        };
+        // The cell's closed box, and past it the nodes the last cell along an axis holds.
+        const Vec3i lo(c * ci, c * cj, c * ck);
+        const Vec3i hi(ci + 1 == cells_x ? nx - 1 : lo.x() + c, cj + 1 == cells_y ? ny - 1 : lo.y() + c,
+                       ck + 1 == cells_z ? nz - 1 : lo.z() + c);
+        const Vec3i held_hi(ci + 1 == cells_x ? hi.x() : hi.x() - 1, cj + 1 == cells_y ? hi.y() : hi.y() - 1,
+                            ck + 1 == cells_z ? hi.z() : hi.z() - 1);
+        const Vec3i w = hi - lo + Vec3i::Ones();
+        auto local = [&](int i, int j, int k) { return (i - lo.x()) + w.x() * ((j - lo.y()) + w.y() * (k - lo.z())); };
         bool any = false;
-        for (int k = k0; k <= std::min(nz - 1, k0 + c) && !any; ++k)
-          for (int j = j0; j <= std::min(ny - 1, j0 + c) && !any; ++j)
-            for (int i = i0; i <= std::min(nx - 1, i0 + c); ++i)
-              if (pending[grid.index(i, j, k)] && held(i, j, k)) {
-                any = true;
-                break;
-              }
+        for (int k = lo.z(); k <= held_hi.z() && !any; ++k)
+          for (int j = lo.y(); j <= held_hi.y() && !any; ++j)
+            for (int i = lo.x(); i <= held_hi.x() && !any; ++i) any = !in_band[grid.index(i, j, k)];
         if (!any) continue;
-        const int64_t base = ci + int64_t(cx) * (cj + int64_t(cy) * ck);
-        const bool seam = ask_every_sample(far, base, c * grid.voxel);
-        // Seeds: every sample of the cell's closed box whose sign is known.
+        const int size = w.x() * w.y() * w.z();
+        seed.assign(size, -1);
+        steps.assign(size, 0);
+        jumps.assign(size, 0);
         queue.clear();
-        for (int k = 0; k < w; ++k)
-          for (int j = 0; j < w; ++j)
-            for (int i = 0; i < w; ++i) {
-              const int local = i + w * (j + w * k);
-              sign[local] = 0;
-              if (i0 + i >= nx || j0 + j >= ny || k0 + k >= nz) continue;
-              const int64_t n = grid.index(i0 + i, j0 + j, k0 + k);
-              const bool corner = i % c == 0 && j % c == 0 && k % c == 0;
-              if (corner) {
-                const int64_t coarse = (i0 + i) / c + int64_t(cx) * ((j0 + j) / c + int64_t(cy) * ((k0 + k) / c));
-                sign[local] = far.values[coarse] < 0 ? -1 : 1;
-                queue.push_back(local);
-              } else if (in_band[n] || !pending[n]) {
-                sign[local] = values[n] < 0 ? -1 : 1;
-                queue.push_back(local);
+        double g = inf;
+        if (soup) {
+          // A gradient bound above (|w − ½| at a corner + 2)/h decides nothing (unless the jumps
+          // on the way add more than 2): the bound may stop there.
+          double widest = 0.0;
+          for (int q = 0; q < 8; ++q) {
+            const int i = lo.x() + (q & 1) * c, j = lo.y() + (q >> 1 & 1) * c, k = lo.z() + (q >> 2) * c;
+            const int64_t coarse = coarse_at(i / c, j / c, k / c);
+            if (corner[coarse].error_bound < 0) continue;
+            widest = std::max(widest, std::abs(corner[coarse].value - 0.5) + 2.0);
+            seed[local(i, j, k)] = int(coarse), queue.push_back(local(i, j, k));
+          }
+          if (!queue.empty())
+            g = rimless ? 0.0 : soup->rims().gradient(grid.node(lo.x(), lo.y(), lo.z()), grid.node(hi.x(), hi.y(), hi.z()), widest / h);
+        }
+        if (std::isfinite(g)) {
+          for (std::size_t q = 0; q < queue.size(); ++q) {
+            const int at = queue[q];
+            const int i = lo.x() + at % w.x(), j = lo.y() + at / w.x() % w.y(), k = lo.z() + at / (w.x() * w.y());
+            const Vec3i v(i, j, k);
+            for (int axis = 0; axis < 3; ++axis)
+              for (int step : {1, -1}) {
+                Vec3i n = v;
+                n[axis] += step;
+                if (n[axis] < lo[axis] || n[axis] > hi[axis]) continue;
+                const int there = local(n.x(), n.y(), n.z());
+                if (seed[there] >= 0 || in_band[grid.index(n.x(), n.y(), n.z())]) continue;
+                seed[there] = seed[at], steps[there] = steps[at] + 1;
+                jumps[there] = jumps[at] + soup->crossings().along(axis, soup->crossings().line(axis, i, j, k), v[axis], n[axis]);
+                queue.push_back(there);
               }
-            }
-        std::fill(conflict.begin(), conflict.end(), 0);
-        for (std::size_t q = 0; q < queue.size() && !seam; ++q) {
-          const int local = queue[q];
-          const int i = local % w, j = (local / w) % w, k = local / (w * w);
-          const int steps[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-          for (const auto& st : steps) {
-            const int a = i + st[0], b = j + st[1], d = k + st[2];
-            if (a < 0 || b < 0 || d < 0 || a >= w || b >= w || d >= w) continue;
-            if (i0 + a >= nx || j0 + b >= ny || k0 + d >= nz) continue;
-            const int there = a + w * (b + w * d);
-            const int64_t n = grid.index(i0 + a, j0 + b, k0 + d);
-            if (!pending[n] || in_band[n]) continue;
-            if (sign[there] == 0) {
-              sign[there] = sign[local];
-              queue.push_back(there);
-            } else if (sign[there] != sign[local]) {
-              conflict[there] = 1;
-            }
           }
         }
-        for (int k = 0; k < w; ++k)
-          for (int j = 0; j < w; ++j)
-            for (int i = 0; i < w; ++i) {
-              if (i0 + i >= nx || j0 + j >= ny || k0 + k >= nz || !held(i0 + i, j0 + j, k0 + k)) continue;
-              const int64_t n = grid.index(i0 + i, j0 + j, k0 + k);
-              if (!pending[n]) continue;
-              const int local = i + w * (j + w * k);
-              const int s = sign[local];
-              if (seam || s == 0 || conflict[local]) {
+        for (int k = lo.z(); k <= held_hi.z(); ++k)
+          for (int j = lo.y(); j <= held_hi.y(); ++j)
+            for (int i = lo.x(); i <= held_hi.x(); ++i) {
+              const int64_t n = grid.index(i, j, k);
+              if (in_band[n]) continue;
+              const int at = local(i, j, k);
+              const int from = seed[at];
+              const double value = from < 0 ? 0.5 : corner[from].value + jumps[at];
+              const double slack = from < 0 ? inf : corner[from].error_bound + g * h * steps[at] + kRoundoff;
+              if (!(std::abs(value - 0.5) > slack)) {
                 undecided[ck].push_back(n);
-              } else {
-                values[n] = s * std::abs(values[n]);
+                continue;
               }
+              const bool in = value > 0.5 || (negative_in && negative_in->value(grid.node(n)) < 0.0);
+              values[n] = in ? -std::abs(values[n]) : std::abs(values[n]);
             }
       }
   });
@@ -263,9 +262,9 @@ void settle_pending(const GridGeometry& grid, const FarField& far, int c, const 
   for (const std::vector<int64_t>& layer : undecided) nodes.insert(nodes.end(), layer.begin(), layer.end());
   std::sort(nodes.begin(), nodes.end());
   std::vector<double> distance(nodes.size());
-  for (std::size_t q = 0; q < nodes.size(); ++q) distance[q] = values[nodes[q]];
+  for (std::size_t q = 0; q < nodes.size(); ++q) distance[q] = std::abs(values[nodes[q]]);
   const std::vector<std::uint8_t> in = inside.decide(nodes, distance, threads);
-  for (std::size_t q = 0; q < nodes.size(); ++q) values[nodes[q]] = in[q] ? -values[nodes[q]] : values[nodes[q]];
+  for (std::size_t q = 0; q < nodes.size(); ++q) values[nodes[q]] = in[q] ? -std::abs(values[nodes[q]]) : std::abs(values[nodes[q]]);
 }
 
 }  // namespace
@@ -280,41 +279,6 @@ void fill_beyond_band(const MeshFeatures& features, const GridGeometry& grid, co
   auto coarse_at = [&](int i, int j, int k) { return i + int64_t(cx) * (j + int64_t(cy) * k); };
   constexpr double kInf = std::numeric_limits<double>::infinity();
 
-  // With a test: the sign each coarse cell agrees on (+1, −1, or 0 where its corners or the band
-  // samples within it, faces included, differ). Each coarse layer is written by one work item.
-  std::vector<signed char> agree;
-  if (inside) {
-    const int64_t cells = int64_t(cx - 1) * (cy - 1) * (cz - 1);
-    agree.assign(cells, 0);
-    auto cell_at = [&](int i, int j, int k) { return i + int64_t(cx - 1) * (j + int64_t(cy - 1) * k); };
-    parallel_for(cz - 1, threads, [&](int k) {
-      for (int j = 0; j + 1 < cy; ++j)
-        for (int i = 0; i + 1 < cx; ++i) {
-          int positive = 0;
-          for (int q = 0; q < 8; ++q) positive += far.values[coarse_at(i + (q & 1), j + (q >> 1 & 1), k + (q >> 2))] >= 0;
-          agree[cell_at(i, j, k)] = positive == 8 ? 1 : positive == 0 ? -1 : 0;
-        }
-      // The band samples of the layer's cells: fine layers c·k to c·(k + 1), faces included.
-      for (int fk = c * k; fk <= std::min(nz - 1, c * (k + 1)); ++fk)
-        for (int fj = 0; fj < ny; ++fj) {
-          const int64_t row = grid.index(0, fj, fk);
-          for (int fi = 0; fi < nx; ++fi) {
-            if (!in_band[row + fi]) continue;
-            const signed char s = values[row + fi] < 0 ? -1 : 1;
-            // The cells whose closed box holds the node (two per axis on a cell face).
-            const int i1 = std::min(fi / c, cx - 2), i0 = fi % c == 0 && fi > 0 ? fi / c - 1 : i1;
-            const int j1 = std::min(fj / c, cy - 2), j0 = fj % c == 0 && fj > 0 ? fj / c - 1 : j1;
-            for (int ci = i0; ci <= i1; ++ci)
-              for (int cj = j0; cj <= j1; ++cj) {
-                signed char& a = agree[cell_at(ci, cj, k)];
-                if (a != s) a = 0;
-              }
-          }
-        }
-    });
-  }
-
-  std::vector<char> pending(inside ? values.size() : 0, 0);  // far samples whose cell did not agree
   parallel_for(nz, threads, [&](int k) {
     for (int j = 0; j < ny; ++j) {
       const int64_t row = grid.index(0, j, k);
@@ -332,8 +296,6 @@ void fill_beyond_band(const MeshFeatures& features, const GridGeometry& grid, co
         const double frac[3] = {ax.frac[i], ay.frac[j], az.frac[k]};
         double magnitude;
         trilinear<false>(magnitudes, frac, magnitude, nullptr);
-        signed char agreed = 0;
-        if (inside) agreed = agree[ax.cell[i] + int64_t(cx - 1) * (ay.cell[j] + int64_t(cy - 1) * az.cell[k])];
         if (!(magnitude > r)) {
           // The interpolant dips below the band's width (a concave distance, as inside a curved
           // surface): the distance to the nearest of the features the corners are closest to
@@ -345,20 +307,17 @@ void fill_beyond_band(const MeshFeatures& features, const GridGeometry& grid, co
           }
           magnitude = std::max(r, std::sqrt(best));
         }
-        int sign;
-        if (inside) {
-          sign = agreed;  // 0: pending, settled below
-          if (agreed == 0) pending[row + i] = 1;
-        } else {
+        int sign = 1;  // with `inside`: signed below
+        if (!inside) {
           double interpolated;
           trilinear<false>(signed_corners, frac, interpolated, nullptr);
           sign = interpolated < 0 ? -1 : 1;
         }
-        values[row + i] = sign == 0 ? magnitude : sign * magnitude;
+        values[row + i] = sign * magnitude;
       }
     }
   });
-  if (inside) settle_pending(grid, far, c, *inside, in_band, pending, values, threads);
+  if (inside) sign_far_samples(grid, far, c, *inside, in_band, values, threads);
 }
 
 }  // namespace hairfit::field

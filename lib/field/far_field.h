@@ -28,9 +28,9 @@ FarField make_far_field(const MeshFeatures& features, const ScanRegions& regions
 // interpolation of its coarse cell's magnitudes, or, where that is not above r (the band's width),
 // the distance to the nearest of the features the cell's corners are closest to (never below the
 // true distance, which exceeds r there), signed as distance_field.h states it
-// (with `inside`: the sign its coarse cell agrees on, its corners and band samples alike, or where
-// they differ the robust inside's own at the node; without: the sign of the interpolated signed
-// coarse values). Deterministic for any thread count.
+// (with `inside`: the robust inside's at the node, certified: from a far coarse corner along far
+// samples where the rims' bound allows, by the inside's own decision elsewhere; without: the
+// sign of the interpolated signed coarse values). Deterministic for any thread count.
 // `in_band` marks the band's samples (1), whose values are final.
 void fill_beyond_band(const MeshFeatures& features, const GridGeometry& grid, const FarField& far, int coarse_factor, double r,
                       const RobustSigns* inside, const std::vector<std::uint8_t>& in_band, std::vector<double>& values,

@@ -7,41 +7,30 @@ namespace hairfit {
 HairRegion::HairRegion(const Mesh& hull, const Mesh& scalp, bool hull_closed, int threads)
     : hull_(hull, kFirstBeta, threads), scalp_(hull_closed ? Mesh{} : scalp, kFirstBeta, threads), closed_(hull_closed) {}
 
-namespace {
-
-// Whether a winding number exceeds ½, as HairRegion::inside_hull states the rule: `at(β)` is its
-// hierarchical value with accuracy parameter β.
-template <class At>
-bool above_half(At&& at) {
-  const double first = at(HairRegion::kFirstBeta);
-  if (std::abs(first - 0.5) > HairRegion::kDecisive) return first > 0.5;
-  return at(HairRegion::kCloseBeta) > 0.5;
-}
-
-}  // namespace
 
 double HairRegion::winding(const Vec3& p) const { return closed_ ? hull_(p) : hull_(p) - scalp_(p); }
 
-bool HairRegion::inside_hull(const Vec3& p) const {
-  return above_half([&](double beta) {
-    return closed_ ? hull_.at_beta(p, beta) : hull_.at_beta(p, beta) - scalp_.at_beta(p, beta);
-  });
+WindingEstimate HairRegion::estimate(const Vec3& p, double beta) const {
+  const WindingEstimate e = hull_.estimate(p, beta);
+  if (closed_) return e;
+  const WindingEstimate under = scalp_.estimate(p, beta);
+  return WindingEstimate{e.value - under.value, e.error_bound + under.error_bound};
 }
 
-bool winding_above_half(const FastWindingNumber& winding, const Vec3& p) {
-  return above_half([&](double beta) { return winding.at_beta(p, beta); });
+bool HairRegion::inside_hull(const Vec3& p) const {
+  if (closed_) return hull_.above(p, 0.5);
+  return certified_above(
+      0.5, kFirstBeta, [&](double beta) { return estimate(p, beta); },
+      [&] { return hull_.direct(p) - scalp_.direct(p); });
 }
+
+bool winding_above_half(const FastWindingNumber& winding, const Vec3& p) { return winding.above(p, 0.5); }
 
 WindingSoup HairRegion::soup(const Mesh& hull, const Mesh& scalp) const {
   WindingSoup s;
   s.parts.push_back({&hull, 1});
   if (!closed_) s.parts.push_back({&scalp, -1});
-  s.estimate = [this](const Vec3& p) {
-    WindingEstimate e = hull_.estimate(p, kCloseBeta);
-    if (closed_) return e;
-    const WindingEstimate under = scalp_.estimate(p, kCloseBeta);
-    return WindingEstimate{e.value - under.value, e.error_bound + under.error_bound};
-  };
+  s.estimate = [this](const Vec3& p) { return estimate(p, kCloseBeta); };
   s.above_half = [this](const Vec3& p) { return inside_hull(p); };
   return s;
 }

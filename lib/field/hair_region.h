@@ -21,19 +21,17 @@ class HairRegion {
   // shell an open hull and the scalp close between them where they share a hairline, 0 outside,
   // and in between where they do not meet (a hull hovering above the scalp, a gap, a hole).
   double winding(const Vec3& p) const;
-  // Whether H(p) > ½. The hierarchical value at β = kFirstBeta decides where it is farther than
-  // kDecisive from ½: three times the largest error of one such value measured against the
-  // direct sums (0.084 at β = 1.5, over points in the box and near the surface of an 8k-triangle
-  // torus: bench/results/fast_winding.md; 0.07 at β = 2 on closed meshes 0.05 of their size from
-  // the surface, tests/core/fast_winding_test.cpp). Elsewhere the value at β = kCloseBeta decides
-  // (measured error about 0.01), so the answer is the direct sums' wherever H is farther than
-  // that from ½. Closer, H itself says the point is on the fence (a card's own front reads ½);
-  // the direct sums over every triangle would cost a thousand evaluations there, and raw card
-  // hair has thousands of such points. The trees are built with β = kFirstBeta.
+  // H's hierarchical estimate at accuracy parameter `beta`, with a rigorous bound on its error
+  // (the hull's and the scalp's bounds added).
+  WindingEstimate estimate(const Vec3& p, double beta) const;
+  // Whether H(p) > ½, exactly as the direct sums decide it: the estimates with their error bounds
+  // decide where H lies farther from ½ than the bound (certified_above, core/fast_winding.h), the
+  // direct sums over every triangle elsewhere, i.e. on or right next to the hull and where H
+  // itself is within about the bound of ½ (a card's own front). The trees are built with
+  // β = kFirstBeta; the soup's references are estimated at β = kCloseBeta.
   bool inside_hull(const Vec3& p) const;
   static constexpr double kCloseBeta = 4.0;
   static constexpr double kFirstBeta = 1.5;
-  static constexpr double kDecisive = 0.25;
   bool hull_closed() const { return closed_; }
 
   // The region as the fields' robust sign takes it: the hull (the meshes this region was built
@@ -55,8 +53,8 @@ class HairRegion {
 // hairline past the ears and the neck is outside it, as it would be on the real head.
 Mesh closed_head(const Mesh& scalp);
 
-// Whether the winding number of `winding`'s mesh at p exceeds ½, decided as HairRegion::inside_hull
-// decides it (the hierarchical value where it is decisive, the direct sum elsewhere).
+// Whether the winding number of `winding`'s mesh at p exceeds ½, exactly as the direct sum decides
+// it (FastWindingNumber::above).
 bool winding_above_half(const FastWindingNumber& winding, const Vec3& p);
 
 // `mesh`'s own winding number as a soup: estimated by `winding` (built over `mesh`; both must

@@ -105,8 +105,17 @@ std::vector<std::uint8_t> GridWindingSigns::decide(const std::vector<int64_t>& n
     Box box;
     box.lo = grid_indices(b, boxes) * kTopBox;
     box.hi = (box.lo + Vec3i::Constant(kTopBox)).cwiseMin(grid_.dims);
-    std::vector<int> which(order.begin() + offsets[b], order.begin() + offsets[b + 1]);
-    per_box[k].nodes = int64_t(which.size());
+    std::vector<int> which;
+    for (int64_t o = offsets[b]; o < offsets[b + 1]; ++o) {
+      const int q = order[o];
+      if (distance[q] < kSnapped * grid_.voxel) {
+        inside[q] = soup_.above_half(grid_.node(nodes[q]));
+        ++per_box[k].asked;
+      } else {
+        which.push_back(q);
+      }
+    }
+    per_box[k].nodes = offsets[b + 1] - offsets[b];
     decide_box(box, which, nodes, distance, inside, per_box[k]);
   });
   if (counts) {

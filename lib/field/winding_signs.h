@@ -36,15 +36,19 @@ class GridWindingSigns {
   };
   // inside[q] = (w > ½ at node nodes[q]), for nodes given by their grid index, ascending, each
   // with its distance to the surface (a lower bound will do: references are the nodes farthest
-  // from the surface, never nearer than kClearance voxel). Deterministic for any thread count.
+  // from the surface, never nearer than kClearance voxel, and nodes nearer than kSnapped voxel are
+  // asked themselves, since there the snapped soup's jumps need not be the soup's).
+  // Deterministic for any thread count.
   std::vector<std::uint8_t> decide(const std::vector<int64_t>& nodes, const std::vector<double>& distance, int threads,
                                    Counts* counts = nullptr) const;
   static constexpr double kClearance = 1e-3;  // voxels; the lattice's snapping is 2⁻¹⁷ voxel
+  static constexpr double kSnapped = 1e-4;    // voxels, some ten times the snapping
   static constexpr int kTopBox = 32;          // nodes per side of the boxes decided side by side
   static constexpr int kAsk = 4;              // a box with this many undecided nodes or fewer asks them
 
   const GridCrossings& crossings() const { return crossings_; }
   const RimBound& rims() const { return rims_; }
+  const WindingSoup& soup() const { return soup_; }
 
  private:
   struct Box {
@@ -69,6 +73,9 @@ class RobustSigns {
   // field and the soups before it leave outside. `counts` sums over the soups.
   std::vector<std::uint8_t> decide(const std::vector<int64_t>& nodes, const std::vector<double>& distance, int threads,
                                    GridWindingSigns::Counts* counts = nullptr) const;
+
+  const DistanceField* negative_in() const { return negative_in_; }
+  const std::vector<std::unique_ptr<GridWindingSigns>>& soups() const { return soups_; }
 
  private:
   const DistanceField* negative_in_;
