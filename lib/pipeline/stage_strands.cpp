@@ -72,7 +72,7 @@ void compute(StageRun& run, const StrandsOptions& o, StageReport& stage) {
   if (o.contain > 0.0) around.out_of_head.into_volume = into_volume(*v.volume_field, o.contain);
   if (strands.layer_depth) around.to_layer_depth = layer_placement(*v.scalp_field, *v.volume_field);
   const Boundary b = run.boundary();
-  around.hair_region = [&b](const Vec3& p) { return b.beyond_volume(p) <= 0.0 && b.beyond_scalp(p) <= 0.0; };
+  around.hair_region = [&b](const Vec3& p) { return b.acceptable(p); };
   GrownStrands grown = make_strands(v.guides->curves(), run.pores(), strands, around, run.exec(),
                                     std::move(run.deposited_fibres));
   run.deposited_fibres = {};

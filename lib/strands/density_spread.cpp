@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/parallel.h"
+#include "core/trilinear.h"
 
 namespace hairfit {
 
@@ -87,11 +88,10 @@ PointDensity point_density(const std::vector<Vec3>& points, const Vec3& lower, d
     Vec3i base;
     Vec3 t;
     locate(x, lower, h, dims, base, t);
-    for (int corner = 0; corner < 8; ++corner) {
-      const int di = corner & 1, dj = (corner >> 1) & 1, dk = corner >> 2;
-      const double w = (di ? t.x() : 1.0 - t.x()) * (dj ? t.y() : 1.0 - t.y()) * (dk ? t.z() : 1.0 - t.z());
-      d.values[node_index(dims, base.x() + di, base.y() + dj, base.z() + dk)] += w;
-    }
+    const TrilinearWeights w = trilinear_weights(t);
+    for (int corner = 0; corner < 8; ++corner)
+      d.values[node_index(dims, base.x() + (corner & 1), base.y() + ((corner >> 1) & 1), base.z() + (corner >> 2))] +=
+          w.w[corner];
   }
   smooth(d.values, dims, smoothing, threads);
   return d;
@@ -115,24 +115,23 @@ Vec3 PointDensity::gradient(const Vec3& p) const {
   Vec3i base;
   Vec3 t;
   locate(p, lower, h, dims, base, t);
+  const TrilinearWeights weights = trilinear_weights(t);
   Vec3 g = Vec3::Zero();
   if ((base.array() >= 1).all() && (base.array() + 2 < dims.array()).all()) {
     // Every stencil inside the lattice: the same sums, by strides.
     const std::ptrdiff_t stride[3] = {1, dims.x(), static_cast<std::ptrdiff_t>(dims.x()) * dims.y()};
     const double* origin = values.data() + node_index(dims, base.x(), base.y(), base.z());
     for (int corner = 0; corner < 8; ++corner) {
-      const int di = corner & 1, dj = (corner >> 1) & 1, dk = corner >> 2;
-      const double w = (di ? t.x() : 1.0 - t.x()) * (dj ? t.y() : 1.0 - t.y()) * (dk ? t.z() : 1.0 - t.z());
+      const double w = weights.w[corner];
       if (w == 0.0) continue;
-      const double* v = origin + di * stride[0] + dj * stride[1] + dk * stride[2];
+      const double* v = origin + (corner & 1) * stride[0] + ((corner >> 1) & 1) * stride[1] + (corner >> 2) * stride[2];
       for (int a = 0; a < 3; ++a) g[a] += w * (v[stride[a]] - v[-stride[a]]) / (2 * h);
     }
     return g;
   }
   for (int corner = 0; corner < 8; ++corner) {
     const int n[3] = {base.x() + (corner & 1), base.y() + ((corner >> 1) & 1), base.z() + (corner >> 2)};
-    const double w = ((corner & 1) ? t.x() : 1.0 - t.x()) * (((corner >> 1) & 1) ? t.y() : 1.0 - t.y()) *
-                     ((corner >> 2) ? t.z() : 1.0 - t.z());
+    const double w = weights.w[corner];
     if (w == 0.0) continue;
     for (int a = 0; a < 3; ++a) {
       int lo[3] = {n[0], n[1], n[2]}, hi[3] = {n[0], n[1], n[2]};

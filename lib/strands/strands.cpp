@@ -301,10 +301,8 @@ GrownStrands make_strands(const Curves& guides, const Pores& pores, const Strand
   if (options.spread.passes > 0 && !layered) {
     if (!pre_grown)
       parallel_for(count, exec.threads, [&](int i) {
-        thread_local std::vector<WispPoint> layout;
-        layout.resize(n);
-        fibre_along(tracks[pores.guide[i]], pores.positions[i], pores.lengths[i], extent[pores.guide[i]], stations,
-                    nullptr, out.points.data() + n * i, layout.data());
+        grow_fibre(tracks[pores.guide[i]], pores.positions[i], pores.lengths[i], extent[pores.guide[i]], options.wisp,
+                   out.points.data() + n * i);
       });
     spread_fibres(out.points, n, options.spread, exec.threads, around.hair_region);
   }
