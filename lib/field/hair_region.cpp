@@ -1,12 +1,9 @@
 #include "field/hair_region.h"
 
-#include <cmath>
-
 namespace hairfit {
 
 HairRegion::HairRegion(const Mesh& hull, const Mesh& scalp, bool hull_closed, int threads)
     : hull_(hull, kFirstBeta, threads), scalp_(hull_closed ? Mesh{} : scalp, kFirstBeta, threads), closed_(hull_closed) {}
-
 
 double HairRegion::winding(const Vec3& p) const { return closed_ ? hull_(p) : hull_(p) - scalp_(p); }
 
