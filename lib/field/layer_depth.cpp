@@ -16,13 +16,14 @@ LayerDepth layer_depth(const FieldValueGradient& s, const FieldValueGradient& v)
 }
 
 Vec3 to_layer_depth(const DistanceField& scalp, const DistanceField& volume, const Vec3& p, const LayerDepth& at_p,
-                    double target) {
+                    double target, const Vec3* along) {
   Vec3 q = p;
   for (int step = 0; step < kLayerDepthSteps; ++step) {
     const LayerDepth d = step == 0 ? at_p : layer_depth(scalp.value_and_gradient(q), volume.value_and_gradient(q));
-    const double g2 = d.gradient.squaredNorm();
+    const Vec3 g = along ? Vec3(d.gradient - d.gradient.dot(*along) * *along) : d.gradient;
+    const double g2 = g.squaredNorm();
     if (!(d.thickness > 0.0) || !(g2 > 0.0) || !std::isfinite(g2)) return q;
-    Vec3 move = ((target - d.value) / g2) * d.gradient;
+    Vec3 move = ((target - d.value) / g2) * g;
     const double length = move.norm();
     if (length > d.thickness) move *= d.thickness / length;  // never more than a layer at once
     const Vec3 next = q + move;

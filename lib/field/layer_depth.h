@@ -29,7 +29,11 @@ LayerDepth layer_depth(const FieldValueGradient& scalp, const FieldValueGradient
 // function of p, so that a fibre's length stays continuous in how far it reaches along its guide
 // (the strands' length solve). Between parallel surfaces the first step is exact. p itself where
 // the layer is not defined at p; the last point reached where a step would leave it.
+// With a unit `along` (a fibre's direction at p), every step moves in the plane normal to it, down
+// the part of ∇λ across the fibre: a point keeps its place along the hair and changes only its
+// depth across it.
 Vec3 to_layer_depth(const DistanceField& scalp, const DistanceField& volume, const Vec3& p, const LayerDepth& at_p,
-                    double target);
+                    double target, const Vec3* along = nullptr);
+
 
 }  // namespace hairfit

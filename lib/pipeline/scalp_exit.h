@@ -3,6 +3,7 @@
 #pragma once
 #include "core/triangle_grid.h"
 #include "field/distance_field.h"
+#include "scalp/fall.h"
 #include "strands/strands.h"
 
 namespace hairfit {
@@ -32,9 +33,17 @@ std::function<Vec3(const Vec3&)> into_volume(const DistanceField& volume, double
 // from full at the hull to none this far out, where the layer has ended.
 constexpr double kLayerDepthReach = 1.0;
 
-// StrandSurroundings::to_layer_depth from the two fields (field/layer_depth.h): p moves to the
-// layer depth λ(p) + w·(depth − λ(p)), with w the given weight faded by the smoothstep beyond the
-// hull over kLayerDepthReach. Both fields must outlive the result.
-std::function<Vec3(const Vec3&, double, double)> layer_placement(const DistanceField& scalp, const DistanceField& volume);
+// How far below the scalp's rim (cm) a fibre point is still moved into its layer depth. The
+// layer's depth λ is a depth across the hair where the layer lies over the scalp; below the rim,
+// where the hair hangs, it runs along it (down to the floor of a closed hull), and a hanging
+// wisp's fibres moved to their shares of it would be thrown across the hair mass.
+constexpr double kLayerBelowRim = 2.0;
+
+// StrandSurroundings::to_layer_depth from the two fields (field/layer_depth.h): p moves, across
+// the fibre's unit direction `along`, to the layer depth λ(p) + w·(depth − λ(p)), with w the given
+// weight faded by the smoothstep beyond the hull over kLayerDepthReach and below the scalp's rim
+// (`rim`, RimHeights::below) over kLayerBelowRim. Both fields must outlive the result.
+std::function<Vec3(const Vec3& p, const Vec3& along, double depth, double weight)> layer_placement(
+    const DistanceField& scalp, const DistanceField& volume, RimHeights rim);
 
 }  // namespace hairfit

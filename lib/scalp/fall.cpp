@@ -120,12 +120,17 @@ double depth_miss(const Sample& s, double target) {
 }
 
 // The way the bead heads from s: down, pulled toward the depth `target` below the hull along the
-// hull field's gradient by miss/kFallDepthReach (at most 1). Unit.
+// hull field's gradient by miss/kFallDepthReach (at most 1). The pull never lifts the bead: where
+// the layer's depth runs up and down (over the crown, and below a closed head down to the floor of
+// a bag-shaped hull) it is a depth along the hair, not across it, and only its level part acts.
+// Unit.
 Vec3 heading(const Sample& s, const Vec3& down, double target) {
   const double g = s.hull_gradient.norm();
   if (!std::isfinite(target) || !(g > 1e-12)) return down;
   const double pull = std::clamp(depth_miss(s, target) / kFallDepthReach, -1.0, 1.0);
-  const Vec3 w = down + pull * s.hull_gradient / g;
+  Vec3 toward = pull * s.hull_gradient / g;
+  if (toward.dot(down) < 0.0) toward -= toward.dot(down) * down;
+  const Vec3 w = down + toward;
   return w.norm() > 1e-9 ? Vec3(w.normalized()) : down;
 }
 
@@ -182,8 +187,11 @@ Fall fall_from(const FallRegion& region, const RimHeights& rim, const Vec3& root
   const Vec3& down = region.down;
   // A kept step moves the bead at least a quarter step, so the way ends within this many.
   const long steps = static_cast<long>(std::ceil(4.0 * cap / region.step)) + 4;
-  // Where it was lowest: a way that has not gone lower over kFallStall rests there (in the
-  // crease at the bottom of a bag-shaped hull the bead can wander without falling).
+  // Where it last fell: a way that has not gone on down at the least slope, kFallSlope, over
+  // kFallStall rests there. In the bowl at the bottom of a bag-shaped hull the bead, pulled toward
+  // its depth, can wander round for many centimetres while it still finds ever slightly lower
+  // points; the hair ends where it reached the bottom, not at the end of that wander. The crown's
+  // lean, however flat, counts as falling.
   double lowest = p.dot(down), length_at_lowest = 0.0, below_at_lowest = 0.0;
   std::size_t nodes_at_lowest = f.nodes.size();
   for (long k = 0; k < steps && f.length < cap; ++k) {
@@ -221,8 +229,8 @@ Fall fall_from(const FallRegion& region, const RimHeights& rim, const Vec3& root
     f.below_rim += length_below(rim, p, q);
     p = q, s = t;
     if (keep_nodes) f.nodes.push_back(p);
-    if (p.dot(down) > lowest) lowest = p.dot(down), length_at_lowest = f.length, below_at_lowest = f.below_rim,
-                              nodes_at_lowest = f.nodes.size();
+    if (leaning || p.dot(down) > lowest + kFallSlope * (f.length - length_at_lowest))
+      lowest = p.dot(down), length_at_lowest = f.length, below_at_lowest = f.below_rim, nodes_at_lowest = f.nodes.size();
   }
   f.length = std::min(f.length, cap);
   f.below_rim = std::min(f.below_rim, f.length);

@@ -327,7 +327,16 @@ GrownStrands make_strands(const Curves& guides, const Pores& pores, const Strand
     FibreAdjust place;
     if (layered)
       place = [&](Vec3* fibre, int m) {
-        for (int k = 2; k < m; ++k) fibre[k] = around.to_layer_depth(fibre[k], layer_depths[i], stations[k].w);
+        // Each point moves across the fibre as swept, its direction there the chord between its
+        // swept neighbours.
+        Vec3 before = fibre[1];
+        for (int k = 2; k < m; ++k) {
+          const Vec3 chord = (k + 1 < m ? fibre[k + 1] : fibre[k]) - before;
+          const double norm = chord.norm();
+          const Vec3 along = norm > 0.0 ? Vec3(chord / norm) : Vec3::Zero();
+          before = fibre[k];
+          fibre[k] = around.to_layer_depth(fibre[k], along, layer_depths[i], stations[k].w);
+        }
       };
     const ChordsLeft left = fibre_kept_out(tracks[pores.guide[i]], pores.positions[i], pores.lengths[i],
                                            extent[pores.guide[i]], stations, out_of_head, root_normal, points,

@@ -219,3 +219,31 @@ TEST_CASE("combed hair: as long as the layer ahead to the rim, less the margin; 
   const ThicknessField everywhere = [](const Vec3&) { return LayerThickness{1.0, Vec3::Zero()}; };
   for (double l : combed_lengths(chart, everywhere, 25.0)) CHECK(l == 25.0);
 }
+
+TEST_CASE("in the bowl at the bottom of a bag the fall rests where it reached the bottom") {
+  // A scalp cap of radius 8 closed by its floor (y = 0) inside a closed bag of radius 20 about
+  // the same centre. From the scalp, pulled to the middle of the layer's depth, the bead runs
+  // round the cap, falls from its rim and reaches the bag's bottom, where the layer's depth runs
+  // up to the floor: the pull lifts the bead, it falls back a little lower, and so on round the
+  // bowl for long after it stopped falling. Wherever it ends, it got there falling: it is within
+  // kFallSlope·kFallStall of its lowest node, and went at most kFallStall on past the first node
+  // that low.
+  FallRegion r;
+  r.skin = intersection(sphere(8.0), plane(Vec3(0, -1, 0)));
+  r.hull = sphere(20.0);
+  r.step = 0.1;
+  for (const Vec3& root : {Vec3(0, 8, 0), Vec3(4, 6.9282, 0), Vec3(0, 4, -6.9282)}) {
+    const Fall f = fall_from(r, level_rim(0.0), root, root.normalized(), 200.0, 0.5, true);
+    REQUIRE(f.nodes.size() > 2);
+    const double end = -f.nodes.back().y();
+    double lowest = end, length = 0.0, first_low = -1.0;
+    for (std::size_t k = 0; k < f.nodes.size(); ++k) {
+      if (k > 0) length += (f.nodes[k] - f.nodes[k - 1]).norm();
+      lowest = std::max(lowest, -f.nodes[k].y());
+      if (first_low < 0.0 && -f.nodes[k].y() >= end - kFallSlope * kFallStall) first_low = length;
+    }
+    CHECK(end > 15.0);  // it reached the bowl
+    CHECK(lowest - end <= kFallSlope * kFallStall + 1e-9);
+    CHECK(length - first_low <= kFallStall + r.step + 1e-9);
+  }
+}

@@ -574,7 +574,7 @@ TEST_CASE("fibres spread through the layer: each at its own depth past the settl
   o.wisp.points = 20;
   o.layer_depth = true;
   StrandSurroundings around;
-  around.to_layer_depth = [](const Vec3& p, double depth, double weight) {
+  around.to_layer_depth = [](const Vec3& p, const Vec3&, double depth, double weight) {
     const double lambda = 0.5 * p.y();
     return Vec3(p.x(), 2.0 * (lambda + weight * (depth - lambda)), p.z());
   };
