@@ -60,6 +60,16 @@ TEST_CASE("to_layer_depth: exact between parallel planes, and within the interpo
       const Vec3 q = to_layer_depth(scalp, hull, p, at_p, target);
       CHECK(n.dot(q) - 0.3 == doctest::Approx(0.8 * target).epsilon(1e-9).scale(1.0));
       CHECK((q - p).cross(n).norm() <= 1e-9);
+      // Across a fibre at 60-86° to the layer's normal (a fibre lying in the layer): still exact
+      // in one step, and the move is normal to the fibre, along ∇λ less its part along the fibre.
+      const Vec3 e = n.unitOrthogonal();
+      const double angle = random.uniform(1.05, 1.5);
+      const Vec3 along = std::cos(angle) * n + std::sin(angle) * e;
+      const Vec3 r = to_layer_depth(scalp, hull, p, at_p, target, &along);
+      CHECK(n.dot(r) - 0.3 == doctest::Approx(0.8 * target).epsilon(1e-9).scale(1.0));
+      CHECK(std::fabs((r - p).dot(along)) <= 1e-9);
+      const Vec3 across = (n - n.dot(along) * along).normalized();
+      CHECK((r - p).cross(across).norm() <= 1e-9);
     }
   }
   {

@@ -62,3 +62,28 @@ TEST_CASE("the head exit keeps the clearance, and where the layer is thinner, st
   const DistanceField v = volume(0.02);
   CHECK(moved_to(scalp_exit(head(), nullptr, 1, &v), 0.07) == 0.07);
 }
+
+TEST_CASE("layer placement: across the fibre over the scalp, fading to nothing kLayerBelowRim below its rim") {
+  // The head's top face z = 0 under a layer 1 cm thick, so λ = z there; the rim taken level at
+  // height `rim` along up = +z.
+  const DistanceField hull = volume(1.0);
+  auto rim_at = [](double height) {
+    RimHeights r;
+    r.up = Vec3::UnitZ(), r.e1 = Vec3::UnitX(), r.e2 = Vec3::UnitY();
+    r.heights.assign(kRimBins, height);
+    return r;
+  };
+  const Vec3 p(0.1, -0.2, 0.2), along = Vec3(1, 0, 1).normalized();
+  // Over the scalp (the rim below p): λ 0.2 → 0.7, moved across the fibre, not along it.
+  const auto over = layer_placement(head(), hull, rim_at(-1.0));
+  const Vec3 q = over(p, along, 0.7, 1.0);
+  CHECK(q.z() == doctest::Approx(0.7).epsilon(2e-3));
+  CHECK(std::fabs((q - p).dot(along)) <= 1e-9);
+  // Half the weight: half the way.
+  CHECK(over(p, along, 0.7, 0.5).z() == doctest::Approx(0.45).epsilon(2e-3));
+  // Below the rim by kLayerBelowRim or more: not moved; half way down the fade: by its smoothstep.
+  const auto under = layer_placement(head(), hull, rim_at(p.z() + kLayerBelowRim));
+  CHECK(under(p, along, 0.7, 1.0) == p);
+  const auto halfway = layer_placement(head(), hull, rim_at(p.z() + 0.5 * kLayerBelowRim));
+  CHECK(halfway(p, along, 0.7, 1.0).z() == doctest::Approx(0.45).epsilon(2e-3));
+}
