@@ -12,6 +12,10 @@ namespace hairfit {
 struct Boundary {
   std::shared_ptr<const DistanceField> scalp;
   std::shared_ptr<const DistanceField> volume;
+  // Whether the head's skin past the scalp's hairline is the floor that closes it
+  // (fields.skin_beyond_hairline = "floor"), so that below the head the layer's depth runs up to
+  // that floor, along hanging hair; false where the skin goes on under the hull as a shell.
+  bool floor_past_hairline = true;
 
   // How far a point lies outside the acceptable region through each surface, cm: positive outside
   // (inside the head / outside the volume), negative inside.

@@ -20,6 +20,7 @@ FallRegion fall_region(const Boundary& boundary, const Vec3& down, const Vec3& f
   region.down = down.normalized();
   region.front = front.normalized();
   region.step = 0.5 * boundary.volume->voxel();
+  region.floor_past_hairline = boundary.floor_past_hairline;
   return region;
 }
 

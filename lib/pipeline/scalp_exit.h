@@ -42,7 +42,8 @@ constexpr double kLayerBelowRim = 2.0;
 // StrandSurroundings::to_layer_depth from the two fields (field/layer_depth.h): p moves, across
 // the fibre's unit direction `along`, to the layer depth λ(p) + w·(depth − λ(p)), with w the given
 // weight faded by the smoothstep beyond the hull over kLayerDepthReach and below the scalp's rim
-// (`rim`, RimHeights::below) over kLayerBelowRim. Both fields must outlive the result.
+// (`rim`, RimHeights::below; none for empty heights) over kLayerBelowRim. Both fields must outlive
+// the result.
 std::function<Vec3(const Vec3& p, const Vec3& along, double depth, double weight)> layer_placement(
     const DistanceField& scalp, const DistanceField& volume, RimHeights rim);
 

@@ -17,7 +17,11 @@ Exec StageRun::exec() const {
   return Exec{options.threads, options.progress ? options.progress->callback() : ProgressCallback()};
 }
 
-Boundary StageRun::boundary() const { return Boundary{values.scalp_field, values.volume_field}; }
+// The skin goes on past the hairline as a shell exactly where the fields stage replaced the closed
+// head's field by it.
+Boundary StageRun::boundary() const {
+  return Boundary{values.scalp_field, values.volume_field, values.scalp_field == values.scalp_distance};
+}
 
 Pores StageRun::pores() const {
   Pores p;

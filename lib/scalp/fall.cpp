@@ -120,16 +120,16 @@ double depth_miss(const Sample& s, double target) {
 }
 
 // The way the bead heads from s: down, pulled toward the depth `target` below the hull along the
-// hull field's gradient by miss/kFallDepthReach (at most 1). The pull never lifts the bead: where
-// the layer's depth runs up and down (over the crown, and below a closed head down to the floor of
-// a bag-shaped hull) it is a depth along the hair, not across it, and only its level part acts.
-// Unit.
-Vec3 heading(const Sample& s, const Vec3& down, double target) {
+// hull field's gradient by miss/kFallDepthReach (at most 1). Where the skin past the hairline is
+// the head's floor, the pull never lifts the bead: below the head the layer's depth runs up to
+// that floor, along the hair, not across it, and only its level part acts (over the crown that
+// keeps the bead on the skin until its way turns down). Unit.
+Vec3 heading(const Sample& s, const Vec3& down, bool floor_past_hairline, double target) {
   const double g = s.hull_gradient.norm();
   if (!std::isfinite(target) || !(g > 1e-12)) return down;
   const double pull = std::clamp(depth_miss(s, target) / kFallDepthReach, -1.0, 1.0);
   Vec3 toward = pull * s.hull_gradient / g;
-  if (toward.dot(down) < 0.0) toward -= toward.dot(down) * down;
+  if (floor_past_hairline && toward.dot(down) < 0.0) toward -= toward.dot(down) * down;
   const Vec3 w = down + toward;
   return w.norm() > 1e-9 ? Vec3(w.normalized()) : down;
 }
@@ -187,11 +187,8 @@ Fall fall_from(const FallRegion& region, const RimHeights& rim, const Vec3& root
   const Vec3& down = region.down;
   // A kept step moves the bead at least a quarter step, so the way ends within this many.
   const long steps = static_cast<long>(std::ceil(4.0 * cap / region.step)) + 4;
-  // Where it last fell: a way that has not gone on down at the least slope, kFallSlope, over
-  // kFallStall rests there. In the bowl at the bottom of a bag-shaped hull the bead, pulled toward
-  // its depth, can wander round for many centimetres while it still finds ever slightly lower
-  // points; the hair ends where it reached the bottom, not at the end of that wander. The crown's
-  // lean, however flat, counts as falling.
+  // Where it was lowest: a way that has not gone lower over kFallStall rests there (in the
+  // crease at the bottom of a bag-shaped hull the bead can wander without falling).
   double lowest = p.dot(down), length_at_lowest = 0.0, below_at_lowest = 0.0;
   std::size_t nodes_at_lowest = f.nodes.size();
   for (long k = 0; k < steps && f.length < cap; ++k) {
@@ -202,7 +199,7 @@ Fall fall_from(const FallRegion& region, const RimHeights& rim, const Vec3& root
     }
     const double h = std::min(region.step, cap - f.length);
     const bool leaning = f.length < kCrownLean;
-    const Vec3 w = heading(s, down, target);
+    const Vec3 w = heading(s, down, region.floor_past_hairline, target);
     Vec3 q;
     Sample t;
     bool moved = slide_step(region, p, w, h, leaning, q, t);
@@ -229,8 +226,8 @@ Fall fall_from(const FallRegion& region, const RimHeights& rim, const Vec3& root
     f.below_rim += length_below(rim, p, q);
     p = q, s = t;
     if (keep_nodes) f.nodes.push_back(p);
-    if (leaning || p.dot(down) > lowest + kFallSlope * (f.length - length_at_lowest))
-      lowest = p.dot(down), length_at_lowest = f.length, below_at_lowest = f.below_rim, nodes_at_lowest = f.nodes.size();
+    if (p.dot(down) > lowest) lowest = p.dot(down), length_at_lowest = f.length, below_at_lowest = f.below_rim,
+                              nodes_at_lowest = f.nodes.size();
   }
   f.length = std::min(f.length, cap);
   f.below_rim = std::min(f.below_rim, f.length);

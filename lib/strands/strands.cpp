@@ -233,6 +233,16 @@ std::vector<Vec3> make_fibre(const std::vector<Vec3>& guide, const Vec3& pore, d
   return points;
 }
 
+void smooth_along(std::vector<Vec3>& values, int first, int passes) {
+  const int n = static_cast<int>(values.size());
+  thread_local std::vector<Vec3> last;
+  for (int pass = 0; pass < passes; ++pass) {
+    last = values;
+    for (int k = first; k < n; ++k)
+      values[k] = 0.25 * last[k - 1] + 0.5 * last[k] + 0.25 * (k + 1 < n ? last[k + 1] : Vec3(2.0 * last[k] - last[k - 1]));
+  }
+}
+
 double fibre_layer_depth(int rank, int count) {
   return kLayerMargin + (1.0 - 2.0 * kLayerMargin) * (1.0 - (rank + 0.5) / std::max(1, count));
 }
@@ -328,15 +338,19 @@ GrownStrands make_strands(const Curves& guides, const Pores& pores, const Strand
     if (layered)
       place = [&](Vec3* fibre, int m) {
         // Each point moves across the fibre as swept, its direction there the chord between its
-        // swept neighbours.
-        Vec3 before = fibre[1];
+        // swept neighbours; the moves are then smoothed along the fibre (kLayerMoveSmoothing
+        // passes of ¼, ½, ¼), so that where the layer's depth turns between two stations, as in
+        // a braid's lobes, the fibre turns smoothly rather than from station to station.
+        thread_local std::vector<Vec3> moves;
+        moves.assign(m, Vec3::Zero());
         for (int k = 2; k < m; ++k) {
-          const Vec3 chord = (k + 1 < m ? fibre[k + 1] : fibre[k]) - before;
+          const Vec3 chord = (k + 1 < m ? fibre[k + 1] : fibre[k]) - fibre[k - 1];
           const double norm = chord.norm();
           const Vec3 along = norm > 0.0 ? Vec3(chord / norm) : Vec3::Zero();
-          before = fibre[k];
-          fibre[k] = around.to_layer_depth(fibre[k], along, layer_depths[i], stations[k].w);
+          moves[k] = around.to_layer_depth(fibre[k], along, layer_depths[i], stations[k].w) - fibre[k];
         }
+        smooth_along(moves, 2, kLayerMoveSmoothing);
+        for (int k = 2; k < m; ++k) fibre[k] += moves[k];
       };
     const ChordsLeft left = fibre_kept_out(tracks[pores.guide[i]], pores.positions[i], pores.lengths[i],
                                            extent[pores.guide[i]], stations, out_of_head, root_normal, points,

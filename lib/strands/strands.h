@@ -41,6 +41,13 @@ constexpr double kLayerMargin = 0.1;
 // The layer depth (0 scalp, 1 hull) of the fibre ranked `rank` of `count` (0 the furthest upstream).
 double fibre_layer_depth(int rank, int count);
 
+// Passes of the ¼, ½, ¼ filter that smooth a fibre's moves into its layer depth along it.
+constexpr int kLayerMoveSmoothing = 2;
+
+// `passes` of the ¼, ½, ¼ filter over values[first, n), reading values[first − 1] (first ≥ 1)
+// as it is and the line through the last two values past the end: values along a line stay on it.
+void smooth_along(std::vector<Vec3>& values, int first, int passes);
+
 // sin of the least angle a fibre's first segment rises above its pore's triangle (2°).
 constexpr double kRootRise = 0.0348994967025;
 

@@ -247,3 +247,24 @@ TEST_CASE("in the bowl at the bottom of a bag the fall rests where it reached th
     CHECK(length - first_low <= kFallStall + r.step + 1e-9);
   }
 }
+
+TEST_CASE("over a crown under a thick layer the pull lifts the bead off the skin only where the skin goes on as a shell") {
+  // A skull of radius 8 under a hull of radius 12, the bead pulled to 0.15 of the depth (near the
+  // hull). With a shell past the hairline the layer's depth runs across the hair everywhere, and
+  // the bead rises toward its depth on the way round; with the head's floor past the hairline the
+  // pull never lifts, so over the crown the bead keeps to the skin until its way turns down.
+  FallRegion r;
+  r.skin = sphere(8.0);
+  r.hull = sphere(12.0);
+  r.step = 0.1;
+  auto highest_off_skin = [&](bool floor) {
+    r.floor_past_hairline = floor;
+    const Fall f = fall_from(r, level_rim(0.0), Vec3(0, 8, 0), Vec3(0, 1, 0), 12.0, 0.15, true);
+    double off = 0.0;
+    for (const Vec3& p : f.nodes)
+      if (p.y() > 4.0) off = std::max(off, p.norm() - 8.0);
+    return off;
+  };
+  CHECK(highest_off_skin(false) > 1.5);
+  CHECK(highest_off_skin(true) < 0.5);
+}
