@@ -339,7 +339,7 @@ GrownStrands make_strands(const Curves& guides, const Pores& pores, const Strand
       place = [&](Vec3* fibre, int m) {
         // Each point moves across the fibre as swept, its direction there the chord between its
         // swept neighbours; the moves are then smoothed along the fibre (kLayerMoveSmoothing
-        // passes of ¼, ½, ¼), so that where the layer's depth turns between two stations, as in
+        // pass of ¼, ½, ¼), so that where the layer's depth turns between two stations, as in
         // a braid's lobes, the fibre turns smoothly rather than from station to station.
         thread_local std::vector<Vec3> moves;
         moves.assign(m, Vec3::Zero());
