@@ -187,8 +187,11 @@ Fall fall_from(const FallRegion& region, const RimHeights& rim, const Vec3& root
   const Vec3& down = region.down;
   // A kept step moves the bead at least a quarter step, so the way ends within this many.
   const long steps = static_cast<long>(std::ceil(4.0 * cap / region.step)) + 4;
-  // Where it was lowest: a way that has not gone lower over kFallStall rests there (in the
-  // crease at the bottom of a bag-shaped hull the bead can wander without falling).
+  // Where it last fell: a way that has not gone on down at the least slope, kFallSlope, over
+  // kFallStall rests there. In the bowl at the bottom of a bag-shaped hull the bead, pulled toward
+  // its depth, can wander round for many centimetres while it still finds ever slightly lower
+  // points; the hair ends where it reached the bottom, not at the end of that wander. The crown's
+  // lean, however flat, counts as falling.
   double lowest = p.dot(down), length_at_lowest = 0.0, below_at_lowest = 0.0;
   std::size_t nodes_at_lowest = f.nodes.size();
   for (long k = 0; k < steps && f.length < cap; ++k) {
@@ -199,15 +202,22 @@ Fall fall_from(const FallRegion& region, const RimHeights& rim, const Vec3& root
     }
     const double h = std::min(region.step, cap - f.length);
     const bool leaning = f.length < kCrownLean;
-    const Vec3 w = heading(s, down, region.floor_past_hairline, target);
-    Vec3 q;
+    // It must get on: down by at least half the least slope, or nearer its depth. Where the pull
+    // may not lift the bead (below a head closed by its floor) and the level pull leaves it
+    // resting, the whole pull is tried: a ledge of a braid's lobes is got round, not rested on;
+    // the wander that lifting starts in a bowl ends by the rest rule above.
+    Vec3 w, q;
     Sample t;
-    bool moved = slide_step(region, p, w, h, leaning, q, t);
-    if (moved) {
-      // It must get on: down by at least half the least slope, or nearer its depth.
-      const double miss = std::fabs(depth_miss(s, target)), next_miss = std::fabs(depth_miss(t, target));
-      moved = (q - p).norm() >= 0.25 * h &&
-              (leaning || (q - p).dot(down) >= 0.5 * kFallSlope * h || next_miss < miss - kFallDepthProgress);
+    bool moved = false;
+    for (const bool level : {region.floor_past_hairline, false}) {
+      w = heading(s, down, level, target);
+      moved = slide_step(region, p, w, h, leaning, q, t);
+      if (moved) {
+        const double miss = std::fabs(depth_miss(s, target)), next_miss = std::fabs(depth_miss(t, target));
+        moved = (q - p).norm() >= 0.25 * h &&
+                (leaning || (q - p).dot(down) >= 0.5 * kFallSlope * h || next_miss < miss - kFallDepthProgress);
+      }
+      if (moved || !level) break;
     }
     if (!moved) {
       // Falling off the layer's edge or resting on its floor: where the heading leaves it.
@@ -226,8 +236,8 @@ Fall fall_from(const FallRegion& region, const RimHeights& rim, const Vec3& root
     f.below_rim += length_below(rim, p, q);
     p = q, s = t;
     if (keep_nodes) f.nodes.push_back(p);
-    if (p.dot(down) > lowest) lowest = p.dot(down), length_at_lowest = f.length, below_at_lowest = f.below_rim,
-                              nodes_at_lowest = f.nodes.size();
+    if (leaning || p.dot(down) > lowest + kFallSlope * (f.length - length_at_lowest))
+      lowest = p.dot(down), length_at_lowest = f.length, below_at_lowest = f.below_rim, nodes_at_lowest = f.nodes.size();
   }
   f.length = std::min(f.length, cap);
   f.below_rim = std::min(f.below_rim, f.length);

@@ -9,8 +9,8 @@
 // hair volume, it slides: down loses its part along that surface's normal, as a bead on a
 // frictionless surface, and the step is pulled back to kFallClearance inside the surface. It
 // stops where the slide is flatter than kFallSlope (it rests on a floor: the bottom of a curtain,
-// the end of a braid), where it cannot keep inside, where it has gone no lower over kFallStall
-// (it ends where it was lowest), or at `cap`. At the top of the head down is
+// the end of a braid), where it cannot keep inside, where it has not gone on down at the least
+// slope over kFallStall (it ends where it last did), or at `cap`. At the top of the head down is
 // normal to the skin and the slide vanishes, so within kCrownLean of the root the bead takes the
 // tangent toward down (toward −front where down is normal to the skin) however flat: a hair on the
 // crown leans over before it falls.
