@@ -268,3 +268,56 @@ TEST_CASE("over a crown under a thick layer the pull lifts the bead off the skin
   CHECK(highest_off_skin(false) > 1.5);
   CHECK(highest_off_skin(true) < 0.5);
 }
+
+namespace {
+
+// A capped vertical cylinder about the y axis, negative inside: the largest of the three
+// distances out through its side, its bottom and its top, with that one's gradient. Its bottom
+// rises by `rise` per cm out from the axis (a cone's, 0 for a flat one).
+Field cylinder(double radius, double bottom, double top, double rise = 0.0) {
+  return [=](const Vec3& p, double& value, Vec3& gradient) {
+    const double r = std::hypot(p.x(), p.z());
+    const Vec3 out = r > 0.0 ? Vec3(p.x() / r, 0, p.z() / r) : Vec3(1, 0, 0);
+    value = r - radius, gradient = out;
+    const double norm = std::sqrt(1.0 + rise * rise);
+    const double below = (bottom + rise * r - p.y()) / norm;
+    if (below > value) value = below, gradient = (rise * out - Vec3(0, 1, 0)) / norm;
+    if (p.y() - top > value) value = p.y() - top, gradient = Vec3(0, 1, 0);
+  };
+}
+
+// The smaller of two fields, with the gradient of the one that is smaller: their union.
+Field union_of(Field a, Field b) {
+  return [a, b](const Vec3& p, double& value, Vec3& gradient) {
+    double va, vb;
+    Vec3 ga, gb;
+    a(p, va, ga);
+    b(p, vb, gb);
+    value = va <= vb ? va : vb;
+    gradient = va <= vb ? ga : gb;
+  };
+}
+
+}  // namespace
+
+TEST_CASE("below a head closed by its floor the bead gets round a braid's ledge instead of resting on it") {
+  // Under a cap closed by its floor (y = 0), a tube of radius 3 and a narrower one of radius 1.5
+  // on down to y = −25, the wider one's bottom a ledge that rises 0.3 a cm out from the narrower
+  // one's wall at y = −12: flatter than kHullWallSlope, so a bead sliding on it rests. Hair from
+  // under the floor, 2.5 from the axis, falls to the ledge; the level pull toward its depth alone
+  // leaves it resting there, the whole pull lifts it off, in over the edge and on down the narrower
+  // tube.
+  FallRegion r;
+  r.skin = intersection(sphere(8.0), plane(Vec3(0, -1, 0)));
+  r.hull = union_of(sphere(10.0), union_of(cylinder(3.0, -12.0 - 0.3 * 1.5, 1.0, 0.3), cylinder(1.5, -25.0, -11.0)));
+  r.step = 0.05;
+  const Fall f = fall_from(r, level_rim(0.0), Vec3(2.5, 0, 0), Vec3(0, -1, 0), 100.0, 0.3, true);
+  REQUIRE(!f.nodes.empty());
+  CHECK(f.nodes.back().y() < -20.0);
+  for (const Vec3& p : f.nodes) {
+    double v;
+    Vec3 g;
+    r.hull(p, v, g);
+    CHECK(v <= 0.0);
+  }
+}
