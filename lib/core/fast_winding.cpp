@@ -47,6 +47,18 @@
 // direction of the centre, and the perturbations are within 128 u |a||b||c| (about 90 by a term
 // by term count). The near triangles' terms are the same function of the same numbers in both
 // sums and agree bit for bit.
+//
+// A ball of points (estimate_box): centre c, radius ρ_b, a node at centre m, r₀ = m − c, D₀ = |r₀|.
+// For p in the ball, x − p = r₀ + d′ with d′ = (x − m) − (p − c), |d′| ≤ R + ρ_b, so the first-order
+// expansion in d′ about r₀ gives Ω(p) ≈ Ω_exp(c) − (N/D₀³ − 3 (N·r₀) r₀/D₀⁵)·(p − c): the node's
+// usual expansion at c plus a linear term, one linear function per ball. Both bounds above hold
+// with d′ for d, R + ρ_b for R and D₀ for D ((1): the segment r₀ → r₀ + d′ stays D₀ − R − ρ_b from
+// the origin; (2): the series is in d′, |d′| ≤ R + ρ_b), with ∫|d′|² dA for Q, and
+// ∫|d′|² dA = Q + |p − c|² A − 2 (p − c)·∫(x − m) dA, whose last term vanishes as m is the
+// area-weighted centroid (up to its rounding, which kCentroid allows for).
+// Its magnitude is at most (1 + 4ρ′ + 2ρ′) A/D₀² with ρ′ = (R + ρ_b)/D₀ < 1, under 8 A/(D₀ − R − ρ_b)²
+// in the round-off allowance; at every point of the ball the node is beyond beta × R, so the far
+// triangles' round-off allowance is the same.
 
 namespace hairfit {
 
@@ -300,6 +312,92 @@ WindingEstimate FastWindingNumber::evaluate(const Vec3& p, double beta2) const {
   const double roundoff = kUnitRoundoff * ((2.0 * n + sums.terms + 128.0) * (sums.near_abs + 5.0 * sums.far_abs) +
                                            sums.far_triangles * far_roundoff_);
   return {sums.solid_angle / (4.0 * M_PI), (sums.truncation + roundoff) / (4.0 * M_PI)};
+}
+
+void FastWindingNumber::estimate_box(const std::vector<Vec3>& points, double beta, std::vector<WindingEstimate>& out) const {
+  out.resize(points.size());
+  if (points.empty()) return;
+  // The ball: the centre of the points' box, the farthest point's distance (enlarged by a few ulps).
+  Vec3 lo = points[0], hi = points[0];
+  for (const Vec3& p : points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  const Vec3 centre = 0.5 * (lo + hi);
+  double radius2 = 0.0;
+  for (const Vec3& p : points) radius2 = std::max(radius2, (p - centre).squaredNorm());
+  const double radius = std::sqrt(radius2) * (1.0 + 8.0 * kUnitRoundoff);
+  // Relative rounding of a node's centroid, against the exact area-weighted centroid (sums of a
+  // few thousand terms at most, far below this).
+  constexpr double kCentroid = 1e-10;
+  const double beta2 = beta * beta;
+  // The ball's linear part: value a0 + grad·(p − c), its remainder bound, and what the round-off
+  // allowance needs.
+  double a0 = 0.0, truncation = 0.0, far_abs = 0.0, terms = 0.0, far_triangles = 0.0;
+  Vec3 grad = Vec3::Zero();
+  std::vector<int> near;  // triangles visited at each point
+  auto linear = [&](const Vec3& r0, double d2, const Vec3& normal, double numerator, const Extent& e, int count) {
+    const double d = std::sqrt(d2), inv_d3 = 1.0 / (d2 * d), inv_d2 = inv_d3 * d;
+    a0 += numerator * inv_d3;
+    grad -= (normal - (3.0 * normal.dot(r0) * inv_d2) * r0) * inv_d3;
+    const double gap = std::max(d - e.radius - radius, 0.0), inv_gap = 1.0 / gap;
+    const double q = e.second + radius * radius * e.area + 2.0 * radius * e.area * kCentroid * (r0.norm() + centre.norm() + e.radius);
+    truncation += q * (inv_d2 * inv_d2) * remainder_factor((e.radius + radius) / d, d * inv_gap);
+    far_abs += e.area * (inv_gap * inv_gap);
+    terms += 2.0;
+    far_triangles += count;
+  };
+  int stack[kStackSize];
+  int top = 0;
+  int i = 0;
+  while (!nodes_.empty()) {
+    const Node& node = nodes_[i];
+    const Vec3 r0 = node.ball.centre - centre;
+    const double d2 = r0.squaredNorm(), reach = std::sqrt(node.ball.radius2) + radius;
+    if (d2 > beta2 * reach * reach) {
+      const Terms& t = node_terms_[i];
+      const Mat3& m = t.moment;
+      const double rmr = r0.dot(m * r0);
+      linear(r0, d2, t.normal, t.normal.dot(r0) + (t.trace - 3.0 * rmr / d2), node_extents_[i], node.count);
+    } else if (node.right < 0) {
+      for (int k = node.first; k < node.first + node.count; ++k) {
+        const Triangle& t = triangles_[k];
+        const Vec3 rt = t.ball.centre - centre;
+        const double dt2 = rt.squaredNorm(), reach_t = triangle_extents_[k].radius + radius;
+        if (dt2 > beta2 * reach_t * reach_t) {
+          linear(rt, dt2, t.vector_area, t.vector_area.dot(rt), triangle_extents_[k], 1);
+        } else {
+          near.push_back(k);
+        }
+      }
+    } else {
+      stack[top++] = node.right;
+      ++i;
+      continue;
+    }
+    if (top == 0) break;
+    i = stack[--top];
+  }
+  const double n = static_cast<double>(triangles_.size());
+  for (std::size_t q = 0; q < points.size(); ++q) {
+    const Vec3& p = points[q];
+    Sums<true> sums;
+    for (int k : near) {
+      const Triangle& t = triangles_[k];
+      const Vec3 rt = t.ball.centre - p;
+      const double dt2 = rt.squaredNorm();
+      if (dt2 > beta2 * t.ball.radius2) {
+        const double dt = std::sqrt(dt2);
+        sums.add_expansion(t.vector_area.dot(rt), 1.0 / (dt2 * dt), dt, triangle_extents_[k], 1);
+      } else {
+        const Corners& c = corners_[k];
+        sums.add_direct(triangle_solid_angle(c.a - p, c.b - p, c.c - p));
+      }
+    }
+    const double value = a0 + grad.dot(p - centre) + sums.solid_angle;
+    const double all_terms = sums.terms + terms;
+    const double roundoff =
+        kUnitRoundoff * ((2.0 * n + all_terms + 128.0) * (sums.near_abs + 5.0 * sums.far_abs + 8.0 * far_abs) +
+                         (sums.far_triangles + far_triangles) * far_roundoff_);
+    out[q] = {value / (4.0 * M_PI), (sums.truncation + truncation + roundoff) / (4.0 * M_PI)};
+  }
 }
 
 double FastWindingNumber::operator()(const Vec3& p) const {

@@ -48,6 +48,16 @@ class FastWindingNumber {
   static constexpr double kFirstCertifiedBeta = 3.0;
   static constexpr int kCertifiedPasses = 3;
 
+  // Estimates at many points with one traversal: `out[q]` estimates the direct sum at points[q],
+  // with a rigorous bound on its error. The points span a ball (the centre of their bounding box,
+  // the farthest one's distance); a node farther than beta·(its radius + the ball's) from the
+  // centre counts through its expansion about the centre taken to first order in the point's
+  // offset (one linear function for all points, its Taylor remainder bounded over the ball); the
+  // other triangles are visited at each point as estimate() visits them (their expansion beyond
+  // beta × their radius, their solid angle within). Values differ from estimate(p, beta)'s in the
+  // last bits; the bound is looser the larger the ball.
+  void estimate_box(const std::vector<Vec3>& points, double beta, std::vector<WindingEstimate>& out) const;
+
   std::size_t size() const { return size_; }  // triangles of the mesh, zero-area ones included
   double beta() const { return beta_; }
 

@@ -56,12 +56,9 @@ SignCheck check(const Mesh& mesh, const Mesh& inside_mesh, const DistanceField& 
   return c;
 }
 
-// The mesh's own inside, decided as the direct sum decides it wherever an estimate does not.
-RobustInside exact_inside(const Mesh& mesh, const FastWindingNumber& winding) {
-  return {{{{{&mesh, 1}},
-            [&winding](const Vec3& p) { return winding.estimate(p, 4.0); },
-            [&winding](const Vec3& p) { return winding.above(p, 0.5); }}}};
-}
+// The mesh's own inside, decided as the direct sum decides it wherever an estimate does not
+// (estimates of boxes of nodes included).
+RobustInside exact_inside(const Mesh& mesh, const FastWindingNumber& winding) { return {{winding_soup(mesh, winding)}}; }
 
 SignCheck check_robust(const Mesh& mesh, double voxel, double band, int stride) {
   const FastWindingNumber winding(mesh);
