@@ -263,6 +263,19 @@ TEST_CASE("robust sign: two cubes sharing an edge, every node as the direct wind
   CHECK(c.far_wrong == 0);
 }
 
+TEST_CASE("robust sign: closed parts without rims (a cavity, a doubled part), every node as the direct winding number says") {
+  // No rims: far samples take w from one estimate and the jumps, row by row. w is 0 in the
+  // cavity (a sphere turned inward), 1 in the shell, 2 inside the doubled sphere.
+  Mesh cavity = test::icosphere(3, 0.45, Vec3(0.05, 0.02, -0.03));
+  for (Vec3i& t : cavity.triangles) std::swap(t[1], t[2]);
+  const Mesh doubled = test::icosphere(2, 0.35, Vec3(1.3, 0.1, 0.2));
+  const Mesh m = join({test::icosphere(3, 1.0), cavity, doubled, doubled});
+  const ExactCheck c = exact_check(m, 0.071, 2);
+  CHECK(c.far > 5000);
+  CHECK(c.band_wrong == 0);
+  CHECK(c.far_wrong == 0);
+}
+
 TEST_CASE("robust sign: a crumpled soup's nodes right next to its surface (within the lattice's snapping)") {
   // Trial 34 of the sweep below: three crumpled spheres at voxel 0.0905 and band 3, where a node
   // 1e-6 voxel from the surface took the sign its reference and the snapped soup's jumps gave it.
