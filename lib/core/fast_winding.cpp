@@ -375,28 +375,33 @@ void FastWindingNumber::estimate_box(const std::vector<Vec3>& points, double bet
     if (top == 0) break;
     i = stack[--top];
   }
-  const double n = static_cast<double>(triangles_.size());
-  for (std::size_t q = 0; q < points.size(); ++q) {
-    const Vec3& p = points[q];
-    Sums<true> sums;
-    for (int k : near) {
-      const Triangle& t = triangles_[k];
+  // The near triangles one at a time over every point (each triangle's data read once).
+  std::vector<Sums<true>> sums(points.size());
+  for (int k : near) {
+    const Triangle& t = triangles_[k];
+    const Extent& e = triangle_extents_[k];
+    const Corners& c = corners_[k];
+    for (std::size_t q = 0; q < points.size(); ++q) {
+      const Vec3& p = points[q];
       const Vec3 rt = t.ball.centre - p;
       const double dt2 = rt.squaredNorm();
       if (dt2 > beta2 * t.ball.radius2) {
         const double dt = std::sqrt(dt2);
-        sums.add_expansion(t.vector_area.dot(rt), 1.0 / (dt2 * dt), dt, triangle_extents_[k], 1);
+        sums[q].add_expansion(t.vector_area.dot(rt), 1.0 / (dt2 * dt), dt, e, 1);
       } else {
-        const Corners& c = corners_[k];
-        sums.add_direct(triangle_solid_angle(c.a - p, c.b - p, c.c - p));
+        sums[q].add_direct(triangle_solid_angle(c.a - p, c.b - p, c.c - p));
       }
     }
-    const double value = a0 + grad.dot(p - centre) + sums.solid_angle;
-    const double all_terms = sums.terms + terms;
+  }
+  const double n = static_cast<double>(triangles_.size());
+  for (std::size_t q = 0; q < points.size(); ++q) {
+    const Sums<true>& sq = sums[q];
+    const double value = a0 + grad.dot(points[q] - centre) + sq.solid_angle;
+    const double all_terms = sq.terms + terms;
     const double roundoff =
-        kUnitRoundoff * ((2.0 * n + all_terms + 128.0) * (sums.near_abs + 5.0 * sums.far_abs + 8.0 * far_abs) +
-                         (sums.far_triangles + far_triangles) * far_roundoff_);
-    out[q] = {value / (4.0 * M_PI), (sums.truncation + truncation + roundoff) / (4.0 * M_PI)};
+        kUnitRoundoff * ((2.0 * n + all_terms + 128.0) * (sq.near_abs + 5.0 * sq.far_abs + 8.0 * far_abs) +
+                         (sq.far_triangles + far_triangles) * far_roundoff_);
+    out[q] = {value / (4.0 * M_PI), (sq.truncation + truncation + roundoff) / (4.0 * M_PI)};
   }
 }
 
