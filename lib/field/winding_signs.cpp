@@ -56,13 +56,14 @@ void GridWindingSigns::decide_box(const Box& box, std::vector<int>& which, const
   };
   const Vec3i extent = box.hi - box.lo;
   if (int(which.size()) <= kAsk || extent.maxCoeff() <= 1) return ask_each();
+  // A box small enough for one estimate of the box takes it (a reference would serve it only
+  // where no rim is near, and its nodes undecided would need their own estimates).
+  if (soup_.estimate_box && extent.maxCoeff() <= kEstimatedBox) return ask_each();
   const double h = grid_.voxel;
   // How fast w may change in the box, and whether a reference could decide anything.
   const double reach = h * double((extent - Vec3i::Ones()).sum());  // the longest path in the box
   const double g = rims_.gradient(grid_.node(box.lo.x(), box.lo.y(), box.lo.z()),
                                   grid_.node(box.hi.x() - 1, box.hi.y() - 1, box.hi.z() - 1), kReach / reach);
-  // A box no reference can serve, small enough for one estimate of the box.
-  if (!(g * reach < kReach) && soup_.estimate_box && extent.maxCoeff() <= kEstimatedBox) return ask_each();
   std::vector<int> undecided;
   if (g * reach < kReach) {
     int ref = which[0];

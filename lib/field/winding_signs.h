@@ -53,7 +53,7 @@ class GridWindingSigns {
   // A box's estimates take β = kBoxBeta, then twice that for the nodes they leave undecided, and
   // so on for kBoxPasses in all.
   static constexpr double kBoxBeta = 2.0;
-  static constexpr int kBoxPasses = 2;
+  static constexpr int kBoxPasses = 4;
 
   const GridCrossings& crossings() const { return crossings_; }
   const RimBound& rims() const { return rims_; }
