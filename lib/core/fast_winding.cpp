@@ -262,6 +262,14 @@ void FastWindingNumber::build_subtree(const std::vector<Summary>& all, std::vect
   build_subtree(all, order, mid, hi, nodes_[index].right);
 }
 
+double FastWindingNumber::numerator(const Terms& t, const Vec3& r, double inv_d2) {
+  const Mat3& m = t.moment;
+  const double rmr = r[0] * (m(0, 0) * r[0] + m(0, 1) * r[1] + m(0, 2) * r[2]) +
+                     r[1] * (m(1, 0) * r[0] + m(1, 1) * r[1] + m(1, 2) * r[2]) +
+                     r[2] * (m(2, 0) * r[0] + m(2, 1) * r[1] + m(2, 2) * r[2]);
+  return t.normal.dot(r) + (t.trace - 3.0 * rmr * inv_d2);
+}
+
 template <bool kBound>
 FastWindingNumber::Sums<kBound> FastWindingNumber::traverse(const Vec3& p, double beta2) const {
   Sums<kBound> sums;  // a local (the result is a copy), so that it lives in registers
@@ -273,14 +281,8 @@ FastWindingNumber::Sums<kBound> FastWindingNumber::traverse(const Vec3& p, doubl
     const Vec3 r = node.ball.centre - p;
     const double d2 = r.squaredNorm();
     if (d2 > beta2 * node.ball.radius2) {
-      const Terms& t = node_terms_[i];
       const double d = std::sqrt(d2), inv_d3 = 1.0 / (d2 * d), inv_d2 = inv_d3 * d;
-      const Mat3& m = t.moment;
-      const double rmr = r[0] * (m(0, 0) * r[0] + m(0, 1) * r[1] + m(0, 2) * r[2]) +
-                         r[1] * (m(1, 0) * r[0] + m(1, 1) * r[1] + m(1, 2) * r[2]) +
-                         r[2] * (m(2, 0) * r[0] + m(2, 1) * r[1] + m(2, 2) * r[2]);
-      const double numerator = t.normal.dot(r) + (t.trace - 3.0 * rmr * inv_d2);
-      sums.add_expansion(numerator, inv_d3, d, node_extents_[i], node.count);
+      sums.add_expansion(numerator(node_terms_[i], r, inv_d2), inv_d3, d, node_extents_[i], node.count);
     } else if (node.right < 0) {
       for (int k = node.first; k < node.first + node.count; ++k) {
         const Triangle& t = triangles_[k];
@@ -314,27 +316,35 @@ WindingEstimate FastWindingNumber::evaluate(const Vec3& p, double beta2) const {
   return {sums.solid_angle / (4.0 * M_PI), (sums.truncation + roundoff) / (4.0 * M_PI)};
 }
 
-void FastWindingNumber::estimate_box(const std::vector<Vec3>& points, double beta, std::vector<WindingEstimate>& out) const {
-  out.resize(points.size());
-  if (points.empty()) return;
-  // The ball: the centre of the points' box, the farthest point's distance (enlarged by a few ulps).
-  Vec3 lo = points[0], hi = points[0];
-  for (const Vec3& p : points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-  const Vec3 centre = 0.5 * (lo + hi);
-  double radius2 = 0.0;
-  for (const Vec3& p : points) radius2 = std::max(radius2, (p - centre).squaredNorm());
-  const double radius = std::sqrt(radius2) * (1.0 + 8.0 * kUnitRoundoff);
-  // Relative rounding of a node's centroid, against the exact area-weighted centroid (sums of a
-  // few thousand terms at most, far below this).
-  constexpr double kCentroid = 1e-10;
-  const double beta2 = beta * beta;
-  // The ball's linear part: value a0 + grad·(p − c), its remainder bound, and what the round-off
-  // allowance needs.
+// A ball's linear part (the expansions of the nodes far from the whole ball, about its centre):
+// value a0 + grad·(p − centre), its remainder bound over the ball, and what the round-off
+// allowance needs.
+struct FastWindingNumber::Linear {
+  Vec3 centre = Vec3::Zero();
+  double radius = 0.0;
   double a0 = 0.0, truncation = 0.0, far_abs = 0.0, terms = 0.0, far_triangles = 0.0;
   Vec3 grad = Vec3::Zero();
-  std::vector<int> near;  // triangles visited at each point
-  auto linear = [&](const Vec3& r0, double d2, const Vec3& normal, double numerator, const Extent& e, int count) {
-    const double d = std::sqrt(d2), inv_d3 = 1.0 / (d2 * d), inv_d2 = inv_d3 * d;
+
+  // The ball about the centre of the box of points[which], holding them all.
+  Linear(const std::vector<Vec3>& points, const std::vector<int>& which) {
+    Vec3 lo = points[which[0]], hi = lo;
+    for (int q : which) lo = lo.cwiseMin(points[q]), hi = hi.cwiseMax(points[q]);
+    centre = 0.5 * (lo + hi);
+    double radius2 = 0.0;
+    for (int q : which) radius2 = std::max(radius2, (points[q] - centre).squaredNorm());
+    radius = std::sqrt(radius2) * (1.0 + 8.0 * kUnitRoundoff);  // enlarged by a few ulps
+  }
+  // Whether a ball (centre m, radius R) lies beyond beta·(R + radius) from the centre.
+  bool far(const Vec3& m, double ball_radius, double beta2) const {
+    const double reach = ball_radius + radius;
+    return (m - centre).squaredNorm() > beta2 * reach * reach;
+  }
+  // One node's (or triangle's) expansion, seen from the centre: r0 = its centre − this centre.
+  void add(const Vec3& r0, const Vec3& normal, double numerator, const Extent& e, int count) {
+    // Relative rounding of a node's centroid, against the exact area-weighted centroid (sums of
+    // a few thousand terms at most, far below this).
+    constexpr double kCentroid = 1e-10;
+    const double d2 = r0.squaredNorm(), d = std::sqrt(d2), inv_d3 = 1.0 / (d2 * d), inv_d2 = inv_d3 * d;
     a0 += numerator * inv_d3;
     grad -= (normal - (3.0 * normal.dot(r0) * inv_d2) * r0) * inv_d3;
     const double gap = std::max(d - e.radius - radius, 0.0), inv_gap = 1.0 / gap;
@@ -343,30 +353,28 @@ void FastWindingNumber::estimate_box(const std::vector<Vec3>& points, double bet
     far_abs += e.area * (inv_gap * inv_gap);
     terms += 2.0;
     far_triangles += count;
-  };
+  }
+  double value(const Vec3& p) const { return a0 + grad.dot(p - centre); }
+};
+
+void FastWindingNumber::estimate_box(const std::vector<Vec3>& points, double beta, std::vector<WindingEstimate>& out) const {
+  out.resize(points.size());
+  if (points.empty()) return;
+  std::vector<int> which(points.size());
+  for (std::size_t q = 0; q < points.size(); ++q) which[q] = int(q);
+  Linear ball(points, which);
+  const double beta2 = beta * beta;
+  std::vector<int> near;  // triangles not far from the whole ball
   int stack[kStackSize];
   int top = 0;
   int i = 0;
   while (!nodes_.empty()) {
     const Node& node = nodes_[i];
-    const Vec3 r0 = node.ball.centre - centre;
-    const double d2 = r0.squaredNorm(), reach = std::sqrt(node.ball.radius2) + radius;
-    if (d2 > beta2 * reach * reach) {
-      const Terms& t = node_terms_[i];
-      const Mat3& m = t.moment;
-      const double rmr = r0.dot(m * r0);
-      linear(r0, d2, t.normal, t.normal.dot(r0) + (t.trace - 3.0 * rmr / d2), node_extents_[i], node.count);
+    if (ball.far(node.ball.centre, std::sqrt(node.ball.radius2), beta2)) {
+      const Vec3 r0 = node.ball.centre - ball.centre;
+      ball.add(r0, node_terms_[i].normal, numerator(node_terms_[i], r0, 1.0 / r0.squaredNorm()), node_extents_[i], node.count);
     } else if (node.right < 0) {
-      for (int k = node.first; k < node.first + node.count; ++k) {
-        const Triangle& t = triangles_[k];
-        const Vec3 rt = t.ball.centre - centre;
-        const double dt2 = rt.squaredNorm(), reach_t = triangle_extents_[k].radius + radius;
-        if (dt2 > beta2 * reach_t * reach_t) {
-          linear(rt, dt2, t.vector_area, t.vector_area.dot(rt), triangle_extents_[k], 1);
-        } else {
-          near.push_back(k);
-        }
-      }
+      for (int k = node.first; k < node.first + node.count; ++k) near.push_back(k);
     } else {
       stack[top++] = node.right;
       ++i;
@@ -375,14 +383,50 @@ void FastWindingNumber::estimate_box(const std::vector<Vec3>& points, double bet
     if (top == 0) break;
     i = stack[--top];
   }
-  // The near triangles one at a time over every point (each triangle's data read once).
-  std::vector<Sums<true>> sums(points.size());
+  std::vector<const Linear*> chain;
+  refine_box(points, which, near, beta, ball, chain, out);
+}
+
+void FastWindingNumber::refine_box(const std::vector<Vec3>& points, const std::vector<int>& which, const std::vector<int>& near,
+                                   double beta, Linear& ball, std::vector<const Linear*>& chain,
+                                   std::vector<WindingEstimate>& out) const {
+  constexpr std::size_t kFewPoints = 8;  // a ball of this many points or fewer is not split
+  const double beta2 = beta * beta;
+  // The triangles far from this ball join its linear part; the rest stay near.
+  std::vector<int> still;
   for (int k : near) {
+    const Triangle& t = triangles_[k];
+    if (ball.far(t.ball.centre, triangle_extents_[k].radius, beta2)) {
+      const Vec3 rt = t.ball.centre - ball.centre;
+      ball.add(rt, t.vector_area, t.vector_area.dot(rt), triangle_extents_[k], 1);
+    } else {
+      still.push_back(k);
+    }
+  }
+  chain.push_back(&ball);
+  if (which.size() > kFewPoints && !still.empty()) {
+    // The ball's eighths about its centre, each with its own linear part.
+    std::vector<int> part[8];
+    for (int q : which) {
+      const Vec3& p = points[q];
+      part[(p.x() >= ball.centre.x()) + 2 * (p.y() >= ball.centre.y()) + 4 * (p.z() >= ball.centre.z())].push_back(q);
+    }
+    for (const std::vector<int>& eighth : part) {
+      if (eighth.empty()) continue;
+      Linear sub(points, eighth);
+      refine_box(points, eighth, still, beta, sub, chain, out);
+    }
+    chain.pop_back();
+    return;
+  }
+  // The near triangles one at a time over every point (each triangle's data read once).
+  std::vector<Sums<true>> sums(which.size());
+  for (int k : still) {
     const Triangle& t = triangles_[k];
     const Extent& e = triangle_extents_[k];
     const Corners& c = corners_[k];
-    for (std::size_t q = 0; q < points.size(); ++q) {
-      const Vec3& p = points[q];
+    for (std::size_t q = 0; q < which.size(); ++q) {
+      const Vec3& p = points[which[q]];
       const Vec3 rt = t.ball.centre - p;
       const double dt2 = rt.squaredNorm();
       if (dt2 > beta2 * t.ball.radius2) {
@@ -393,16 +437,21 @@ void FastWindingNumber::estimate_box(const std::vector<Vec3>& points, double bet
       }
     }
   }
+  double truncation = 0.0, far_abs = 0.0, terms = 0.0, far_triangles = 0.0;
+  for (const Linear* l : chain)
+    truncation += l->truncation, far_abs += l->far_abs, terms += l->terms, far_triangles += l->far_triangles;
   const double n = static_cast<double>(triangles_.size());
-  for (std::size_t q = 0; q < points.size(); ++q) {
+  for (std::size_t q = 0; q < which.size(); ++q) {
     const Sums<true>& sq = sums[q];
-    const double value = a0 + grad.dot(points[q] - centre) + sq.solid_angle;
-    const double all_terms = sq.terms + terms;
+    const Vec3& p = points[which[q]];
+    double value = sq.solid_angle;
+    for (const Linear* l : chain) value += l->value(p);
     const double roundoff =
-        kUnitRoundoff * ((2.0 * n + all_terms + 128.0) * (sq.near_abs + 5.0 * sq.far_abs + 8.0 * far_abs) +
+        kUnitRoundoff * ((2.0 * n + sq.terms + terms + 128.0) * (sq.near_abs + 5.0 * sq.far_abs + 8.0 * far_abs) +
                          (sq.far_triangles + far_triangles) * far_roundoff_);
-    out[q] = {value / (4.0 * M_PI), (sq.truncation + truncation + roundoff) / (4.0 * M_PI)};
+    out[which[q]] = {value / (4.0 * M_PI), (sq.truncation + truncation + roundoff) / (4.0 * M_PI)};
   }
+  chain.pop_back();
 }
 
 double FastWindingNumber::operator()(const Vec3& p) const {

@@ -94,6 +94,8 @@ class FastWindingNumber {
   struct Corners {
     Vec3 a, b, c;
   };
+  // A node's expansion times |r|³, seen from r = centre − p (inv_d2 = 1/|r|²).
+  static double numerator(const Terms& t, const Vec3& r, double inv_d2);
   template <bool kBound>
   struct Sums;
   template <bool kBound>
@@ -108,6 +110,12 @@ class FastWindingNumber {
   void build_subtree(const std::vector<Summary>& all, std::vector<int>& order, int lo, int hi, int index);
   // Nodes in the subtree over n triangles (median splits to kLeafSize).
   static int subtree_size(int n);
+  struct Linear;  // a ball of points' linear part (estimate_box)
+  // estimate_box below its traversal: the ball's triangles `near` that are far from the ball join
+  // its linear part; the ball is split in eighths while it holds many points and near triangles
+  // remain; otherwise every point sums the near ones and the linear parts of `chain` and `ball`.
+  void refine_box(const std::vector<Vec3>& points, const std::vector<int>& which, const std::vector<int>& near,
+                  double beta, Linear& ball, std::vector<const Linear*>& chain, std::vector<WindingEstimate>& out) const;
   // The estimate with beta² = beta2 (above() tightens it when undecided).
   WindingEstimate evaluate(const Vec3& p, double beta2) const;
 
