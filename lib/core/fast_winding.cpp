@@ -270,40 +270,55 @@ double FastWindingNumber::numerator(const Terms& t, const Vec3& r, double inv_d2
   return t.normal.dot(r) + (t.trace - 3.0 * rmr * inv_d2);
 }
 
-template <bool kBound>
-FastWindingNumber::Sums<kBound> FastWindingNumber::traverse(const Vec3& p, double beta2) const {
-  Sums<kBound> sums;  // a local (the result is a copy), so that it lives in registers
+// Visits the tree depth-first from the root: visit(i) handles node i and returns whether to go on
+// to its children (an inner node's).
+template <class Visit>
+void FastWindingNumber::walk(Visit&& visit) const {
   int stack[kStackSize];
   int top = 0;
   int i = 0;
   while (!nodes_.empty()) {
-    const Node& node = nodes_[i];
-    const Vec3 r = node.ball.centre - p;
-    const double d2 = r.squaredNorm();
-    if (d2 > beta2 * node.ball.radius2) {
-      const double d = std::sqrt(d2), inv_d3 = 1.0 / (d2 * d), inv_d2 = inv_d3 * d;
-      sums.add_expansion(numerator(node_terms_[i], r, inv_d2), inv_d3, d, node_extents_[i], node.count);
-    } else if (node.right < 0) {
-      for (int k = node.first; k < node.first + node.count; ++k) {
-        const Triangle& t = triangles_[k];
-        const Vec3 rt = t.ball.centre - p;
-        const double dt2 = rt.squaredNorm();
-        if (dt2 > beta2 * t.ball.radius2) {
-          const double dt = std::sqrt(dt2);
-          sums.add_expansion(t.vector_area.dot(rt), 1.0 / (dt2 * dt), dt, triangle_extents_[k], 1);
-        } else {
-          const Corners& c = corners_[k];
-          sums.add_direct(triangle_solid_angle(c.a - p, c.b - p, c.c - p));
-        }
-      }
-    } else {
-      stack[top++] = node.right;
+    if (visit(i) && nodes_[i].right >= 0) {
+      stack[top++] = nodes_[i].right;
       ++i;
       continue;
     }
     if (top == 0) break;
     i = stack[--top];
   }
+}
+
+// Triangle k seen from p: its expansion beyond beta × its radius, its solid angle within.
+template <bool kBound>
+void FastWindingNumber::add_triangle(Sums<kBound>& sums, int k, const Vec3& p, double beta2) const {
+  const Triangle& t = triangles_[k];
+  const Vec3 rt = t.ball.centre - p;
+  const double dt2 = rt.squaredNorm();
+  if (dt2 > beta2 * t.ball.radius2) {
+    const double dt = std::sqrt(dt2);
+    sums.add_expansion(t.vector_area.dot(rt), 1.0 / (dt2 * dt), dt, triangle_extents_[k], 1);
+  } else {
+    const Corners& c = corners_[k];
+    sums.add_direct(triangle_solid_angle(c.a - p, c.b - p, c.c - p));
+  }
+}
+
+template <bool kBound>
+FastWindingNumber::Sums<kBound> FastWindingNumber::traverse(const Vec3& p, double beta2) const {
+  Sums<kBound> sums;  // a local (the result is a copy), so that it lives in registers
+  walk([&](int i) {
+    const Node& node = nodes_[i];
+    const Vec3 r = node.ball.centre - p;
+    const double d2 = r.squaredNorm();
+    if (d2 > beta2 * node.ball.radius2) {
+      const double d = std::sqrt(d2), inv_d3 = 1.0 / (d2 * d), inv_d2 = inv_d3 * d;
+      sums.add_expansion(numerator(node_terms_[i], r, inv_d2), inv_d3, d, node_extents_[i], node.count);
+      return false;
+    }
+    if (node.right < 0)
+      for (int k = node.first; k < node.first + node.count; ++k) add_triangle(sums, k, p, beta2);
+    return true;
+  });
   const Sums<kBound> result = sums;
   return result;
 }
@@ -365,24 +380,17 @@ void FastWindingNumber::estimate_box(const std::vector<Vec3>& points, double bet
   Linear ball(points, which);
   const double beta2 = beta * beta;
   std::vector<int> near;  // triangles not far from the whole ball
-  int stack[kStackSize];
-  int top = 0;
-  int i = 0;
-  while (!nodes_.empty()) {
+  walk([&](int i) {
     const Node& node = nodes_[i];
     if (ball.far(node.ball.centre, std::sqrt(node.ball.radius2), beta2)) {
       const Vec3 r0 = node.ball.centre - ball.centre;
       ball.add(r0, node_terms_[i].normal, numerator(node_terms_[i], r0, 1.0 / r0.squaredNorm()), node_extents_[i], node.count);
-    } else if (node.right < 0) {
-      for (int k = node.first; k < node.first + node.count; ++k) near.push_back(k);
-    } else {
-      stack[top++] = node.right;
-      ++i;
-      continue;
+      return false;
     }
-    if (top == 0) break;
-    i = stack[--top];
-  }
+    if (node.right < 0)
+      for (int k = node.first; k < node.first + node.count; ++k) near.push_back(k);
+    return true;
+  });
   std::vector<const Linear*> chain;
   refine_box(points, which, near, beta, ball, chain, out);
 }
@@ -421,22 +429,8 @@ void FastWindingNumber::refine_box(const std::vector<Vec3>& points, const std::v
   }
   // The near triangles one at a time over every point (each triangle's data read once).
   std::vector<Sums<true>> sums(which.size());
-  for (int k : still) {
-    const Triangle& t = triangles_[k];
-    const Extent& e = triangle_extents_[k];
-    const Corners& c = corners_[k];
-    for (std::size_t q = 0; q < which.size(); ++q) {
-      const Vec3& p = points[which[q]];
-      const Vec3 rt = t.ball.centre - p;
-      const double dt2 = rt.squaredNorm();
-      if (dt2 > beta2 * t.ball.radius2) {
-        const double dt = std::sqrt(dt2);
-        sums[q].add_expansion(t.vector_area.dot(rt), 1.0 / (dt2 * dt), dt, e, 1);
-      } else {
-        sums[q].add_direct(triangle_solid_angle(c.a - p, c.b - p, c.c - p));
-      }
-    }
-  }
+  for (int k : still)
+    for (std::size_t q = 0; q < which.size(); ++q) add_triangle(sums[q], k, points[which[q]], beta2);
   double truncation = 0.0, far_abs = 0.0, terms = 0.0, far_triangles = 0.0;
   for (const Linear* l : chain)
     truncation += l->truncation, far_abs += l->far_abs, terms += l->terms, far_triangles += l->far_triangles;

@@ -98,6 +98,10 @@ class FastWindingNumber {
   static double numerator(const Terms& t, const Vec3& r, double inv_d2);
   template <bool kBound>
   struct Sums;
+  template <class Visit>
+  void walk(Visit&& visit) const;
+  template <bool kBound>
+  void add_triangle(Sums<kBound>& sums, int k, const Vec3& p, double beta2) const;
   template <bool kBound>
   Sums<kBound> traverse(const Vec3& p, double beta2) const;
 

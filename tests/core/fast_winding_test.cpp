@@ -116,6 +116,25 @@ double longest_side(const Mesh& m) {
 
 bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
+// `count` random triangles in a row along x (a single leaf for up to 8), the mean of their
+// vertices and the farthest vertex's distance from it.
+struct Cluster {
+  Mesh mesh;
+  Vec3 centre = Vec3::Zero();
+  double radius = 0;
+};
+Cluster random_cluster(Random& r, int count) {
+  Cluster c;
+  for (int t = 0; t < count; ++t) {
+    const Vec3 offset(0.3 * t, 0, 0);
+    for (int v = 0; v < 3; ++v) c.mesh.positions.push_back(offset + Vec3(r.normal(), r.normal(), r.normal()) / count);
+    c.mesh.triangles.push_back({3 * t, 3 * t + 1, 3 * t + 2});
+  }
+  for (const Vec3& v : c.mesh.positions) c.centre += v / static_cast<double>(c.mesh.positions.size());
+  for (const Vec3& v : c.mesh.positions) c.radius = std::max(c.radius, (v - c.centre).norm());
+  return c;
+}
+
 }  // namespace
 
 TEST_CASE("closed meshes: 1 inside, 0 outside, -1 inside an inward copy; above(p, 0.5) exact") {
@@ -322,18 +341,10 @@ TEST_CASE("the bound holds where it is tightest, within a factor of a few of the
     double worst = 0;
     int violations = 0;
     for (int k = 0; k < 4000; ++k) {
-      Mesh m;
-      const int count = k % 2 ? 1 : 8;
-      for (int t = 0; t < count; ++t) {
-        const Vec3 offset(0.3 * t, 0, 0);
-        for (int v = 0; v < 3; ++v) m.positions.push_back(offset + Vec3(r.normal(), r.normal(), r.normal()) / count);
-        m.triangles.push_back({3 * t, 3 * t + 1, 3 * t + 2});
-      }
-      const FastWindingNumber fast(m, beta);
-      Vec3 centre = Vec3::Zero();
-      for (const Vec3& v : m.positions) centre += v / static_cast<double>(m.positions.size());
-      double radius = 0;
-      for (const Vec3& v : m.positions) radius = std::max(radius, (v - centre).norm());
+      const Cluster cluster = random_cluster(r, k % 2 ? 1 : 8);
+      const FastWindingNumber fast(cluster.mesh, beta);
+      const Vec3& centre = cluster.centre;
+      const double radius = cluster.radius;
       const Vec3 direction = Vec3(r.normal(), r.normal(), r.normal()).normalized();
       for (double s : {1.5, 1.6, 2.0, 3.0, 6.0}) {
         const Vec3 p = centre + s * beta * radius * direction;
@@ -426,17 +437,10 @@ TEST_CASE("estimate_box: a box's linear expansion where its bound is tightest, a
     double worst = 0;
     int violations = 0;
     for (int k = 0; k < 1000; ++k) {
-      Mesh m;
-      for (int t = 0; t < 8; ++t) {
-        const Vec3 offset(0.3 * t, 0, 0);
-        for (int v = 0; v < 3; ++v) m.positions.push_back(offset + Vec3(r.normal(), r.normal(), r.normal()) / 8.0);
-        m.triangles.push_back({3 * t, 3 * t + 1, 3 * t + 2});
-      }
-      const FastWindingNumber fast(m, beta);
-      Vec3 centre = Vec3::Zero();
-      for (const Vec3& v : m.positions) centre += v / static_cast<double>(m.positions.size());
-      double radius = 0;
-      for (const Vec3& v : m.positions) radius = std::max(radius, (v - centre).norm());
+      const Cluster cluster = random_cluster(r, 8);
+      const FastWindingNumber fast(cluster.mesh, beta);
+      const Vec3& centre = cluster.centre;
+      const double radius = cluster.radius;
       const Vec3 direction = Vec3(r.normal(), r.normal(), r.normal()).normalized();
       const double box_radius = radius * r.uniform(0.1, 2.0);
       for (double s : {1.1, 1.5, 3.0}) {
