@@ -1,7 +1,7 @@
 // bench_field: make_distance_field against OpenVDB's meshToSignedDistanceField (when built with
 // OpenVDB) on closed bumpy tori of 20k and 200k triangles, 128³ and 256³ grids, bands of 3 and 6
 // voxels; times (best of 3) and errors against brute-force exact distances on sampled band voxels.
-//   usage: bench_field [--threads N] [--quick]
+//   usage: bench_field [--threads N] [--quick] [--only LABEL]   (--only: the rows of one mesh, e.g. "20k tris")
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -76,9 +76,11 @@ double best_of(int runs, F&& f) {
 int main(int argc, char** argv) {
   int threads = 1;
   bool quick = false;
+  std::string only;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--threads") && i + 1 < argc) threads = std::atoi(argv[++i]);
     if (!std::strcmp(argv[i], "--quick")) quick = true;
+    if (!std::strcmp(argv[i], "--only") && i + 1 < argc) only = argv[++i];
   }
 #ifdef HAIRFIT_HAVE_OPENVDB
   openvdb::initialize();
@@ -95,6 +97,7 @@ int main(int argc, char** argv) {
     meshes.emplace_back(name, load_obj_mesh(std::string(HAIRFIT_SOURCE_DIR) + "/fixtures/makehuman/" + name + ".obj", 10.0).mesh);
   for (int n : {n_small, n_large}) meshes.emplace_back(std::to_string(n * n * 2 / 1000) + "k tris", bumpy_torus(n));
   for (const auto& [label, mesh] : meshes) {
+    if (!only.empty() && label != only) continue;
     const auto box = bounding_box(mesh);
     const double extent = (box.second - box.first).maxCoeff();
     for (int cells : {128, 256}) {

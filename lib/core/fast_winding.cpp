@@ -47,6 +47,18 @@
 // direction of the centre, and the perturbations are within 128 u |a||b||c| (about 90 by a term
 // by term count). The near triangles' terms are the same function of the same numbers in both
 // sums and agree bit for bit.
+//
+// A ball of points (estimate_box): centre c, radius ρ_b, a node at centre m, r₀ = m − c, D₀ = |r₀|.
+// For p in the ball, x − p = r₀ + d′ with d′ = (x − m) − (p − c), |d′| ≤ R + ρ_b, so the first-order
+// expansion in d′ about r₀ gives Ω(p) ≈ Ω_exp(c) − (N/D₀³ − 3 (N·r₀) r₀/D₀⁵)·(p − c): the node's
+// usual expansion at c plus a linear term, one linear function per ball. Both bounds above hold
+// with d′ for d, R + ρ_b for R and D₀ for D ((1): the segment r₀ → r₀ + d′ stays D₀ − R − ρ_b from
+// the origin; (2): the series is in d′, |d′| ≤ R + ρ_b), with ∫|d′|² dA for Q, and
+// ∫|d′|² dA = Q + |p − c|² A − 2 (p − c)·∫(x − m) dA, whose last term vanishes as m is the
+// area-weighted centroid (up to its rounding, which kCentroid allows for).
+// Its magnitude is at most (1 + 4ρ′ + 2ρ′) A/D₀² with ρ′ = (R + ρ_b)/D₀ < 1, under 8 A/(D₀ − R − ρ_b)²
+// in the round-off allowance; at every point of the ball the node is beyond beta × R, so the far
+// triangles' round-off allowance is the same.
 
 namespace hairfit {
 
@@ -250,46 +262,63 @@ void FastWindingNumber::build_subtree(const std::vector<Summary>& all, std::vect
   build_subtree(all, order, mid, hi, nodes_[index].right);
 }
 
-template <bool kBound>
-FastWindingNumber::Sums<kBound> FastWindingNumber::traverse(const Vec3& p, double beta2) const {
-  Sums<kBound> sums;  // a local (the result is a copy), so that it lives in registers
+double FastWindingNumber::numerator(const Terms& t, const Vec3& r, double inv_d2) {
+  const Mat3& m = t.moment;
+  const double rmr = r[0] * (m(0, 0) * r[0] + m(0, 1) * r[1] + m(0, 2) * r[2]) +
+                     r[1] * (m(1, 0) * r[0] + m(1, 1) * r[1] + m(1, 2) * r[2]) +
+                     r[2] * (m(2, 0) * r[0] + m(2, 1) * r[1] + m(2, 2) * r[2]);
+  return t.normal.dot(r) + (t.trace - 3.0 * rmr * inv_d2);
+}
+
+// Visits the tree depth-first from the root: visit(i) handles node i and returns whether to go on
+// to its children (an inner node's).
+template <class Visit>
+void FastWindingNumber::walk(Visit&& visit) const {
   int stack[kStackSize];
   int top = 0;
   int i = 0;
   while (!nodes_.empty()) {
-    const Node& node = nodes_[i];
-    const Vec3 r = node.ball.centre - p;
-    const double d2 = r.squaredNorm();
-    if (d2 > beta2 * node.ball.radius2) {
-      const Terms& t = node_terms_[i];
-      const double d = std::sqrt(d2), inv_d3 = 1.0 / (d2 * d), inv_d2 = inv_d3 * d;
-      const Mat3& m = t.moment;
-      const double rmr = r[0] * (m(0, 0) * r[0] + m(0, 1) * r[1] + m(0, 2) * r[2]) +
-                         r[1] * (m(1, 0) * r[0] + m(1, 1) * r[1] + m(1, 2) * r[2]) +
-                         r[2] * (m(2, 0) * r[0] + m(2, 1) * r[1] + m(2, 2) * r[2]);
-      const double numerator = t.normal.dot(r) + (t.trace - 3.0 * rmr * inv_d2);
-      sums.add_expansion(numerator, inv_d3, d, node_extents_[i], node.count);
-    } else if (node.right < 0) {
-      for (int k = node.first; k < node.first + node.count; ++k) {
-        const Triangle& t = triangles_[k];
-        const Vec3 rt = t.ball.centre - p;
-        const double dt2 = rt.squaredNorm();
-        if (dt2 > beta2 * t.ball.radius2) {
-          const double dt = std::sqrt(dt2);
-          sums.add_expansion(t.vector_area.dot(rt), 1.0 / (dt2 * dt), dt, triangle_extents_[k], 1);
-        } else {
-          const Corners& c = corners_[k];
-          sums.add_direct(triangle_solid_angle(c.a - p, c.b - p, c.c - p));
-        }
-      }
-    } else {
-      stack[top++] = node.right;
+    if (visit(i) && nodes_[i].right >= 0) {
+      stack[top++] = nodes_[i].right;
       ++i;
       continue;
     }
     if (top == 0) break;
     i = stack[--top];
   }
+}
+
+// Triangle k seen from p: its expansion beyond beta × its radius, its solid angle within.
+template <bool kBound>
+void FastWindingNumber::add_triangle(Sums<kBound>& sums, int k, const Vec3& p, double beta2) const {
+  const Triangle& t = triangles_[k];
+  const Vec3 rt = t.ball.centre - p;
+  const double dt2 = rt.squaredNorm();
+  if (dt2 > beta2 * t.ball.radius2) {
+    const double dt = std::sqrt(dt2);
+    sums.add_expansion(t.vector_area.dot(rt), 1.0 / (dt2 * dt), dt, triangle_extents_[k], 1);
+  } else {
+    const Corners& c = corners_[k];
+    sums.add_direct(triangle_solid_angle(c.a - p, c.b - p, c.c - p));
+  }
+}
+
+template <bool kBound>
+FastWindingNumber::Sums<kBound> FastWindingNumber::traverse(const Vec3& p, double beta2) const {
+  Sums<kBound> sums;  // a local (the result is a copy), so that it lives in registers
+  walk([&](int i) {
+    const Node& node = nodes_[i];
+    const Vec3 r = node.ball.centre - p;
+    const double d2 = r.squaredNorm();
+    if (d2 > beta2 * node.ball.radius2) {
+      const double d = std::sqrt(d2), inv_d3 = 1.0 / (d2 * d), inv_d2 = inv_d3 * d;
+      sums.add_expansion(numerator(node_terms_[i], r, inv_d2), inv_d3, d, node_extents_[i], node.count);
+      return false;
+    }
+    if (node.right < 0)
+      for (int k = node.first; k < node.first + node.count; ++k) add_triangle(sums, k, p, beta2);
+    return true;
+  });
   const Sums<kBound> result = sums;
   return result;
 }
@@ -300,6 +329,123 @@ WindingEstimate FastWindingNumber::evaluate(const Vec3& p, double beta2) const {
   const double roundoff = kUnitRoundoff * ((2.0 * n + sums.terms + 128.0) * (sums.near_abs + 5.0 * sums.far_abs) +
                                            sums.far_triangles * far_roundoff_);
   return {sums.solid_angle / (4.0 * M_PI), (sums.truncation + roundoff) / (4.0 * M_PI)};
+}
+
+// A ball's linear part (the expansions of the nodes far from the whole ball, about its centre):
+// value a0 + grad·(p − centre), its remainder bound over the ball, and what the round-off
+// allowance needs.
+struct FastWindingNumber::Linear {
+  Vec3 centre = Vec3::Zero();
+  double radius = 0.0;
+  double a0 = 0.0, truncation = 0.0, far_abs = 0.0, terms = 0.0, far_triangles = 0.0;
+  Vec3 grad = Vec3::Zero();
+
+  // The ball about the centre of the box of points[which], holding them all.
+  Linear(const std::vector<Vec3>& points, const std::vector<int>& which) {
+    Vec3 lo = points[which[0]], hi = lo;
+    for (int q : which) lo = lo.cwiseMin(points[q]), hi = hi.cwiseMax(points[q]);
+    centre = 0.5 * (lo + hi);
+    double radius2 = 0.0;
+    for (int q : which) radius2 = std::max(radius2, (points[q] - centre).squaredNorm());
+    radius = std::sqrt(radius2) * (1.0 + 8.0 * kUnitRoundoff);  // enlarged by a few ulps
+  }
+  // Whether a ball (centre m, radius R) lies beyond beta·(R + radius) from the centre.
+  bool far(const Vec3& m, double ball_radius, double beta2) const {
+    const double reach = ball_radius + radius;
+    return (m - centre).squaredNorm() > beta2 * reach * reach;
+  }
+  // One node's (or triangle's) expansion, seen from the centre: r0 = its centre − this centre.
+  void add(const Vec3& r0, const Vec3& normal, double numerator, const Extent& e, int count) {
+    // Relative rounding of a node's centroid, against the exact area-weighted centroid (sums of
+    // a few thousand terms at most, far below this).
+    constexpr double kCentroid = 1e-10;
+    const double d2 = r0.squaredNorm(), d = std::sqrt(d2), inv_d3 = 1.0 / (d2 * d), inv_d2 = inv_d3 * d;
+    a0 += numerator * inv_d3;
+    grad -= (normal - (3.0 * normal.dot(r0) * inv_d2) * r0) * inv_d3;
+    const double gap = std::max(d - e.radius - radius, 0.0), inv_gap = 1.0 / gap;
+    const double q = e.second + radius * radius * e.area + 2.0 * radius * e.area * kCentroid * (r0.norm() + centre.norm() + e.radius);
+    truncation += q * (inv_d2 * inv_d2) * remainder_factor((e.radius + radius) / d, d * inv_gap);
+    far_abs += e.area * (inv_gap * inv_gap);
+    terms += 2.0;
+    far_triangles += count;
+  }
+  double value(const Vec3& p) const { return a0 + grad.dot(p - centre); }
+};
+
+void FastWindingNumber::estimate_box(const std::vector<Vec3>& points, double beta, std::vector<WindingEstimate>& out) const {
+  out.resize(points.size());
+  if (points.empty()) return;
+  std::vector<int> which(points.size());
+  for (std::size_t q = 0; q < points.size(); ++q) which[q] = int(q);
+  Linear ball(points, which);
+  const double beta2 = beta * beta;
+  std::vector<int> near;  // triangles not far from the whole ball
+  walk([&](int i) {
+    const Node& node = nodes_[i];
+    if (ball.far(node.ball.centre, std::sqrt(node.ball.radius2), beta2)) {
+      const Vec3 r0 = node.ball.centre - ball.centre;
+      ball.add(r0, node_terms_[i].normal, numerator(node_terms_[i], r0, 1.0 / r0.squaredNorm()), node_extents_[i], node.count);
+      return false;
+    }
+    if (node.right < 0)
+      for (int k = node.first; k < node.first + node.count; ++k) near.push_back(k);
+    return true;
+  });
+  std::vector<const Linear*> chain;
+  refine_box(points, which, near, beta, ball, chain, out);
+}
+
+void FastWindingNumber::refine_box(const std::vector<Vec3>& points, const std::vector<int>& which, const std::vector<int>& near,
+                                   double beta, Linear& ball, std::vector<const Linear*>& chain,
+                                   std::vector<WindingEstimate>& out) const {
+  constexpr std::size_t kFewPoints = 8;  // a ball of this many points or fewer is not split
+  const double beta2 = beta * beta;
+  // The triangles far from this ball join its linear part; the rest stay near.
+  std::vector<int> still;
+  for (int k : near) {
+    const Triangle& t = triangles_[k];
+    if (ball.far(t.ball.centre, triangle_extents_[k].radius, beta2)) {
+      const Vec3 rt = t.ball.centre - ball.centre;
+      ball.add(rt, t.vector_area, t.vector_area.dot(rt), triangle_extents_[k], 1);
+    } else {
+      still.push_back(k);
+    }
+  }
+  chain.push_back(&ball);
+  if (which.size() > kFewPoints && !still.empty()) {
+    // The ball's eighths about its centre, each with its own linear part.
+    std::vector<int> part[8];
+    for (int q : which) {
+      const Vec3& p = points[q];
+      part[(p.x() >= ball.centre.x()) + 2 * (p.y() >= ball.centre.y()) + 4 * (p.z() >= ball.centre.z())].push_back(q);
+    }
+    for (const std::vector<int>& eighth : part) {
+      if (eighth.empty()) continue;
+      Linear sub(points, eighth);
+      refine_box(points, eighth, still, beta, sub, chain, out);
+    }
+    chain.pop_back();
+    return;
+  }
+  // The near triangles one at a time over every point (each triangle's data read once).
+  std::vector<Sums<true>> sums(which.size());
+  for (int k : still)
+    for (std::size_t q = 0; q < which.size(); ++q) add_triangle(sums[q], k, points[which[q]], beta2);
+  double truncation = 0.0, far_abs = 0.0, terms = 0.0, far_triangles = 0.0;
+  for (const Linear* l : chain)
+    truncation += l->truncation, far_abs += l->far_abs, terms += l->terms, far_triangles += l->far_triangles;
+  const double n = static_cast<double>(triangles_.size());
+  for (std::size_t q = 0; q < which.size(); ++q) {
+    const Sums<true>& sq = sums[q];
+    const Vec3& p = points[which[q]];
+    double value = sq.solid_angle;
+    for (const Linear* l : chain) value += l->value(p);
+    const double roundoff =
+        kUnitRoundoff * ((2.0 * n + sq.terms + terms + 128.0) * (sq.near_abs + 5.0 * sq.far_abs + 8.0 * far_abs) +
+                         (sq.far_triangles + far_triangles) * far_roundoff_);
+    out[which[q]] = {value / (4.0 * M_PI), (sq.truncation + truncation + roundoff) / (4.0 * M_PI)};
+  }
+  chain.pop_back();
 }
 
 double FastWindingNumber::operator()(const Vec3& p) const {

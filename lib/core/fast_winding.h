@@ -48,6 +48,16 @@ class FastWindingNumber {
   static constexpr double kFirstCertifiedBeta = 3.0;
   static constexpr int kCertifiedPasses = 3;
 
+  // Estimates at many points with one traversal: `out[q]` estimates the direct sum at points[q],
+  // with a rigorous bound on its error. The points span a ball (the centre of their bounding box,
+  // the farthest one's distance); a node farther than beta·(its radius + the ball's) from the
+  // centre counts through its expansion about the centre taken to first order in the point's
+  // offset (one linear function for all points, its Taylor remainder bounded over the ball); the
+  // other triangles are visited at each point as estimate() visits them (their expansion beyond
+  // beta × their radius, their solid angle within). Values differ from estimate(p, beta)'s in the
+  // last bits; the bound is looser the larger the ball.
+  void estimate_box(const std::vector<Vec3>& points, double beta, std::vector<WindingEstimate>& out) const;
+
   std::size_t size() const { return size_; }  // triangles of the mesh, zero-area ones included
   double beta() const { return beta_; }
 
@@ -84,8 +94,14 @@ class FastWindingNumber {
   struct Corners {
     Vec3 a, b, c;
   };
+  // A node's expansion times |r|³, seen from r = centre − p (inv_d2 = 1/|r|²).
+  static double numerator(const Terms& t, const Vec3& r, double inv_d2);
   template <bool kBound>
   struct Sums;
+  template <class Visit>
+  void walk(Visit&& visit) const;
+  template <bool kBound>
+  void add_triangle(Sums<kBound>& sums, int k, const Vec3& p, double beta2) const;
   template <bool kBound>
   Sums<kBound> traverse(const Vec3& p, double beta2) const;
 
@@ -98,6 +114,12 @@ class FastWindingNumber {
   void build_subtree(const std::vector<Summary>& all, std::vector<int>& order, int lo, int hi, int index);
   // Nodes in the subtree over n triangles (median splits to kLeafSize).
   static int subtree_size(int n);
+  struct Linear;  // a ball of points' linear part (estimate_box)
+  // estimate_box below its traversal: the ball's triangles `near` that are far from the ball join
+  // its linear part; the ball is split in eighths while it holds many points and near triangles
+  // remain; otherwise every point sums the near ones and the linear parts of `chain` and `ball`.
+  void refine_box(const std::vector<Vec3>& points, const std::vector<int>& which, const std::vector<int>& near,
+                  double beta, Linear& ball, std::vector<const Linear*>& chain, std::vector<WindingEstimate>& out) const;
   // The estimate with beta² = beta2 (above() tightens it when undecided).
   WindingEstimate evaluate(const Vec3& p, double beta2) const;
 

@@ -162,6 +162,52 @@ CoarseAxis coarse_axis(int fine_count, int coarse_count, int c) {
 // robust inside's own decision. A cell writes only the samples it holds (its lowest index; the
 // last cell along an axis also holds the nodes past the last coarse node), so cells run in
 // parallel.
+// On a soup without rims (closed, consistently oriented parts, integer weights) w is an integer
+// off the surface that changes only by the jumps: w(n) = w(ref) + J(ref → n) along any grid path.
+// So one estimate at the far coarse node farthest from the surface, certified within ½ of a
+// single integer, gives every far sample's w exactly, row by row (w at a row's first node from
+// the reference along z then y, then the row's jumps). Returns false, signing nothing, where that
+// estimate is not so certified.
+bool sign_rimless_far_samples(const GridGeometry& grid, const FarField& far, int c, const GridWindingSigns& soup,
+                              const DistanceField* negative_in, const std::vector<std::uint8_t>& in_band,
+                              std::vector<double>& values, int threads) {
+  constexpr double kRoundoff = 1e-9;  // the direct sum's own round-off, against the true w
+  const int nx = grid.dims.x(), ny = grid.dims.y(), nz = grid.dims.z();
+  int64_t ref = -1;
+  double farthest = 0.0;
+  for (int64_t q = 0; q < int64_t(far.values.size()); ++q) {
+    const Vec3i v = grid_indices(q, far.dims) * c;
+    if (!in_band[grid.index(v.x(), v.y(), v.z())] && std::abs(far.values[q]) > farthest) farthest = std::abs(far.values[q]), ref = q;
+  }
+  if (ref < 0) return false;
+  const Vec3i r = grid_indices(ref, far.dims) * c;
+  const WindingEstimate e = soup.soup().estimate(grid.node(r.x(), r.y(), r.z()));
+  const double w_ref = std::nearbyint(e.value);
+  if (!(e.error_bound + kRoundoff < 0.5) || !(std::abs(e.value - w_ref) <= e.error_bound + kRoundoff)) return false;
+  const GridCrossings& jumps = soup.crossings();
+  parallel_for(nz, threads, [&](int k) {
+    for (int j = 0; j < ny; ++j) {
+      int w = int(w_ref) + jumps.path(r, Vec3i(0, j, k));
+      int i = 0;
+      const int64_t row = grid.index(0, j, k);
+      auto sign_to = [&](int last) {  // nodes i … last − 1 take w
+        for (; i < last; ++i) {
+          const int64_t n = row + i;
+          if (in_band[n]) continue;
+          const bool in = w > 0 || (negative_in && negative_in->value(grid.node(n)) < 0.0);
+          values[n] = in ? -std::abs(values[n]) : std::abs(values[n]);
+        }
+      };
+      jumps.for_each_jump(0, jumps.line(0, 0, j, k), [&](int edge, int jump) {
+        sign_to(edge + 1);
+        w += jump;
+      });
+      sign_to(nx);
+    }
+  });
+  return true;
+}
+
 void sign_far_samples(const GridGeometry& grid, const FarField& far, int c, const RobustSigns& inside,
                       const std::vector<std::uint8_t>& in_band, std::vector<double>& values, int threads) {
   constexpr double kRoundoff = 1e-9;  // adding an integer to the estimate, and the slack's own sum
@@ -171,6 +217,7 @@ void sign_far_samples(const GridGeometry& grid, const FarField& far, int c, cons
   const DistanceField* negative_in = inside.negative_in();
   const GridWindingSigns* soup = inside.soups().size() == 1 ? inside.soups()[0].get() : nullptr;
   const bool rimless = soup && soup->rims().rims() == 0;
+  if (rimless && sign_rimless_far_samples(grid, far, c, *soup, negative_in, in_band, values, threads)) return;
   auto coarse_at = [&](int i, int j, int k) { return i + int64_t(cx) * (j + int64_t(cy) * k); };
   // Per far coarse node: the soup's estimate there (a bound of −1: none).
   std::vector<WindingEstimate> corner(far.values.size(), WindingEstimate{0.0, -1.0});

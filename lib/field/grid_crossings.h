@@ -49,6 +49,13 @@ class GridCrossings {
     return along(2, line(2, from.x(), from.y(), 0), from.z(), to.z()) +
            along(1, line(1, from.x(), 0, to.z()), from.y(), to.y()) + along(0, line(0, 0, to.y(), to.z()), from.x(), to.x());
   }
+  // f(edge, jump) for every edge of line `line` along `axis` with a jump, ascending: `edge` is its
+  // lower node, `jump` the sum of the jumps stepping up from it.
+  template <class F>
+  void for_each_jump(int axis, int64_t line, F&& f) const {
+    const Axis& a = axes_[axis];
+    for (int64_t e = a.offsets[line]; e < a.offsets[line + 1]; ++e) f(a.edge[e], a.jump[e]);
+  }
   // Grid edges with a non-zero jump, over all axes.
   int64_t size() const { return int64_t(axes_[0].edge.size() + axes_[1].edge.size() + axes_[2].edge.size()); }
 

@@ -14,6 +14,15 @@ WindingEstimate HairRegion::estimate(const Vec3& p, double beta) const {
   return WindingEstimate{e.value - under.value, e.error_bound + under.error_bound};
 }
 
+void HairRegion::estimate_box(const std::vector<Vec3>& points, double beta, std::vector<WindingEstimate>& out) const {
+  hull_.estimate_box(points, beta, out);
+  if (closed_) return;
+  std::vector<WindingEstimate> under;
+  scalp_.estimate_box(points, beta, under);
+  for (std::size_t q = 0; q < out.size(); ++q)
+    out[q] = WindingEstimate{out[q].value - under[q].value, out[q].error_bound + under[q].error_bound};
+}
+
 bool HairRegion::inside_hull(const Vec3& p) const {
   if (closed_) return hull_.above(p, 0.5);
   return certified_above(
@@ -29,13 +38,19 @@ WindingSoup HairRegion::soup(const Mesh& hull, const Mesh& scalp) const {
   if (!closed_) s.parts.push_back({&scalp, -1});
   s.estimate = [this](const Vec3& p) { return estimate(p, kCloseBeta); };
   s.above_half = [this](const Vec3& p) { return inside_hull(p); };
+  s.estimate_box = [this](const std::vector<Vec3>& points, double beta, std::vector<WindingEstimate>& out) {
+    estimate_box(points, beta, out);
+  };
   return s;
 }
 
 WindingSoup winding_soup(const Mesh& mesh, const FastWindingNumber& winding) {
   return {{{&mesh, 1}},
           [&winding](const Vec3& p) { return winding.estimate(p, HairRegion::kCloseBeta); },
-          [&winding](const Vec3& p) { return winding_above_half(winding, p); }};
+          [&winding](const Vec3& p) { return winding_above_half(winding, p); },
+          [&winding](const std::vector<Vec3>& points, double beta, std::vector<WindingEstimate>& out) {
+            winding.estimate_box(points, beta, out);
+          }};
 }
 
 Mesh closed_head(const Mesh& scalp) {

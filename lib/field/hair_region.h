@@ -24,6 +24,9 @@ class HairRegion {
   // H's hierarchical estimate at accuracy parameter `beta`, with a rigorous bound on its error
   // (the hull's and the scalp's bounds added).
   WindingEstimate estimate(const Vec3& p, double beta) const;
+  // H's estimates at many nearby points at once (FastWindingNumber::estimate_box, the hull's and
+  // the scalp's bounds added).
+  void estimate_box(const std::vector<Vec3>& points, double beta, std::vector<WindingEstimate>& out) const;
   // Whether H(p) > ½, exactly as the direct sums decide it: the estimates with their error bounds
   // decide where H lies farther from ½ than the bound (certified_above, core/fast_winding.h), the
   // direct sums over every triangle elsewhere, i.e. on or right next to the hull and where H
@@ -36,7 +39,7 @@ class HairRegion {
 
   // The region as the fields' robust sign takes it: the hull (the meshes this region was built
   // from, which must outlive the soup), with the scalp reversed for an open hull; estimated at
-  // β = kCloseBeta, decided by inside_hull.
+  // β = kCloseBeta (many points at once at the β asked), decided by inside_hull.
   WindingSoup soup(const Mesh& hull, const Mesh& scalp) const;
 
   const FastWindingNumber& hull_winding() const { return hull_; }
@@ -58,7 +61,8 @@ Mesh closed_head(const Mesh& scalp);
 bool winding_above_half(const FastWindingNumber& winding, const Vec3& p);
 
 // `mesh`'s own winding number as a soup: estimated by `winding` (built over `mesh`; both must
-// outlive the soup) at β = HairRegion::kCloseBeta, decided by winding_above_half.
+// outlive the soup) at β = HairRegion::kCloseBeta (many points at once at the β asked), decided
+// by winding_above_half.
 WindingSoup winding_soup(const Mesh& mesh, const FastWindingNumber& winding);
 
 }  // namespace hairfit

@@ -23,12 +23,42 @@ void GridWindingSigns::decide_box(const Box& box, std::vector<int>& which, const
                                   const std::vector<double>& distance, std::vector<std::uint8_t>& inside,
                                   Counts& counts) const {
   if (which.empty()) return;
+  // The nodes one by one, or, where the soup estimates many points at once, by one estimate of
+  // the box and one by one where that does not decide.
   auto ask_each = [&] {
-    for (int q : which) inside[q] = soup_.above_half(grid_.node(nodes[q]));
-    counts.asked += int64_t(which.size());
+    if (!soup_.estimate_box || which.size() < 2) {
+      for (int q : which) inside[q] = soup_.above_half(grid_.node(nodes[q]));
+      counts.asked += int64_t(which.size());
+      return;
+    }
+    std::vector<int> open = which, still;
+    std::vector<Vec3> points;
+    std::vector<WindingEstimate> e;
+    for (int pass = 0; pass < kBoxPasses && !open.empty(); ++pass) {
+      points.resize(open.size());
+      for (std::size_t q = 0; q < open.size(); ++q) points[q] = grid_.node(nodes[open[q]]);
+      soup_.estimate_box(points, kBoxBeta * double(1 << pass), e);
+      ++counts.boxes;
+      still.clear();
+      for (std::size_t q = 0; q < open.size(); ++q) {
+        if (e[q].value - 0.5 > e[q].error_bound) {
+          inside[open[q]] = 1;
+        } else if (0.5 - e[q].value > e[q].error_bound) {
+          inside[open[q]] = 0;
+        } else {
+          still.push_back(open[q]);
+        }
+      }
+      open.swap(still);
+    }
+    for (int q : open) inside[q] = soup_.above_half(grid_.node(nodes[q]));
+    counts.asked += int64_t(open.size());
   };
   const Vec3i extent = box.hi - box.lo;
   if (int(which.size()) <= kAsk || extent.maxCoeff() <= 1) return ask_each();
+  // A box small enough for one estimate of the box takes it (a reference would serve it only
+  // where no rim is near, and its nodes undecided would need their own estimates).
+  if (soup_.estimate_box && extent.maxCoeff() <= kEstimatedBox) return ask_each();
   const double h = grid_.voxel;
   // How fast w may change in the box, and whether a reference could decide anything.
   const double reach = h * double((extent - Vec3i::Ones()).sum());  // the longest path in the box

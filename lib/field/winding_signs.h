@@ -6,9 +6,11 @@
 // where J is the exact sum of the jumps on the path's edges (grid_crossings.h) and G bounds |∇w|
 // over the box (rim_bound.h). So one estimate of w at a reference node, with its rigorous error
 // bound, decides every node of the box whose w(a) + J lies farther from ½ than that bound plus
-// G·|b − a|₁. Boxes are split in eight where nodes stay undecided, down to a few nodes, which are
-// asked themselves. Away from rims G is small and one estimate settles thousands of nodes; on a
-// closed, consistently oriented surface G is 0 and w is an integer off the surface.
+// G·|b − a|₁. Boxes are split in eight where nodes stay undecided. A box of at most kEstimatedBox
+// nodes a side, or of a few nodes, takes one estimate of all its nodes at once where the soup
+// offers it (FastWindingNumber::estimate_box), and the certified test at each node that this does
+// not decide. Away from rims G is small and one estimate settles thousands of nodes; on a closed,
+// consistently oriented surface G is 0 and w is an integer off the surface.
 #pragma once
 #include <cstdint>
 #include <memory>
@@ -26,11 +28,12 @@ class GridWindingSigns {
  public:
   GridWindingSigns(const WindingSoup& soup, const GridGeometry& grid, int threads);
 
-  // What a decision needed: estimates at references, and nodes asked themselves.
+  // What a decision needed: estimates at references, estimates of boxes of nodes at once, and
+  // nodes asked themselves.
   struct Counts {
-    int64_t nodes = 0, references = 0, asked = 0;
+    int64_t nodes = 0, references = 0, boxes = 0, asked = 0;
     Counts& operator+=(const Counts& o) {
-      nodes += o.nodes, references += o.references, asked += o.asked;
+      nodes += o.nodes, references += o.references, boxes += o.boxes, asked += o.asked;
       return *this;
     }
   };
@@ -45,6 +48,13 @@ class GridWindingSigns {
   static constexpr double kSnapped = 1e-4;    // voxels, some ten times the snapping
   static constexpr int kTopBox = 32;          // nodes per side of the boxes decided side by side
   static constexpr int kAsk = 4;              // a box with this many undecided nodes or fewer asks them
+  // Nodes per side of a box that takes one estimate of the box (soups with estimate_box) rather
+  // than a reference and further splits.
+  static constexpr int kEstimatedBox = 4;
+  // A box's estimates take β = kBoxBeta, then twice that for the nodes they leave undecided, and
+  // so on for kBoxPasses in all.
+  static constexpr double kBoxBeta = 2.0;
+  static constexpr int kBoxPasses = 4;
 
   const GridCrossings& crossings() const { return crossings_; }
   const RimBound& rims() const { return rims_; }

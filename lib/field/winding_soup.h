@@ -17,12 +17,14 @@ struct SoupPart {
 };
 
 // A soup: its parts, the estimate of their weighted winding number with a rigorous bound on the
-// estimate's error, and the decision w > ½ where no estimate decides. Both functions are called
-// concurrently and must be pure functions of the point.
+// estimate's error, and the decision w > ½ where no estimate decides; optionally estimates at
+// many nearby points at once with accuracy parameter β (FastWindingNumber::estimate_box), one per
+// point, each with its rigorous bound. The functions are called concurrently and must be pure functions of the points.
 struct WindingSoup {
   std::vector<SoupPart> parts;
   std::function<WindingEstimate(const Vec3&)> estimate;
   std::function<bool(const Vec3&)> above_half;
+  std::function<void(const std::vector<Vec3>&, double, std::vector<WindingEstimate>&)> estimate_box;
 };
 
 class DistanceField;

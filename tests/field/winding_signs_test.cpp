@@ -11,6 +11,7 @@
 #include "core/random.h"
 #include "core/triangle_closest.h"
 #include "field/distance_field.h"
+#include "field/hair_region.h"
 #include "field/winding_signs.h"
 #include "test_meshes.h"
 
@@ -151,12 +152,13 @@ TEST_CASE("rim bound: zero for a closed surface, above the exact Biot-Savart fie
 }
 
 TEST_CASE("grid winding signs: the direct sums' decisions, and a closed surface settled by references alone") {
-  for (const Mesh& mesh : {test::open_cap(3, 1.0, 0.3), test::messy_sphere(3, 1.0), test::icosphere(3, 1.0)}) {
+  for (const Mesh& mesh : {test::open_cap(3, 1.0, 0.3), test::messy_sphere(3, 1.0), test::icosphere(3, 1.0)})
+  for (bool box_estimates : {false, true}) {
+    CAPTURE(box_estimates);
     const GridGeometry grid = grid_around(mesh, 0.05, 0.3);
     const FastWindingNumber winding(mesh);
-    const WindingSoup soup{{{&mesh, 1}},
-                           [&winding](const Vec3& p) { return winding.estimate(p, 4.0); },
-                           [&winding](const Vec3& p) { return winding.above(p, 0.5); }};
+    WindingSoup soup = winding_soup(mesh, winding);  // estimates at β = 4, the certified test
+    if (!box_estimates) soup.estimate_box = nullptr;  // every undecided node asked by itself
     const GridWindingSigns signs(soup, grid, 2);
     std::vector<int64_t> nodes;
     std::vector<double> distance;
@@ -184,6 +186,10 @@ TEST_CASE("grid winding signs: the direct sums' decisions, and a closed surface 
     if (signs.rims().rims() == 0) {
       CHECK(counts.asked == 0);
       CHECK(counts.references < int64_t(nodes.size()) / 100);
+    } else if (box_estimates) {
+      CHECK(counts.boxes > 0);
+    } else {
+      CHECK(counts.boxes == 0);
     }
   }
 }
