@@ -35,5 +35,4 @@ LayerDepth layer_depth(const FieldValueGradient& scalp, const FieldValueGradient
 Vec3 to_layer_depth(const DistanceField& scalp, const DistanceField& volume, const Vec3& p, const LayerDepth& at_p,
                     double target, const Vec3* along = nullptr);
 
-
 }  // namespace hairfit

@@ -70,13 +70,12 @@ void compute(StageRun& run, const StrandsOptions& o, StageReport& stage) {
       scalp_exit(*v.scalp_field, &scalp_triangles, v.chart->outward, o.contain > 0.0 ? v.volume_field.get() : nullptr,
                  v.scalp_distance.get());
   if (o.contain > 0.0) around.out_of_head.into_volume = into_volume(*v.volume_field, o.contain);
-  if (strands.layer_depth) {
-    // Below the rim of a head closed by its floor the layer's depth runs along the hanging hair;
-    // where the skin goes on under the hull as a shell it still runs across it (no rim: no fade).
-    const bool floor = run.boundary().floor_past_hairline;
-    around.to_layer_depth = layer_placement(*v.scalp_field, *v.volume_field, floor ? rim_heights(*v.chart) : RimHeights{});
-  }
   const Boundary b = run.boundary();
+  // Below the rim of a head closed by its floor the layer's depth runs along the hanging hair;
+  // where the skin goes on under the hull as a shell it still runs across it (no rim: no fade).
+  if (strands.layer_depth)
+    around.to_layer_depth =
+        layer_placement(*v.scalp_field, *v.volume_field, b.floor_past_hairline ? rim_heights(*v.chart) : RimHeights{});
   around.hair_region = [&b](const Vec3& p) { return b.acceptable(p); };
   GrownStrands grown = make_strands(v.guides->curves(), run.pores(), strands, around, run.exec(),
                                     std::move(run.deposited_fibres));

@@ -120,16 +120,16 @@ double depth_miss(const Sample& s, double target) {
 }
 
 // The way the bead heads from s: down, pulled toward the depth `target` below the hull along the
-// hull field's gradient by miss/kFallDepthReach (at most 1). Where the skin past the hairline is
-// the head's floor, the pull never lifts the bead: below the head the layer's depth runs up to
-// that floor, along the hair, not across it, and only its level part acts (over the crown that
-// keeps the bead on the skin until its way turns down). Unit.
-Vec3 heading(const Sample& s, const Vec3& down, bool floor_past_hairline, double target) {
+// hull field's gradient by miss/kFallDepthReach (at most 1). With `level`, the pull does not lift
+// the bead: only its level part acts (fall_from asks for that first below a head closed by its
+// floor, where the layer's depth runs up to that floor, along the hair, not across it; over the
+// crown it keeps the bead on the skin until its way turns down). Unit.
+Vec3 heading(const Sample& s, const Vec3& down, bool level, double target) {
   const double g = s.hull_gradient.norm();
   if (!std::isfinite(target) || !(g > 1e-12)) return down;
   const double pull = std::clamp(depth_miss(s, target) / kFallDepthReach, -1.0, 1.0);
   Vec3 toward = pull * s.hull_gradient / g;
-  if (floor_past_hairline && toward.dot(down) < 0.0) toward -= toward.dot(down) * down;
+  if (level && toward.dot(down) < 0.0) toward -= toward.dot(down) * down;
   const Vec3 w = down + toward;
   return w.norm() > 1e-9 ? Vec3(w.normalized()) : down;
 }

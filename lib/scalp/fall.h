@@ -44,8 +44,9 @@ struct FallRegion {
   Vec3 front = Vec3(0.0, 0.0, 1.0);   // unit: where the crown leans when down is normal to the skin
   double step = 0.1;                  // cm
   // The skin past the hairline is the floor closing the head: below it the layer's depth runs up
-  // to that floor, along the hair, and the depth pull never lifts the bead (heading, fall.cpp).
-  // False where the skin goes on under the hull as a shell and the depth runs across the hair.
+  // to that floor, along the hair, and the depth pull lifts the bead only where its level part
+  // alone would leave it resting (fall_from). False where the skin goes on under the hull as a
+  // shell and the depth runs across the hair.
   bool floor_past_hairline = true;
 };
 

@@ -128,7 +128,8 @@ struct StrandSurroundings {
   HeadExit out_of_head;
   // With StrandOptions::layer_depth: p moved across the fibre's unit direction `along` there, the
   // share `weight` of the way from its own layer depth to `depth` (field/layer_depth.h), less
-  // beyond the hull, where the layer has ended, and where the depth runs along the fibre.
+  // beyond the hull, where the layer has ended, and (layer_placement) below the scalp's rim of a
+  // head closed by its floor, where the depth runs along hanging hair.
   std::function<Vec3(const Vec3& p, const Vec3& along, double depth, double weight)> to_layer_depth;
   // Optional: whether p lies in the hair's region; the density spread (StrandOptions::spread)
   // then evens the fibres out per unit of the region (normalise_by_region), not of space.

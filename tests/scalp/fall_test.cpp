@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "scalp/hanging.h"
 #include "scalp/growth_field.h"
@@ -25,17 +26,21 @@ Field plane(const Vec3& m, const Vec3& through = Vec3::Zero()) {
   };
 }
 
-// The larger of two fields, with the gradient of the one that is larger: their intersection.
-Field intersection(Field a, Field b) {
-  return [a, b](const Vec3& p, double& value, Vec3& gradient) {
+// The larger (`larger`: their intersection) or the smaller (their union) of two fields, with the
+// gradient of that one.
+Field extreme(Field a, Field b, bool larger) {
+  return [a, b, larger](const Vec3& p, double& value, Vec3& gradient) {
     double va, vb;
     Vec3 ga, gb;
     a(p, va, ga);
     b(p, vb, gb);
-    value = va >= vb ? va : vb;
-    gradient = va >= vb ? ga : gb;
+    const bool first = larger ? va >= vb : va <= vb;
+    value = first ? va : vb;
+    gradient = first ? ga : gb;
   };
 }
+Field intersection(Field a, Field b) { return extreme(std::move(a), std::move(b), true); }
+Field union_of(Field a, Field b) { return extreme(std::move(a), std::move(b), false); }
 
 // The sphere of radius R about the origin, negative inside.
 Field sphere(double R) {
@@ -286,17 +291,6 @@ Field cylinder(double radius, double bottom, double top, double rise = 0.0) {
   };
 }
 
-// The smaller of two fields, with the gradient of the one that is smaller: their union.
-Field union_of(Field a, Field b) {
-  return [a, b](const Vec3& p, double& value, Vec3& gradient) {
-    double va, vb;
-    Vec3 ga, gb;
-    a(p, va, ga);
-    b(p, vb, gb);
-    value = va <= vb ? va : vb;
-    gradient = va <= vb ? ga : gb;
-  };
-}
 
 }  // namespace
 
