@@ -23,7 +23,8 @@ HullHair hull_hair(const std::vector<Fall>& falls, const std::vector<double>& ly
     const Fall& f = falls[i];
     const double phi = smoothstep(f.below_rim / kHangRamp);
     h.hang_weights.push_back(phi);
-    h.lengths.push_back(std::max(kShortestHullHair, phi * (f.length - kFallTipMargin) + (1.0 - phi) * lying_lengths[i]));
+    const double lying = lying_lengths[i];
+    h.lengths.push_back(std::max(std::min(kShortestHullHair, lying), phi * (f.length - kFallTipMargin) + (1.0 - phi) * lying));
     h.hangs = h.hangs || phi > 0.0;
   }
   return h;
@@ -33,7 +34,9 @@ std::vector<double> combed_lengths(const ScalpChart& chart, const ThicknessField
   std::vector<double> lengths = layer_end_distance(chart, vertex_thickness(chart, thickness, threads), thickness,
                                                    kLayerEndProbe, /*from_rim_only=*/true);
   for (double& l : lengths)
-    l = std::isfinite(l) ? std::clamp(l - kCombedTipMargin, kShortestHullHair, kLongestCombedHair) : fallback;
+    l = std::isfinite(l) ? std::clamp(std::max(l - kCombedTipMargin, kCombedShareNearEnd * l), kShortestCombedHair,
+                                      kLongestCombedHair)
+                         : fallback;
   return lengths;
 }
 

@@ -33,8 +33,9 @@ struct HullHair {
   bool hangs = false;                // some vertex has φ > 0
 };
 
-// φ = smoothstep(below_rim / kHangRamp), ℓ = max(kShortestHullHair,
-// φ·(fall length − kFallTipMargin) + (1 − φ)·`lying_length`), per fall.
+// φ = smoothstep(below_rim / kHangRamp), ℓ = max(min(kShortestHullHair, `lying_length`),
+// φ·(fall length − kFallTipMargin) + (1 − φ)·`lying_length`), per fall: lying hair shorter than
+// kShortestHullHair (combed stubble at a hairline) keeps its length.
 HullHair hull_hair(const std::vector<Fall>& falls, double lying_length);
 // The same with a lying length per fall (per scalp vertex).
 HullHair hull_hair(const std::vector<Fall>& falls, const std::vector<double>& lying_lengths);
@@ -44,11 +45,19 @@ HullHair hull_hair(const std::vector<Fall>& falls, const std::vector<double>& ly
 // and the longest such hair.
 constexpr double kCombedTipMargin = 2.0;
 constexpr double kLongestCombedHair = 40.0;
+// Nearer the end than kCombedTipMargin + kShortestHullHair (3 cm), a combed hair runs this share
+// of the way there instead (the two meet at 3 cm), and is no shorter than kShortestCombedHair:
+// the hair at a hairline where the layer thins out is stubble that ends before the layer does.
+// Held at kShortestHullHair, the 40 % of roots within 3 cm of the carved hulls' hairlines grew
+// 1 cm hairs that ran out of the layer and were bent back into it, across each other: 95 % of
+// the guides' flow crossing (docs/results/carved-flow.md).
+constexpr double kCombedShareNearEnd = 1.0 / 3.0;
+constexpr double kShortestCombedHair = 0.15;
 
 // Hair combed from the crown (hair.comb = "from_crown"): per scalp vertex, as long as the layer
-// ahead of it, the distance along the scalp to where the layer ends (layer_end_distance, ends
-// joined to the rim only) less kCombedTipMargin, in [kShortestHullHair, kLongestCombedHair]; `fallback` where the layer does
-// not end.
+// ahead of it, the distance d along the scalp to where the layer ends (layer_end_distance, ends
+// joined to the rim only), less kCombedTipMargin, or kCombedShareNearEnd·d where that is longer,
+// in [kShortestCombedHair, kLongestCombedHair]; `fallback` where the layer does not end.
 std::vector<double> combed_lengths(const ScalpChart& chart, const ThicknessField& thickness, double fallback,
                                    int threads = 1);
 

@@ -204,12 +204,25 @@ TEST_CASE("combed hair: as long as the layer ahead to the rim, less the margin; 
   const double exact = chord * kRadius * kRim - kCombedTipMargin;
   CHECK(lengths[0] >= exact - 1e-9);
   CHECK(lengths[0] <= exact * 1.04);
+  // The combed length of a way d to the end: d − 2 cm, a third of d within 3 cm of the end, at
+  // least kShortestCombedHair; monotone in d, so the bounds on the way bound the length.
+  auto rule = [](double d) {
+    return std::clamp(std::max(d - kCombedTipMargin, d / 3.0), kShortestCombedHair, kLongestCombedHair);
+  };
+  CHECK(rule(3.0) == doctest::Approx(1.0));  // the two rules meet at 3 cm
+  int near_end = 0;
   for (std::size_t v = 0; v < lengths.size(); ++v) {
     CAPTURE(v);
     const double ahead = kRadius * (kRim - polar(chart.mesh.positions[v]));  // geodesic, meridian to the rim
-    CHECK(lengths[v] >= std::max(kShortestHullHair, chord * ahead - kCombedTipMargin) - 1e-6);
-    CHECK(lengths[v] <= std::max(kShortestHullHair, 1.08 * ahead - kCombedTipMargin) + 1e-6);
+    CHECK(lengths[v] >= rule(chord * ahead) - 1e-6);
+    CHECK(lengths[v] <= rule(1.09 * ahead) + 1e-6);  // by edges: up to 8.7 % longer by the rim
+    // Within 3 cm of the end the hair ends before the layer does, short of it by two thirds.
+    if (ahead > 0.3 && ahead < 3.0) {
+      ++near_end;
+      CHECK(lengths[v] <= 0.4 * ahead);
+    }
   }
+  CHECK(near_end > 100);  // the rings within 3 cm of the rim
   // No layer in a speck at the pole: the paper's layer end counts it, the combed length does not.
   const ThicknessField specked = [&](const Vec3& p) {
     return LayerThickness{(p - speck).norm() < 0.1 ? -1.0 : layer(p).value, Vec3::Zero()};
