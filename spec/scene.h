@@ -67,8 +67,8 @@ struct SceneHair {
   std::string flow = "local";               // field (one smooth growth field) | relief (steered by the hull) | local
   double flow_smoothing = 6.0;              // cm: the growth field averages its guidance over this
   double relief_radius = 1.5;               // cm: with flow = relief, the reach of the hull's grain
-  std::string relief_grain = "edges";       // edges (dihedral angles of the hull's edges) | normals (spread of its normals above the root)
-  std::string comb = "into_layer";          // into_layer (the paper: toward where the layer goes on) | from_crown (combed from the crown)
+  std::string relief_grain = "auto";        // auto (normals where combed from the crown, else edges) | edges (dihedral angles of the hull's edges) | normals (spread of its normals above the root)
+  std::string comb = "auto";                // auto (hair that suits its shell: chosen from the hull, else into_layer) | into_layer (the paper: toward where the layer goes on) | from_crown (combed from the crown)
   std::string rest_shape = "straight";      // straight (the paper) | flow (styled along the growth field)
   double swirl = 0.0;                       // degrees: growth away from the layer's end turns clockwise
   double hang_margin = 0.0;                 // cm: with tilt_toward = hanging, hanging hair ends this far before its layer

@@ -258,16 +258,20 @@ std::vector<SceneKey> build_keys() {
                         "How far the parting steers the growth field; 0 declares no parting."));
   keys.push_back(number("hair.relief_radius", REF(hair.relief_radius), "cm", above(0, 100), "roots",
                         "With hair.flow = \"relief\": how far around a scalp point the hull's ridges and grooves are read."));
-  keys.push_back(text("hair.relief_grain", REF(hair.relief_grain), {"edges", "normals"}, "roots",
+  keys.push_back(text("hair.relief_grain", REF(hair.relief_grain), {"auto", "edges", "normals"}, "roots",
                       "With hair.flow = \"relief\", how the hull's grain is read: edges, from the dihedral angles of the "
                       "hull's edges within hair.relief_radius of the root; or normals, from the spread of the hull's face "
                       "normals over the hull above the root, at ½, 1 and 2 × hair.relief_radius, whichever is most "
-                      "anisotropic (scan noise and a coarse triangulation bias it less)."));
-  keys.push_back(text("hair.comb", REF(hair.comb), {"into_layer", "from_crown"}, "roots",
+                      "anisotropic (scan noise and a coarse triangulation bias it less); auto, normals where the hair is "
+                      "combed from the crown, else edges."));
+  keys.push_back(text("hair.comb", REF(hair.comb), {"auto", "into_layer", "from_crown"}, "roots",
                       "With a growth field, which way along its lines hair grows: into_layer, toward where the layer "
                       "goes on (the paper's thicker layer, away from where it ends); or from_crown, as carved hair is "
                       "combed: away from the crown and down (the hull's grain signed so), each hair as long as the layer "
-                      "ahead of it, less 2 cm, where it lies (a declared hair.length is the most it gets)."));
+                      "ahead of it, less 2 cm (nearer the end, a third of the way there), where it lies (a declared "
+                      "hair.length is the most it gets). auto: for hair that suits its shell, from_crown where the layer "
+                      "thickens toward the crown under at least 80 % of the scalp's area and hangs from under 25 % of it "
+                      "(a carved cap), else into_layer; the run reports the choice and its shares."));
   keys.push_back(number("hair.youngs_modulus", REF(hair.youngs_modulus), "dyn/cm²", above(0, 1e15), "rod",
                         "Young's modulus E of a fibre (paper: 3.89e10)."));
   keys.push_back(number("hair.shear_modulus", REF(hair.shear_modulus), "dyn/cm²", above(0, 1e15), "rod",

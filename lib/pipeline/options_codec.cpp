@@ -61,6 +61,8 @@ void encode(ByteWriter& out, const RootSettings& s) {
   out.put<std::uint8_t>(s.from_shell);
   out.put(s.relief_radius);
   out.put<std::uint8_t>(s.grain_of_normals);
+  out.put<std::uint8_t>(s.comb_from_hull);
+  out.put<std::uint8_t>(s.grain_follows_comb);
   out.put(s.fall_depth_range);
 }
 

@@ -45,6 +45,19 @@ void derive_hull_keys(StageReport& stage, const std::vector<HullHairRegion>& reg
   stage.derive("hair.tilt_toward", "\"hanging\"", "the hull: its layer carries hair on below the scalp's rim");
 }
 
+void derive_comb_keys(StageReport& stage, const CombChoice& choice, bool grain_follows_comb) {
+  const bool combed = choice.comb == Comb::from_crown;
+  const std::string figures = "the layer thickens toward the crown under " + figure(100.0 * choice.thickening_up) +
+                              " % of the scalp's area and its hair hangs from " + figure(100.0 * choice.hanging) +
+                              " %: " + (combed ? "a carved cap" : "not a carved cap") + " (at least " +
+                              figure(100.0 * kCombedThickeningShare) + " % and under " +
+                              figure(100.0 * kCombedHangingShare) + " %)";
+  stage.derive("hair.comb", combed ? "\"from_crown\"" : "\"into_layer\"", "the hull: " + figures + " (scalp/hull_hair.h)");
+  if (grain_follows_comb)
+    stage.derive("hair.relief_grain", combed ? "\"normals\"" : "\"edges\"",
+                 combed ? "combed from the crown, the grain of the hull's normals" : "the grain of the hull's edges");
+}
+
 std::vector<DerivedKey> derived_keys(const RunReport& report) {
   std::vector<DerivedKey> out;
   for (const StageReport& stage : report.stages) out.insert(out.end(), stage.derived.begin(), stage.derived.end());

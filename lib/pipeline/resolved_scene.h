@@ -25,6 +25,10 @@ void derive_shell_keys(StageReport& stage, const ShellHair& shell, double length
 void derive_hull_keys(StageReport& stage, const std::vector<HullHairRegion>& regions, double lying_length,
                       double tilt);
 
+// hair.comb = "auto" as the hull chose it (scalp/hull_hair.h comb_from_hull), with its two shares
+// as the source; and hair.relief_grain = "auto" where `grain_follows_comb`.
+void derive_comb_keys(StageReport& stage, const CombChoice& choice, bool grain_follows_comb);
+
 // Every stage's derived keys, in stage order.
 std::vector<DerivedKey> derived_keys(const RunReport& report);
 

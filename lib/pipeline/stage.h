@@ -74,6 +74,7 @@ class StageRun {
     ShellHair shell;
     std::vector<Fall> falls;  // hair from the hull: the fall from every scalp vertex
     HullHair hull;
+    std::optional<CombChoice> comb;  // hair.comb = "auto": what the hull chose
   };
   const ResolvedRoots& resolved_roots(const RootSettings& settings);
   // The growth field the roots grew along (one solve on the scalp, once a run), read anywhere near

@@ -24,6 +24,7 @@ RootSettings root_settings(const Scene& scene) {
   o.flow = scene.hair.flow == "field" ? FlowModel::field : scene.hair.flow == "relief" ? FlowModel::relief : FlowModel::local;
   if (o.flow != FlowModel::local) {  // the growth field's guidance
     o.comb = scene.hair.comb == "from_crown" ? Comb::from_crown : Comb::into_layer;
+    s.comb_from_hull = scene.hair.comb == "auto";
     o.flow_smoothing = scene.hair.flow_smoothing;
     o.swirl = scene.hair.swirl;
     o.whorl = Vec2(scene.hair.whorl[0], scene.hair.whorl[1]);
@@ -48,6 +49,7 @@ RootSettings root_settings(const Scene& scene) {
   if (o.flow == FlowModel::relief) {
     s.relief_radius = scene.hair.relief_radius;
     s.grain_of_normals = scene.hair.relief_grain == "normals";
+    s.grain_follows_comb = scene.hair.relief_grain == "auto";
   }
   return s;
 }

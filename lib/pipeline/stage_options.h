@@ -24,6 +24,11 @@ struct RootSettings {
   bool from_shell = false;        // length and tilt from the shell (hair.length and hair.tilt unset)
   double relief_radius = 0.0;     // cm around a scalp point the hull's grain is read (flow = relief)
   bool grain_of_normals = false;  // hair.relief_grain = "normals" (scalp/relief.h relief_grain_of_normals)
+  // hair.comb = "auto": for hair that suits its shell the comb chosen from the hull
+  // (scalp/hull_hair.h comb_from_hull), else into_layer; hair.relief_grain = "auto": the normals'
+  // grain where the hair is combed from the crown, else the edges'.
+  bool comb_from_hull = false;
+  bool grain_follows_comb = false;
   // Hair from the hull: the share of the layer's depth the hair falls at, crown → rim (the
   // pre-guides' immersion, preguides.depth_range).
   std::array<double, 2> fall_depth_range{0.15, 0.6};

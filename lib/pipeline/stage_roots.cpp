@@ -30,6 +30,11 @@ void compute(StageRun& run, const RootSettings& settings, StageReport& stage) {
     if (resolved.hull.hangs) derive_hull_keys(stage, regions, o.length, o.tilt);
     else derive_shell_keys(stage, resolved.shell, o.length, o.tilt);
   }
+  if (resolved.comb) {
+    stage.add("layer_thickening_up_share", resolved.comb->thickening_up);
+    stage.add("hanging_area_share", resolved.comb->hanging);
+    derive_comb_keys(stage, *resolved.comb, settings.grain_follows_comb);
+  }
   ScalpRoots made = make_scalp_roots(*v.chart, resolved.inputs, o, run.exec());
   v.roots = std::make_shared<const Roots>(std::move(made.roots));
   v.clusters = std::make_shared<const Clusters>(std::move(made.clusters));

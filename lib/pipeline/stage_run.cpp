@@ -41,9 +41,20 @@ const StageRun::ResolvedRoots& StageRun::resolved_roots(const RootSettings& sett
   r.inputs.density = inputs.density_map;
   r.inputs.tilt = inputs.tilt_map;
   r.inputs.length = inputs.length_map;
+  if (settings.from_shell) {  // where the hair falls from every scalp vertex (scalp/fall.h)
+    const ScalpChart& chart = *values.chart;
+    const std::array<double, 2> depth_range = settings.fall_depth_range;
+    r.falls = vertex_falls(chart, fall_region(boundary(), chart.down, chart.front), kLongestFall,
+                           [&](const Vec3& p) { return immersion_share(depth_range, height_of(chart, p)); },
+                           options.threads);
+  }
+  if (settings.comb_from_hull && settings.from_shell) {
+    r.comb = comb_from_hull(*values.chart, layer_thickness(*values.volume_field), r.falls);
+    o.comb = r.comb->comb;
+  }
   if (o.flow == FlowModel::relief) {
     const ScalpChart& chart = *values.chart;
-    if (settings.grain_of_normals) {
+    if (settings.grain_of_normals || (settings.grain_follows_comb && o.comb == Comb::from_crown)) {
       const std::vector<double> lift = vertex_thickness(chart, layer_thickness(*values.volume_field), options.threads);
       r.inputs.grain = relief_grain_of_normals(chart, inputs.volume.mesh, lift, settings.relief_radius, options.threads);
     } else {
@@ -59,10 +70,6 @@ const StageRun::ResolvedRoots& StageRun::resolved_roots(const RootSettings& sett
   }
   if (settings.from_shell) {  // where the layer carries the hair on below the rim, it hangs there
     const ScalpChart& chart = *values.chart;
-    const std::array<double, 2> depth_range = settings.fall_depth_range;
-    r.falls = vertex_falls(chart, fall_region(boundary(), chart.down, chart.front), kLongestFall,
-                           [&](const Vec3& p) { return immersion_share(depth_range, height_of(chart, p)); },
-                           options.threads);
     // Hair combed from the crown lies as far as the layer ahead of it goes.
     r.hull = o.comb == Comb::from_crown
                  ? hull_hair(r.falls, combed_lengths(chart, layer_thickness(*values.volume_field), o.length, options.threads))

@@ -40,6 +40,29 @@ std::vector<double> combed_lengths(const ScalpChart& chart, const ThicknessField
   return lengths;
 }
 
+CombChoice comb_from_hull(const ScalpChart& chart, const ThicknessField& thickness, const std::vector<Fall>& falls) {
+  const Mesh& mesh = chart.mesh;
+  if (falls.size() != mesh.positions.size()) throw std::invalid_argument("comb_from_hull: one fall per scalp vertex");
+  std::vector<double> area(mesh.positions.size(), 0.0);
+  for (int t = 0; t < static_cast<int>(mesh.triangles.size()); ++t)
+    for (int v : mesh.triangles[t]) area[v] += triangle_area(mesh, t) / 3.0;
+  double total = 0.0, up = 0.0, hanging = 0.0;
+  for (std::size_t v = 0; v < area.size(); ++v) {
+    const Vec3& normal = chart.vertex_normals[v];
+    const Vec3 gradient = thickness(mesh.positions[v]).gradient;
+    const Vec3 along = gradient - gradient.dot(normal) * normal;
+    total += area[v];
+    if (along.dot(tangent_toward_down(normal, chart.down, chart.front)) < 0.0) up += area[v];
+    if (smoothstep(falls[v].below_rim / kHangRamp) > 0.5) hanging += area[v];
+  }
+  CombChoice c;
+  if (!(total > 0.0)) return c;
+  c.thickening_up = up / total;
+  c.hanging = hanging / total;
+  if (c.thickening_up >= kCombedThickeningShare && c.hanging < kCombedHangingShare) c.comb = Comb::from_crown;
+  return c;
+}
+
 namespace {
 
 double median(std::vector<double> v) {

@@ -61,6 +61,25 @@ constexpr double kShortestCombedHair = 0.15;
 std::vector<double> combed_lengths(const ScalpChart& chart, const ThicknessField& thickness, double fallback,
                                    int threads = 1);
 
+// hair.comb = "auto": which way hair that suits its shell grows along the growth field, from the
+// hull. A layer that thickens toward the crown over most of the scalp and does not carry the hair
+// on below the rim is a carved cap (a sculpture's hair, cut from a scan): grown toward the thicker
+// layer (the paper's rule) all its hair runs up into the crown and meets there head on, so it is
+// combed from the crown instead. The share is of the scalp's area (a third of each triangle to
+// each corner) where the layer's thickness gradient along the scalp points up, against the
+// tangent toward down; hanging is φ > ½ (hull_hair). Measured on every hull the project has
+// (docs/results/carved-flow.md): the seven carved hulls 0.905–0.958 thickening up, 0 hanging;
+// the MakeHuman shells and long hulls 0.19–0.72, the grooved fixture 0.49; the straight bag 0.83,
+// all of it hanging.
+constexpr double kCombedThickeningShare = 0.8;
+constexpr double kCombedHangingShare = 0.25;
+struct CombChoice {
+  Comb comb = Comb::into_layer;
+  double thickening_up = 0.0;  // the share of the scalp's area where the layer thickens upward
+  double hanging = 0.0;        // the share of the scalp's area whose hair hangs (φ > ½)
+};
+CombChoice comb_from_hull(const ScalpChart& chart, const ThicknessField& thickness, const std::vector<Fall>& falls);
+
 // What a region of the scalp derived from the hull: its roots' share that hangs (φ > ½), and the
 // median length and median fall below the rim of its vertices.
 struct HullHairRegion {
