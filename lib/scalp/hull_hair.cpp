@@ -52,7 +52,9 @@ CombChoice comb_from_hull(const ScalpChart& chart, const ThicknessField& thickne
     const Vec3 gradient = thickness(mesh.positions[v]).gradient;
     const Vec3 along = gradient - gradient.dot(normal) * normal;
     total += area[v];
-    if (along.dot(tangent_toward_down(normal, chart.down, chart.front)) < 0.0) up += area[v];
+    // A gradient normal to the scalp (up to round-off in the normal) points neither way.
+    const bool along_scalp = along.norm() > 1e-9 * gradient.norm();
+    if (along_scalp && along.dot(tangent_toward_down(normal, chart.down, chart.front)) < 0.0) up += area[v];
     if (smoothstep(falls[v].below_rim / kHangRamp) > 0.5) hanging += area[v];
   }
   CombChoice c;

@@ -179,6 +179,56 @@ TEST_CASE("hair from the hull: lying above the rim, hanging past kHangRamp below
   CHECK_FALSE(hull_hair({falls[0]}, 6.0).hangs);
 }
 
+TEST_CASE("the comb from the hull: a layer thickening up to the crown over the whole cap is a carved cap, unless its hair hangs") {
+  // A sphere's cap of radius 9 to 60° from the pole (up = +y). The layer's thickness a + b·y grows
+  // up along the scalp everywhere but at the pole, where its gradient is normal to the scalp.
+  constexpr double kRadius = 9.0, kRim = M_PI / 3.0;
+  const Mesh cap = test::ring_disk(
+      24,
+      [&](double r, double phi) {
+        const double theta = r * kRim;
+        return Vec3(kRadius * std::sin(theta) * std::cos(phi), kRadius * std::cos(theta),
+                    kRadius * std::sin(theta) * std::sin(phi));
+      },
+      [](const Vec3& p) { return p; });
+  const ScalpChart chart = make_scalp_chart(cap, Vec3(0, 0, 1), Vec3(0, -1, 0), "cap.obj");
+  const Mesh& mesh = chart.mesh;
+  double total = 0.0, pole = 0.0;
+  for (int t = 0; t < static_cast<int>(mesh.triangles.size()); ++t)
+    for (int v : mesh.triangles[t]) {
+      total += triangle_area(mesh, t) / 3.0;
+      if (mesh.positions[v].y() > kRadius - 1e-9) pole += triangle_area(mesh, t) / 3.0;
+    }
+  REQUIRE(pole > 0.0);
+  auto slope = [](double b) {
+    return ThicknessField([b](const Vec3& p) { return LayerThickness{1.0 + b * p.y(), Vec3(0.0, b, 0.0)}; });
+  };
+  std::vector<Fall> lying(mesh.positions.size()), hanging(mesh.positions.size());
+  for (Fall& f : hanging) f.below_rim = kHangRamp;  // φ = 1
+  const CombChoice up = comb_from_hull(chart, slope(0.1), lying);
+  CHECK(up.thickening_up == doctest::Approx(1.0 - pole / total).epsilon(1e-12));
+  CHECK(up.hanging == 0.0);
+  CHECK(up.comb == Comb::from_crown);
+  const CombChoice down = comb_from_hull(chart, slope(-0.1), lying);
+  CHECK(down.thickening_up == 0.0);
+  CHECK(down.comb == Comb::into_layer);
+  const CombChoice flat = comb_from_hull(chart, slope(0.0), lying);  // no gradient: nowhere up
+  CHECK(flat.thickening_up == 0.0);
+  CHECK(flat.comb == Comb::into_layer);
+  const CombChoice hangs = comb_from_hull(chart, slope(0.1), hanging);
+  CHECK(hangs.hanging == doctest::Approx(1.0).epsilon(1e-12));
+  CHECK(hangs.comb == Comb::into_layer);
+  // Up on the front half only (z > 0): about half the area, below the share a carved cap needs.
+  const ThicknessField front = [](const Vec3& p) {
+    return LayerThickness{1.0, Vec3(0.0, p.z() > 0.0 ? 0.1 : -0.1, 0.0)};
+  };
+  const CombChoice half = comb_from_hull(chart, front, lying);
+  CHECK(half.thickening_up > 0.4);
+  CHECK(half.thickening_up < 0.6);
+  CHECK(half.comb == Comb::into_layer);
+  CHECK_THROWS_AS(comb_from_hull(chart, slope(0.1), std::vector<Fall>(3)), std::invalid_argument);
+}
+
 TEST_CASE("combed hair: as long as the layer ahead to the rim, less the margin; a speck of no layer is no end") {
   // A sphere's cap of radius 9 to 60° from the pole; the layer covers it and ends past the rim.
   constexpr double kRadius = 9.0, kRim = M_PI / 3.0;
