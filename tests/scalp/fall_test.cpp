@@ -68,6 +68,21 @@ RimHeights level_rim(double h) {
   return rim;
 }
 
+// A sphere's cap of radius kCapRadius to kCapRim from the pole (up = +y), on `rings` rings, as a
+// scalp chart (front +z, down −y).
+constexpr double kCapRadius = 9.0, kCapRim = M_PI / 3.0;
+ScalpChart cap_chart(int rings) {
+  const Mesh cap = test::ring_disk(
+      rings,
+      [](double r, double phi) {
+        const double theta = r * kCapRim;
+        return Vec3(kCapRadius * std::sin(theta) * std::cos(phi), kCapRadius * std::cos(theta),
+                    kCapRadius * std::sin(theta) * std::sin(phi));
+      },
+      [](const Vec3& p) { return p; });
+  return make_scalp_chart(cap, Vec3(0, 0, 1), Vec3(0, -1, 0), "cap.obj");
+}
+
 }  // namespace
 
 TEST_CASE("the fall runs straight down a wall to the layer's floor, to a 2⁻²⁰ step") {
@@ -182,16 +197,8 @@ TEST_CASE("hair from the hull: lying above the rim, hanging past kHangRamp below
 TEST_CASE("the comb from the hull: a layer thickening up to the crown over the whole cap is a carved cap, unless its hair hangs") {
   // A sphere's cap of radius 9 to 60° from the pole (up = +y). The layer's thickness a + b·y grows
   // up along the scalp everywhere but at the pole, where its gradient is normal to the scalp.
-  constexpr double kRadius = 9.0, kRim = M_PI / 3.0;
-  const Mesh cap = test::ring_disk(
-      24,
-      [&](double r, double phi) {
-        const double theta = r * kRim;
-        return Vec3(kRadius * std::sin(theta) * std::cos(phi), kRadius * std::cos(theta),
-                    kRadius * std::sin(theta) * std::sin(phi));
-      },
-      [](const Vec3& p) { return p; });
-  const ScalpChart chart = make_scalp_chart(cap, Vec3(0, 0, 1), Vec3(0, -1, 0), "cap.obj");
+  constexpr double kRadius = kCapRadius;
+  const ScalpChart chart = cap_chart(24);
   const Mesh& mesh = chart.mesh;
   double total = 0.0, pole = 0.0;
   for (int t = 0; t < static_cast<int>(mesh.triangles.size()); ++t)
@@ -231,16 +238,8 @@ TEST_CASE("the comb from the hull: a layer thickening up to the crown over the w
 
 TEST_CASE("combed hair: as long as the layer ahead to the rim, less the margin; a speck of no layer is no end") {
   // A sphere's cap of radius 9 to 60° from the pole; the layer covers it and ends past the rim.
-  constexpr double kRadius = 9.0, kRim = M_PI / 3.0;
-  const Mesh cap = test::ring_disk(
-      36,
-      [&](double r, double phi) {
-        const double theta = r * kRim;
-        return Vec3(kRadius * std::sin(theta) * std::cos(phi), kRadius * std::cos(theta),
-                    kRadius * std::sin(theta) * std::sin(phi));
-      },
-      [](const Vec3& p) { return p; });
-  const ScalpChart chart = make_scalp_chart(cap, Vec3(0, 0, 1), Vec3(0, -1, 0), "cap.obj");
+  constexpr double kRadius = kCapRadius, kRim = kCapRim;
+  const ScalpChart chart = cap_chart(36);
   const Vec3 speck = chart.mesh.positions[0];  // the pole
   auto polar = [](const Vec3& p) { return std::acos(std::clamp(p.normalized().y(), -1.0, 1.0)); };
   const ThicknessField layer = [&](const Vec3& p) {
