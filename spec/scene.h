@@ -143,6 +143,7 @@ struct SceneDensity {
   int stall_iterations = 3;       // a guide's refinement with F4 stops after this many iterations …
   double stall_tolerance = 1e-4;  // … that together lowered its cost by less than this share
   int spread = 3;                 // passes spreading the fibres down their own density (0: off)
+  std::string deposit = "tubes";  // CDM: what a guide's wisp deposits: tubes (lines over its cross-section) | fibres (the grown fibres)
 };
 
 struct SceneStrands {

@@ -377,6 +377,11 @@ std::vector<SceneKey> build_keys() {
                          "not) lowered its cost by less than density.stall_tolerance of it; 0: never."));
   keys.push_back(number("density.stall_tolerance", REF(density.stall_tolerance), "", closed(0, 1), "density",
                         "Share of the cost that density.stall_iterations iterations must lower it by to go on."));
+  keys.push_back(text("density.deposit", REF(density.deposit), {"tubes", "fibres"}, "density",
+                      "CDM: what a solved guide's wisp adds to the density the later guides' F4 reads: tubes, 16 lines "
+                      "spread evenly over the wisp's cross-section (the paper's cylindrical region around the guide), "
+                      "each carrying an equal share of its pores' fibre length; or fibres, the fibres the strands "
+                      "stage grows from its pores, grown in the guides stage and handed on."));
   keys.push_back(integer("density.spread", REF(density.spread), "", closed(0, 100), "density",
                          "The models' fibre part: passes that move the grown fibres down their own density gradient "
                          "(density.voxel apart; the density per unit of the hair's region, so a thin layer's faces "

@@ -26,6 +26,7 @@ int z_layer(const GridGeometry& grid, double z);
 struct FibreSpan {
   const Vec3* points;
   std::size_t size;
+  double weight = 1.0;  // how many fibres it stands for: each crossing deposits weight × its length
 };
 std::vector<FibreSpan> fibre_spans(const Curves& fibres);
 
@@ -66,7 +67,7 @@ void for_each_crossing_in_slab(const GridGeometry& grid, const std::vector<Fibre
       }
       for_each_cell_crossing(
           grid, fibre.points[s], fibre.points[s + 1],
-          [&](const Vec3i& c, double length) { visit(grid.index(c.x(), c.y(), c.z()), length); }, k_begin, k_end);
+          [&](const Vec3i& c, double length) { visit(grid.index(c.x(), c.y(), c.z()), fibre.weight * length); }, k_begin, k_end);
     }
   }
 }

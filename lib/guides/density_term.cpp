@@ -89,6 +89,23 @@ void grow_guide_fibres(const std::vector<Vec3>& guide, const std::vector<int>& p
     grow_fibre(track, options.pores.positions[i], options.pores.lengths[i], extent, options.wisp, fibres + n * i);
 }
 
+void wisp_tube_lines(const std::vector<Vec3>& guide, const WispShape& wisp, Vec3* lines) {
+  const GuideTrack track(guide);
+  const int n = fibre_point_count(wisp);
+  constexpr double kGoldenAngle = 2.399963229728653;  // π(3 − √5)
+  std::size_t segment = 0;
+  for (int i = 0; i < n; ++i) {
+    const double t = static_cast<double>(i) / (n - 1);
+    Vec3 position, tangent, d1, d2;
+    track.at(t * track.length(), position, tangent, d1, d2, segment);
+    const double radius = wisp.root_radius + (wisp.tip_radius - wisp.root_radius) * t;
+    for (int j = 0; j < kWispTubeLines; ++j) {
+      const double rho = std::sqrt((j + 0.5) / kWispTubeLines), angle = j * kGoldenAngle;
+      lines[std::size_t(j) * n + i] = position + radius * rho * (std::cos(angle) * d1 + std::sin(angle) * d2);
+    }
+  }
+}
+
 Tube guide_tube(const std::vector<Vec3>& guide, double root_radius, double tip_radius) {
   Tube tube;
   tube.points = guide;

@@ -33,6 +33,16 @@ struct StallTest {
   double tolerance = 0.0;
 };
 
+// What a final guide's wisp deposits for the continuous model (CDM).
+enum class WispDeposit {
+  // The wisp's expected density: kWispTubeLines lines spread evenly over its cross-section (the
+  // paper's cylindrical region around the guide, radius wisp.root_radius → wisp.tip_radius), each
+  // carrying an equal share of its pores' fibres (wisp_tube_lines).
+  tubes,
+  // The fibres the strand stage grows from its cluster's pores (grow_guide_fibres).
+  fibres,
+};
+
 struct GuideDensityOptions {
   DensityTermOptions term;
   GridGeometry grid;  // make_density_geometry
@@ -43,12 +53,12 @@ struct GuideDensityOptions {
   // paper-scale scene 51 evaluations per guide for a cost 2.5 % lower). Stopped at the stall, the
   // evaluations halve and the density comes out no less even (bench/results/density_stall.md).
   StallTest stall{3, 1e-4};
-  // What a final guide deposits. CDM: the fibres the strand stage will grow from its cluster's
-  // pores (grow_guide_fibres: before cutting and before being moved out of the head); a guide with
-  // no pores deposits the guide polyline once instead. BOM: a tube along the guide, radius
-  // wisp.root_radius → wisp.tip_radius (cm).
+  // What a final guide deposits. CDM: as `deposit` says (a guide with no pores deposits the guide
+  // polyline once instead). BOM: a tube along the guide, radius wisp.root_radius →
+  // wisp.tip_radius (cm).
   Pores pores;
   WispShape wisp;
+  WispDeposit deposit = WispDeposit::tubes;
 };
 
 // The density grid's cells: the box [lower, upper] (cm, e.g. the hair-volume mesh's bounding
@@ -92,6 +102,16 @@ class DensityCeiling {
 // own polyline instead (make_guides_with_density).
 void grow_guide_fibres(const std::vector<Vec3>& guide, const std::vector<int>& pores_of_guide,
                        const GuideDensityOptions& options, Vec3* fibres);
+
+// WispDeposit::tubes: the lines, kWispTubeLines of fibre_point_count(wisp) points each, line j at
+// the points of a sunflower on the unit disk, ρ_j = √((j + ½)/K) at the golden angle j·137.5°, in
+// the guide's rotation-minimising frame, scaled by the wisp's radius at each station (stations
+// evenly spaced in arc length, root to tip). Line j goes to lines[j·n, (j+1)·n). Each carries 1/K
+// of the wisp's fibres. Measured at paper scale (bench/results/density_guide_cost_2026-12-07.md):
+// 16 lines give F4 8.1 against the grown fibres' 10.4, and 17.4 evaluations a guide against 17.7;
+// 7 lines 12.3 and 19.1; a sample of every 5th grown fibre 16.4 and 20.0.
+constexpr int kWispTubeLines = 16;
+void wisp_tube_lines(const std::vector<Vec3>& guide, const WispShape& wisp, Vec3* lines);
 
 // The generalised cylinder a guide occupies (BOM): radius root_radius at the root to tip_radius at
 // the tip, linear in arc length.

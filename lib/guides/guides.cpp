@@ -148,15 +148,20 @@ DensityGuides make_guides_with_density(const RootSet& bases, const PreGuides& pr
   // The pores of each cluster, in pore order (CDM deposits the fibres they will grow).
   std::vector<std::vector<int>> pores_of(count);
   const std::size_t fibre_points = fibre_point_count(density.wisp);
-  std::vector<Vec3> grown;  // CDM: every pore's fibre, in its place
-  // CDM deposits the fibres its guides will grow, BOM tubes along the guides.
+  // CDM deposits each guide's wisp, as lines over its cross-section or as the fibres its guide
+  // will grow; BOM tubes along the guides.
   const bool cdm = density.term.model == GuideDensityModel::continuous;
+  const bool grow = cdm && density.deposit == WispDeposit::fibres;
+  std::vector<Vec3> grown;  // grown fibres: every pore's fibre, in its place
+  std::vector<Vec3> lines;  // wisp tubes: the batch's guides' lines, guide by guide
+  const std::size_t lines_per_guide = kWispTubeLines * fibre_points;
   if (cdm) {
     for (std::size_t i = 0; i < density.pores.guide.size(); ++i) {
       const int g = density.pores.guide[i];
       if (g >= 0 && g < count) pores_of[g].push_back(static_cast<int>(i));
     }
-    grown.resize(fibre_points * density.pores.positions.size());  // each written before it is read
+    if (grow) grown.resize(fibre_points * density.pores.positions.size());  // each written before it is read
+    else lines.resize(lines_per_guide * static_cast<std::size_t>(density.batch));
   }
   // The first solves do not see the density: the guides the scene would have without a density
   // model (FirstSolves, as make_guides). They are only the second solves' start, and those
@@ -192,13 +197,15 @@ DensityGuides make_guides_with_density(const RootSet& bases, const PreGuides& pr
     std::iota(order.begin(), order.end(), begin);
     std::stable_sort(order.begin(), order.end(),
                      [&](int x, int y) { return plain[x].evaluations > plain[y].evaluations; });
-    // CDM: each guide grows its fibres into their pores' places as soon as it is solved (they are
-    // deposited below, in guide order).
+    // CDM: each guide lays out its wisp's lines or grows its fibres as soon as it is solved (they
+    // are deposited below, in guide order).
     parallel_for(end - begin, exec.threads, [&](int i) {
       const int g = order[i];
       out.guides.items[g] =
           solve_guide_with_density(problem, g, plain[g], frozen, density.term, outside_f4, density.stall);
-      if (cdm) grow_guide_fibres(out.guides.items[g].shape.nodes, pores_of[g], density, grown.data());
+      if (grow) grow_guide_fibres(out.guides.items[g].shape.nodes, pores_of[g], density, grown.data());
+      else if (cdm && !pores_of[g].empty())
+        wisp_tube_lines(out.guides.items[g].shape.nodes, density.wisp, lines.data() + lines_per_guide * (g - begin));
       progress.item_done();
     });
     // Released before the deposit, which then writes the grid in place (a frozen grid shares the
@@ -207,8 +214,15 @@ DensityGuides make_guides_with_density(const RootSet& bases, const PreGuides& pr
     std::vector<FibreSpan> fibres;
     if (cdm) {
       for (int g = begin; g < end; ++g) {
-        if (pores_of[g].empty()) fibres.push_back({out.guides.items[g].shape.nodes.data(), out.guides.items[g].shape.nodes.size()});
-        for (int i : pores_of[g]) fibres.push_back({grown.data() + fibre_points * i, fibre_points});
+        if (pores_of[g].empty()) {
+          fibres.push_back({out.guides.items[g].shape.nodes.data(), out.guides.items[g].shape.nodes.size()});
+        } else if (grow) {
+          for (int i : pores_of[g]) fibres.push_back({grown.data() + fibre_points * i, fibre_points});
+        } else {  // each line an equal share of the wisp's fibres
+          const double share = static_cast<double>(pores_of[g].size()) / kWispTubeLines;
+          for (int j = 0; j < kWispTubeLines; ++j)
+            fibres.push_back({lines.data() + lines_per_guide * (g - begin) + fibre_points * j, fibre_points, share});
+        }
       }
     } else {  // BOM: the tubes' voxelisation scales over threads
       std::vector<Tube> tubes;
@@ -232,7 +246,7 @@ DensityGuides make_guides_with_density(const RootSet& bases, const PreGuides& pr
   }
   out.density = std::move(accumulator).freeze();
   // Handed on only when every pore's fibre was grown (each pore belongs to a guide in range).
-  if (std::all_of(density.pores.guide.begin(), density.pores.guide.end(), [&](int g) { return g >= 0 && g < count; }))
+  if (grow && std::all_of(density.pores.guide.begin(), density.pores.guide.end(), [&](int g) { return g >= 0 && g < count; }))
     out.fibres = std::move(grown);
   return out;
 }

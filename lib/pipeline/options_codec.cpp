@@ -134,6 +134,7 @@ void encode(ByteWriter& out, const GuideDensitySettings& s) {
   out.put(s.stall.iterations);
   out.put(s.stall.tolerance);
   encode(out, s.wisp);
+  out.put(s.deposit);
 }
 
 void encode(ByteWriter& out, const WispShape& w) {

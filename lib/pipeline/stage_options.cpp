@@ -191,6 +191,7 @@ GuideDensitySettings guide_density_settings(const Scene& scene) {
   s.batch = scene.density.batch;
   s.stall = StallTest{scene.density.stall_iterations, scene.density.stall_tolerance};
   s.wisp = wisp_shape(scene);
+  s.deposit = scene.density.deposit == "fibres" ? WispDeposit::fibres : WispDeposit::tubes;
   return s;
 }
 
@@ -202,6 +203,7 @@ GuideDensityOptions guide_density_options(const GuideDensitySettings& s, const M
   o.stall = s.stall;
   o.pores = std::move(pores);
   o.wisp = s.wisp;
+  o.deposit = s.deposit;
   return o;
 }
 

@@ -71,6 +71,7 @@ struct GuideDensitySettings {
   int batch = 64;
   StallTest stall;
   WispShape wisp;
+  WispDeposit deposit = WispDeposit::tubes;
 };
 GuideDensitySettings guide_density_settings(const Scene& scene);
 // `pores` are the fibres' pores with their cluster (guide) index, what CDM deposits.

@@ -360,3 +360,43 @@ TEST_CASE("a solve by multiple shooting given no stall test stops at the scheme'
   CHECK(unstalled.final_cost <= plain.final_cost);
   CHECK(std::isfinite(plain.final_cost));
 }
+
+TEST_CASE("a wisp's tube lines: a sunflower over the wisp's cross-section, together its fibres' length") {
+  // A straight guide along z, 10 cm, wisp radius 0.5 cm root to tip: each line runs parallel to the
+  // guide at ρ_j · 0.5 cm from it, so K lines weighted n/K deposit n · 10 cm of fibre in all.
+  std::vector<Vec3> guide;
+  for (int k = 0; k <= 20; ++k) guide.emplace_back(0.0, 0.0, 0.5 * k);
+  WispShape wisp;
+  wisp.points = 16;
+  wisp.root_radius = wisp.tip_radius = 0.5;
+  const int n = fibre_point_count(wisp);
+  std::vector<Vec3> lines(std::size_t(kWispTubeLines) * n);
+  wisp_tube_lines(guide, wisp, lines.data());
+  for (int j = 0; j < kWispTubeLines; ++j) {
+    CAPTURE(j);
+    const double rho = std::sqrt((j + 0.5) / kWispTubeLines);
+    for (int i = 0; i < n; ++i) {
+      const Vec3& p = lines[std::size_t(j) * n + i];
+      CHECK(std::hypot(p.x(), p.y()) == doctest::Approx(0.5 * rho).epsilon(1e-12));
+      CHECK(p.z() == doctest::Approx(10.0 * i / (n - 1)).epsilon(1e-12));
+    }
+  }
+  // Evenly over the disk: the lines' centroid is near the axis (a sunflower's first moment is
+  // small), and each ring of equal area holds its share of them.
+  Vec3 centroid = Vec3::Zero();
+  for (int j = 0; j < kWispTubeLines; ++j) centroid += lines[std::size_t(j) * n];
+  CHECK((centroid / kWispTubeLines).norm() < 0.1 * 0.5);
+  int inner = 0;
+  for (int j = 0; j < kWispTubeLines; ++j) inner += lines[std::size_t(j) * n].head<2>().norm() < 0.5 * std::sqrt(0.5);
+  CHECK(inner == kWispTubeLines / 2);
+  const double fibres = 30.0;
+  DensityAccumulator accumulator(make_grid_geometry(Vec3(-2, -2, -1), Vec3(2, 2, 11), 0.25));
+  std::vector<FibreSpan> spans;
+  for (int j = 0; j < kWispTubeLines; ++j)
+    spans.push_back({lines.data() + std::size_t(j) * n, std::size_t(n), fibres / kWispTubeLines});
+  accumulator.add_fibres(spans, 1);
+  const DensityGrid grid = accumulator.freeze();
+  double total = 0.0;
+  for (double v : grid.values()) total += v;
+  CHECK(total * grid.geometry().cell_diagonal() == doctest::Approx(fibres * 10.0).epsilon(1e-12));
+}
