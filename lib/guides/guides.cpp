@@ -145,7 +145,7 @@ DensityGuides make_guides_with_density(const RootSet& bases, const PreGuides& pr
   const int count = bases.size();
   DensityGuides out;
   out.guides.items.resize(count);
-  // The pores of each cluster, in pore order (CDM deposits the fibres they will grow).
+  // The pores of each cluster, in pore order (CDM deposits their wisp).
   std::vector<std::vector<int>> pores_of(count);
   const std::size_t fibre_points = fibre_point_count(density.wisp);
   // CDM deposits each guide's wisp, as lines over its cross-section or as the fibres its guide
