@@ -218,6 +218,17 @@ PrepareChecks check(const Prepared& p, int threads, CheckScope scope = CheckScop
   return c;
 }
 
+// For a refusal: where the scan crosses itself, since that is then the likeliest cause (the hull
+// cut from it is untangled, but skin through the hair, or folds no smoothing clears, remain).
+// Only on this path: the search costs about a tenth of preparing.
+std::string crossing_note(const Mesh& scan, const Prepared& p, int threads) {
+  const auto pairs = self_intersections(scan, kMaxUntanglePairs, threads);
+  if (pairs.empty()) return "";
+  const Vec3 at = triangle_centroid(scan, pairs[0].first) * p.scale_to_cm + p.origin;
+  return "; the scan crosses itself at " + std::to_string(pairs.size()) + (pairs.size() >= static_cast<std::size_t>(kMaxUntanglePairs) ? " or more" : "") +
+         " pairs of triangles (e.g. at " + vec_text(at) + ")";
+}
+
 double max_thickness(const Prepared& p) {
   return p.scalp.thickness.empty() ? 0.0 : *std::max_element(p.scalp.thickness.begin(), p.scalp.thickness.end());
 }
@@ -248,6 +259,19 @@ Prepared prepare_centred(const Mesh& raw_scan, const std::vector<Vec3>& colors, 
   p.scale_to_cm = scale_for(scan, p.up, o, file);
   p.origin *= p.scale_to_cm;  // where the checks' messages place what they found, in cm
   for (Vec3& x : p.hull.mesh.positions) x *= p.scale_to_cm;
+  // Noise that folds the scan's small triangles over their neighbours makes the hull cross
+  // itself: those neighbourhoods are smoothed (untangle.h; the hairline stays, so hull and skin
+  // still meet there). The skin is not written, so its folds are left.
+  p.untangled = untangle_self_intersections(p.hull.mesh, o.threads);
+  if (p.untangled.pairs_found > 0) {
+    char text[320];
+    std::snprintf(text, sizeof text,
+                  "the hull crossed itself (%d pairs of triangles, e.g. at %s): %d vertices around them smoothed in "
+                  "%d round%s, moved %.3g cm at most",
+                  p.untangled.pairs_found, vec_text(p.untangled.first_found + p.origin).c_str(), p.untangled.vertices_moved,
+                  p.untangled.rounds, p.untangled.rounds == 1 ? "" : "s", p.untangled.largest_move);
+    p.repairs.push_back(text + (p.untangled.pairs_left > 0 ? ", " + std::to_string(p.untangled.pairs_left) + " pairs left" : ""));
+  }
   p.hull.centre *= p.scale_to_cm;
   p.hull.selected_area *= p.scale_to_cm * p.scale_to_cm;
   p.hull.kept_area *= p.scale_to_cm * p.scale_to_cm;
@@ -316,11 +340,16 @@ Prepared prepare_centred(const Mesh& raw_scan, const std::vector<Vec3>& colors, 
     }
     if (!passed)
       throw InputError(file, "the level-set scalp derived from this hull fails its checks at every voxel tried (" +
-                                 tried + "); try a smaller --crown-thickness or a longer --ramp, or repair the scan near the hairline");
+                                 tried + ")" + crossing_note(scan, p, o.threads) +
+                                 "; try a smaller --crown-thickness or a longer --ramp, or repair the scan near the hairline");
+    if (p.scalp.strip_feet > 0)
+      p.repairs.push_back("the level-set scalp's strip crossed the hull near the hairline: lowered under " +
+                          std::to_string(p.scalp.strip_feet) + " hairline vertices");
   }
   const std::string failed = failures(p.checks, p.origin);
   if (!failed.empty())
     throw InputError(file, "the scalp derived from this hull (" + p.scalp.method + ") fails its checks: " + failed +
+                               crossing_note(scan, p, o.threads) +
                                "; try a smaller --crown-thickness or a longer --ramp, or repair the scan near the hairline");
   return p;
 }
@@ -406,6 +435,12 @@ void write_prepared(const Prepared& p, const std::filesystem::path& scan, const 
   record["refined"] = {{"splits", p.refine_splits},
                        {"median_edge_before_cm", p.median_edge_before * p.scale_to_cm},
                        {"median_edge_after_cm", p.median_edge_after * p.scale_to_cm}};
+  record["untangled"] = {{"pairs_found", p.untangled.pairs_found},
+                         {"pairs_left", p.untangled.pairs_left},
+                         {"rounds", p.untangled.rounds},
+                         {"vertices_moved", p.untangled.vertices_moved},
+                         {"largest_move_cm", p.untangled.largest_move}};
+  record["repaired"] = p.repairs;
   record["hull"] = {{"triangles", p.hull.mesh.triangles.size()},
                     {"area_cm2", p.hull.kept_area},
                     {"selected_triangles", p.hull.selected_triangles},
@@ -427,7 +462,8 @@ void write_prepared(const Prepared& p, const std::filesystem::path& scan, const 
                      {"max_thickness_cm", max_thickness(p)},
                      {"envelope_rms_cm", p.scalp.envelope_rms},
                      {"envelope_outliers", p.scalp.envelope_outliers},
-                     {"dropped_parts", p.scalp.dropped_parts}};
+                     {"dropped_parts", p.scalp.dropped_parts},
+                     {"strip_feet", p.scalp.strip_feet}};
   record["checks"] = {{"hull_disk", p.checks.hull_disk},
                       {"scalp_disk", p.checks.scalp_disk},
                       {"scalp_inward_triangles", p.checks.scalp_inward_triangles},
