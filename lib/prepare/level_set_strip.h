@@ -27,6 +27,8 @@ struct LevelSetSheet {
   std::size_t piece_vertices = 0; // the piece's vertices come first, then the outer loop's, then the feet
   std::size_t strip_begin = 0;    // the strip's first triangle
   int dropped_parts = 0;
+  int holes_filled = 0;           // holes of the piece filled (holes.h), and the longest of them (cm)
+  double longest_hole = 0.0;
 };
 
 // The strip between the piece's boundary and the outer loop, (re)built: where depth[j] > 0 the

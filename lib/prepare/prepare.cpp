@@ -342,6 +342,17 @@ Prepared prepare_centred(const Mesh& raw_scan, const std::vector<Vec3>& colors, 
       throw InputError(file, "the level-set scalp derived from this hull fails its checks at every voxel tried (" +
                                  tried + ")" + crossing_note(scan, p, o.threads) +
                                  "; try a smaller --crown-thickness or a longer --ramp, or repair the scan near the hairline");
+    if (p.scalp.scalp_holes_filled + p.scalp.floor_holes_filled > 0) {
+      char text[320];
+      std::snprintf(text, sizeof text,
+                    "the level set had holes where the layer thins inside the hair: %d in the scalp, %d in the floor "
+                    "(the longest %.3g cm), filled",
+                    p.scalp.scalp_holes_filled, p.scalp.floor_holes_filled, p.scalp.longest_hole_filled);
+      p.repairs.push_back(text);
+    }
+    if (p.scalp.dropped_parts > 0)
+      p.repairs.push_back("the level set had " + std::to_string(p.scalp.dropped_parts) +
+                          " pieces apart from the scalp and floor under the hair: left out");
     if (p.scalp.strip_feet > 0)
       p.repairs.push_back("the level-set scalp's strip crossed the hull near the hairline: lowered under " +
                           std::to_string(p.scalp.strip_feet) + " hairline vertices");
@@ -463,6 +474,9 @@ void write_prepared(const Prepared& p, const std::filesystem::path& scan, const 
                      {"envelope_rms_cm", p.scalp.envelope_rms},
                      {"envelope_outliers", p.scalp.envelope_outliers},
                      {"dropped_parts", p.scalp.dropped_parts},
+                     {"scalp_holes_filled", p.scalp.scalp_holes_filled},
+                     {"floor_holes_filled", p.scalp.floor_holes_filled},
+                     {"longest_hole_filled_cm", p.scalp.longest_hole_filled},
                      {"strip_feet", p.scalp.strip_feet}};
   record["checks"] = {{"hull_disk", p.checks.hull_disk},
                       {"scalp_disk", p.checks.scalp_disk},

@@ -11,6 +11,7 @@
 #include "field/distance_field.h"
 #include "field/hair_region.h"
 #include "prepare/level_set_clip.h"
+#include "prepare/holes.h"
 #include "prepare/level_set_strip.h"
 #include "prepare/marching_tetrahedra.h"
 
@@ -30,6 +31,10 @@ constexpr double kFloorSteepness = 3.0;
 
 // Jacobi passes that smooth the distance from the hairline across the grid (hairline_distance_at_nodes).
 constexpr int kDistancePasses = 4;
+
+// The longest hole in a level set's piece that is filled, as a share of the piece's rim (the hull's
+// own holes are filled up to HullOptions::max_hole, the same share by default).
+constexpr double kMaxLevelSetHole = 0.25;
 
 double signed_volume(const Mesh& mesh) {
   double v = 0.0;
@@ -137,19 +142,38 @@ LevelSetSheet sheet(const SampleGrid& grid, const std::vector<double>& values, c
   LevelSetSheet s;
   s.mesh = largest_part(clipped.mesh, thickness, s.dropped_parts);
   s.thickness = thickness;
-  const MeshTopology topology = analyse_topology(s.mesh);
+  MeshTopology topology = analyse_topology(s.mesh);
+  FilledHoles holes;
+  // Where the layer thins below ε inside the hair (skin coming near it, a braid's root), the piece
+  // has holes: those up to kMaxLevelSetHole of its rim are filled (holes.h), the fans' centres
+  // placed for their loops' mean thickness.
+  if (topology.nonmanifold_vertices.empty() && topology.boundary_loops.size() > 1) {
+    holes = fill_holes(s.mesh, topology, kMaxLevelSetHole);
+    for (std::size_t h = 0; h < holes.loops.size(); ++h) {
+      if (holes.centres[h] < 0) continue;
+      double sum = 0.0;
+      for (int v : holes.loops[h]) sum += s.thickness[v];
+      s.thickness.push_back(sum / static_cast<double>(holes.loops[h].size()));
+    }
+    s.holes_filled = holes.filled;
+    s.longest_hole = holes.longest_filled;
+    if (holes.filled > 0) topology = analyse_topology(s.mesh);
+  }
   // The scalp must be a disk for the chart; the floor only closes the volume, so a handle in it
   // (where it passes under a tube of hair) is kept, but it too must end in one loop.
   const bool usable = !s.mesh.triangles.empty() && topology.boundary_loops.size() == 1 &&
                       topology.nonmanifold_vertices.empty() && (topology.is_disk() || !must_be_disk);
   if (!usable) {
-    char text[512];
+    char text[768], open[256] = "";
+    if (holes.open > 0)
+      std::snprintf(open, sizeof open, "; a hole %.3g cm long, beyond the %.0f%% of the rim's %.3g cm that is filled",
+                    holes.longest_open, 100.0 * kMaxLevelSetHole, holes.rim_length);
     std::snprintf(text, sizeof text,
                   "the level set for the %s under this hull is no disk (%zu boundary loops, Euler characteristic %d, "
-                  "%d non-manifold vertices); try a smaller --crown-thickness, a finer --scalp-voxel or smooth the "
+                  "%d non-manifold vertices%s%s); try a smaller --crown-thickness, a finer --scalp-voxel or smooth the "
                   "scan's hair",
                   what.c_str(), topology.boundary_loops.size(), topology.euler_characteristic,
-                  static_cast<int>(topology.nonmanifold_vertices.size()));
+                  static_cast<int>(topology.nonmanifold_vertices.size()), holes.filled > 0 ? ", after filling its smaller holes" : "", open);
     throw InputError(file, text);
   }
   const std::vector<int>& loop = topology.boundary_loops[0];
@@ -349,6 +373,9 @@ ScalpResult make_level_set_scalp(const Hull& hull, const Mesh& skin, const Scalp
   for (int v : scalp.inner) scalp_end.push_back(scalp.mesh.positions[v]);
   LevelSetSheet floor = sheet(grid, floor_value, thickness, epsilon, scalp_end, hairline, false, "floor", file);
   r.dropped_parts = scalp.dropped_parts + floor.dropped_parts;
+  r.scalp_holes_filled = scalp.holes_filled;
+  r.floor_holes_filled = floor.holes_filled;
+  r.longest_hole_filled = std::max(scalp.longest_hole, floor.longest_hole);
 
   // The closed volume: the hull, the scalp's strip and the floor, reversed, sharing the hairline
   // and the scalp piece's end.
