@@ -386,7 +386,18 @@ Prepared prepare_scan(const Mesh& input_scan, const std::vector<Vec3>& colors, c
   return p;
 }
 
+namespace {
+
+// The unit the meshes are written in: the scan's own, or cm when the scan was scaled to a declared
+// head height (no unit names that scale).
+std::string written_unit(const PrepareOptions& o) { return o.head_height > 0.0 ? "cm" : o.units; }
+
+}  // namespace
+
 std::string prepared_scene_text(const Prepared& p, const std::string& scan_name, const PrepareOptions& o) {
+  char scaled[96];
+  std::snprintf(scaled, sizeof scaled, "the scan was scaled by %.6g to cm (--head-height)", p.scale_to_cm);
+  const std::string unit_comment = o.head_height > 0.0 ? scaled : "the meshes are in the scan's own frame and unit";
   // What the run will derive from the layer (scalp/shell_hair.h), for the comment.
   const ShellHair shell = hair_for_shell(o.scalp.crown_thickness, p.scalp.hairline_reach);
   char text[4096];
@@ -398,7 +409,7 @@ std::string prepared_scene_text(const Prepared& p, const std::string& scan_name,
       "seed = 1\n"
       "\n"
       "[units]\n"
-      "length = \"cm\"               # the scan was scaled by %.6g to cm\n"
+      "length = \"%s\"               # %s\n"
       "down = %s    # up %s\n"
       "front = %s   # %s\n"
       "\n"
@@ -419,7 +430,7 @@ std::string prepared_scene_text(const Prepared& p, const std::string& scan_name,
       "swirl = %.0f                   # degrees: roots turn so the hair spirals into the crown like a whorl; turned\n"
       "                             # straight to the thicker layer it would meet there from every side\n",
       scan_name.c_str(), o.selection.describe().c_str(), p.scalp.method.c_str(), o.scalp.crown_thickness,
-      p.scalp.ramp_length, kSceneFormat, p.scale_to_cm, toml_vector(-p.up).c_str(), p.up_how.c_str(),
+      p.scalp.ramp_length, kSceneFormat, written_unit(o).c_str(), unit_comment.c_str(), toml_vector(-p.up).c_str(), p.up_how.c_str(),
       toml_vector(p.front).c_str(), p.front_how.c_str(), max_thickness(p), p.scalp.hairline_reach, shell.length,
       shell.tilt, kPreparedSwirl);
   return text;
@@ -437,6 +448,7 @@ void write_prepared(const Prepared& p, const std::filesystem::path& scan, const 
   record["format"] = "hairfit-prepare/1";
   record["scan"] = fs::absolute(scan).lexically_normal().string();
   record["scale_to_cm"] = p.scale_to_cm;
+  record["meshes_unit"] = written_unit(o);
   record["selection"] = o.selection.describe();
   record["up"] = vec(p.up);
   record["up_how"] = p.up_how;
@@ -487,8 +499,16 @@ void write_prepared(const Prepared& p, const std::filesystem::path& scan, const 
                       {"scalp_curvature_p95_per_cm", p.checks.curvature_p95},
                       {"scalp_curvature_max_per_cm", p.checks.curvature_max}};
   const std::string scene = prepared_scene_text(p, scan.filename().string(), o);
-  write_obj_mesh(dir / "volume.obj", p.scalp.volume);
-  write_obj_mesh(dir / "scalp.obj", p.scalp.scalp);
+  // The meshes go out in the scan's own unit (units.length), as the scan came in; with a declared
+  // head height no unit is named and they stay in cm.
+  const double to_cm = o.head_height > 0.0 ? 1.0 : p.scale_to_cm;
+  auto in_scan_unit = [to_cm](Mesh mesh) {
+    if (to_cm != 1.0)
+      for (Vec3& x : mesh.positions) x /= to_cm;
+    return mesh;
+  };
+  write_obj_mesh(dir / "volume.obj", in_scan_unit(p.scalp.volume));
+  write_obj_mesh(dir / "scalp.obj", in_scan_unit(p.scalp.scalp));
   write_text_file_atomically(dir / "prepare.json", record.dump(2) + "\n");
   write_text_file_atomically(dir / "scene.toml", scene);
 }
