@@ -129,6 +129,7 @@ int command_prepare(const Arguments& argv) {
   std::printf("  scalp    made by %s\n", p.scalp_how.c_str());
   std::printf("  up       (%.3g, %.3g, %.3g) %s\n", p.up.x(), p.up.y(), p.up.z(), p.up_how.c_str());
   std::printf("  front    (%.3g, %.3g, %.3g) %s\n", p.front.x(), p.front.y(), p.front.z(), p.front_how.c_str());
+  for (const std::string& repair : p.repairs) std::printf("  repaired %s\n", repair.c_str());
   std::printf("  checks   disks, outward, inside (winding %.3f), no intersections, shared hairline: passed\n",
               p.checks.deepest_winding);
   std::printf("  run      the written scene passes run's own input checks (hairfit validate)\n");

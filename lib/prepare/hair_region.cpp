@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "core/vertex_sort.h"
+#include "prepare/holes.h"
 
 namespace hairfit {
 
@@ -151,12 +152,6 @@ int shave_bow_ties(const Mesh& scan, std::vector<int>& kept) {
   return removed;
 }
 
-double loop_length(const Mesh& mesh, const std::vector<int>& loop) {
-  double length = 0.0;
-  for (std::size_t i = 0; i < loop.size(); ++i)
-    length += (mesh.positions[loop[(i + 1) % loop.size()]] - mesh.positions[loop[i]]).norm();
-  return length;
-}
 
 // Makes neighbouring triangles traverse their shared edge in opposite directions (breadth first
 // from triangle 0); throws if the surface cannot be oriented.
@@ -335,40 +330,20 @@ Hull cut_hull(const Mesh& scan_mesh, const SelectionField& field, const HullOpti
   topo = analyse_topology(hull.mesh);
 
   // The hairline is the longest boundary loop; the others are holes, filled by a fan about their
-  // centroid when short enough.
-  std::vector<double> lengths;
-  for (const auto& loop : topo.boundary_loops) lengths.push_back(loop_length(hull.mesh, loop));
-  const int line = static_cast<int>(std::max_element(lengths.begin(), lengths.end()) - lengths.begin());
-  hull.hairline_length = lengths[line];
-  for (int l = 0; l < static_cast<int>(topo.boundary_loops.size()); ++l) {
-    if (l == line) continue;
-    const std::vector<int>& loop = topo.boundary_loops[l];
-    Vec3 centroid = Vec3::Zero();
-    for (int v : loop) centroid += hull.mesh.positions[v];
-    centroid /= static_cast<double>(loop.size());
-    if (lengths[l] > options.max_hole * hull.hairline_length) {
-      char text[512];
-      std::snprintf(text, sizeof text,
-                    "the hair region has a hole %.4g long around %s (the hairline is %.4g long; holes up to %.0f%% "
-                    "of it are filled); the scan is missing data there or the selection leaves an island out",
-                    lengths[l], vec_text(centroid).c_str(), hull.hairline_length, 100.0 * options.max_hole);
-      throw InputError(file, text);
-    }
-    // Boundary half-edges run a→b in the triangles' direction; the filling runs them b→a.
-    if (loop.size() == 3) {
-      hull.mesh.triangles.emplace_back(loop[2], loop[1], loop[0]);
-      hull.scan_triangle.push_back(-1);
-    } else {
-      const int c = static_cast<int>(hull.mesh.positions.size());
-      hull.mesh.positions.push_back(centroid);
-      hull.scan_vertex.push_back(-1);
-      for (std::size_t i = 0; i < loop.size(); ++i) {
-        hull.mesh.triangles.emplace_back(loop[(i + 1) % loop.size()], loop[i], c);
-        hull.scan_triangle.push_back(-1);
-      }
-    }
-    ++hull.holes_filled;
+  // centroid when short enough (holes.h).
+  const FilledHoles holes = fill_holes(hull.mesh, topo, options.max_hole);
+  hull.hairline_length = holes.rim_length;
+  if (holes.open > 0) {
+    char text[512];
+    std::snprintf(text, sizeof text,
+                  "the hair region has a hole %.4g long around %s (the hairline is %.4g long; holes up to %.0f%% "
+                  "of it are filled); the scan is missing data there or the selection leaves an island out",
+                  holes.longest_open, vec_text(holes.open_at).c_str(), hull.hairline_length, 100.0 * options.max_hole);
+    throw InputError(file, text);
   }
+  hull.scan_triangle.resize(hull.mesh.triangles.size(), -1);
+  hull.scan_vertex.resize(hull.mesh.positions.size(), -1);
+  hull.holes_filled = holes.filled;
   topo = analyse_topology(hull.mesh);
   if (!topo.is_disk())
     throw InputError(file, "the hair region is not a disk-like patch (Euler characteristic " +

@@ -218,6 +218,17 @@ PrepareChecks check(const Prepared& p, int threads, CheckScope scope = CheckScop
   return c;
 }
 
+// For a refusal: where the scan crosses itself, since that is then the likeliest cause (the hull
+// cut from it is untangled, but skin through the hair, or folds no smoothing clears, remain).
+// Only on this path: the search costs about a tenth of preparing.
+std::string crossing_note(const Mesh& scan, const Prepared& p, int threads) {
+  const auto pairs = self_intersections(scan, kMaxUntanglePairs, threads);
+  if (pairs.empty()) return "";
+  const Vec3 at = triangle_centroid(scan, pairs[0].first) * p.scale_to_cm + p.origin;
+  return "; the scan crosses itself at " + std::to_string(pairs.size()) + (pairs.size() >= static_cast<std::size_t>(kMaxUntanglePairs) ? " or more" : "") +
+         " pairs of triangles (e.g. at " + vec_text(at) + ")";
+}
+
 double max_thickness(const Prepared& p) {
   return p.scalp.thickness.empty() ? 0.0 : *std::max_element(p.scalp.thickness.begin(), p.scalp.thickness.end());
 }
@@ -248,6 +259,19 @@ Prepared prepare_centred(const Mesh& raw_scan, const std::vector<Vec3>& colors, 
   p.scale_to_cm = scale_for(scan, p.up, o, file);
   p.origin *= p.scale_to_cm;  // where the checks' messages place what they found, in cm
   for (Vec3& x : p.hull.mesh.positions) x *= p.scale_to_cm;
+  // Noise that folds the scan's small triangles over their neighbours makes the hull cross
+  // itself: those neighbourhoods are smoothed (untangle.h; the hairline stays, so hull and skin
+  // still meet there). The skin is not written, so its folds are left.
+  p.untangled = untangle_self_intersections(p.hull.mesh, o.threads);
+  if (p.untangled.pairs_found > 0) {
+    char text[320];
+    std::snprintf(text, sizeof text,
+                  "the hull crossed itself (%d pairs of triangles, e.g. at %s): %d vertices around them smoothed in "
+                  "%d round%s, moved %.3g cm at most",
+                  p.untangled.pairs_found, vec_text(p.untangled.first_found + p.origin).c_str(), p.untangled.vertices_moved,
+                  p.untangled.rounds, p.untangled.rounds == 1 ? "" : "s", p.untangled.largest_move);
+    p.repairs.push_back(text + (p.untangled.pairs_left > 0 ? ", " + std::to_string(p.untangled.pairs_left) + " pairs left" : ""));
+  }
   p.hull.centre *= p.scale_to_cm;
   p.hull.selected_area *= p.scale_to_cm * p.scale_to_cm;
   p.hull.kept_area *= p.scale_to_cm * p.scale_to_cm;
@@ -316,11 +340,27 @@ Prepared prepare_centred(const Mesh& raw_scan, const std::vector<Vec3>& colors, 
     }
     if (!passed)
       throw InputError(file, "the level-set scalp derived from this hull fails its checks at every voxel tried (" +
-                                 tried + "); try a smaller --crown-thickness or a longer --ramp, or repair the scan near the hairline");
+                                 tried + ")" + crossing_note(scan, p, o.threads) +
+                                 "; try a smaller --crown-thickness or a longer --ramp, or repair the scan near the hairline");
+    if (p.scalp.scalp_holes_filled + p.scalp.floor_holes_filled > 0) {
+      char text[320];
+      std::snprintf(text, sizeof text,
+                    "the level set had holes where the layer thins inside the hair: %d in the scalp, %d in the floor "
+                    "(the longest %.3g cm), filled",
+                    p.scalp.scalp_holes_filled, p.scalp.floor_holes_filled, p.scalp.longest_hole_filled);
+      p.repairs.push_back(text);
+    }
+    if (p.scalp.dropped_parts > 0)
+      p.repairs.push_back("the level set had " + std::to_string(p.scalp.dropped_parts) +
+                          " pieces apart from the scalp and floor under the hair: left out");
+    if (p.scalp.strip_feet > 0)
+      p.repairs.push_back("the level-set scalp's strip crossed the hull near the hairline: lowered under " +
+                          std::to_string(p.scalp.strip_feet) + " hairline vertices");
   }
   const std::string failed = failures(p.checks, p.origin);
   if (!failed.empty())
     throw InputError(file, "the scalp derived from this hull (" + p.scalp.method + ") fails its checks: " + failed +
+                               crossing_note(scan, p, o.threads) +
                                "; try a smaller --crown-thickness or a longer --ramp, or repair the scan near the hairline");
   return p;
 }
@@ -346,7 +386,18 @@ Prepared prepare_scan(const Mesh& input_scan, const std::vector<Vec3>& colors, c
   return p;
 }
 
+namespace {
+
+// The unit the meshes are written in: the scan's own, or cm when the scan was scaled to a declared
+// head height (no unit names that scale).
+std::string written_unit(const PrepareOptions& o) { return o.head_height > 0.0 ? "cm" : o.units; }
+
+}  // namespace
+
 std::string prepared_scene_text(const Prepared& p, const std::string& scan_name, const PrepareOptions& o) {
+  char scaled[96];
+  std::snprintf(scaled, sizeof scaled, "the scan was scaled by %.6g to cm (--head-height)", p.scale_to_cm);
+  const std::string unit_comment = o.head_height > 0.0 ? scaled : "the meshes are in the scan's own frame and unit";
   // What the run will derive from the layer (scalp/shell_hair.h), for the comment.
   const ShellHair shell = hair_for_shell(o.scalp.crown_thickness, p.scalp.hairline_reach);
   char text[4096];
@@ -358,7 +409,7 @@ std::string prepared_scene_text(const Prepared& p, const std::string& scan_name,
       "seed = 1\n"
       "\n"
       "[units]\n"
-      "length = \"cm\"               # the scan was scaled by %.6g to cm\n"
+      "length = \"%s\"               # %s\n"
       "down = %s    # up %s\n"
       "front = %s   # %s\n"
       "\n"
@@ -379,7 +430,7 @@ std::string prepared_scene_text(const Prepared& p, const std::string& scan_name,
       "swirl = %.0f                   # degrees: roots turn so the hair spirals into the crown like a whorl; turned\n"
       "                             # straight to the thicker layer it would meet there from every side\n",
       scan_name.c_str(), o.selection.describe().c_str(), p.scalp.method.c_str(), o.scalp.crown_thickness,
-      p.scalp.ramp_length, kSceneFormat, p.scale_to_cm, toml_vector(-p.up).c_str(), p.up_how.c_str(),
+      p.scalp.ramp_length, kSceneFormat, written_unit(o).c_str(), unit_comment.c_str(), toml_vector(-p.up).c_str(), p.up_how.c_str(),
       toml_vector(p.front).c_str(), p.front_how.c_str(), max_thickness(p), p.scalp.hairline_reach, shell.length,
       shell.tilt, kPreparedSwirl);
   return text;
@@ -397,6 +448,7 @@ void write_prepared(const Prepared& p, const std::filesystem::path& scan, const 
   record["format"] = "hairfit-prepare/1";
   record["scan"] = fs::absolute(scan).lexically_normal().string();
   record["scale_to_cm"] = p.scale_to_cm;
+  record["meshes_unit"] = written_unit(o);
   record["selection"] = o.selection.describe();
   record["up"] = vec(p.up);
   record["up_how"] = p.up_how;
@@ -406,6 +458,12 @@ void write_prepared(const Prepared& p, const std::filesystem::path& scan, const 
   record["refined"] = {{"splits", p.refine_splits},
                        {"median_edge_before_cm", p.median_edge_before * p.scale_to_cm},
                        {"median_edge_after_cm", p.median_edge_after * p.scale_to_cm}};
+  record["untangled"] = {{"pairs_found", p.untangled.pairs_found},
+                         {"pairs_left", p.untangled.pairs_left},
+                         {"rounds", p.untangled.rounds},
+                         {"vertices_moved", p.untangled.vertices_moved},
+                         {"largest_move_cm", p.untangled.largest_move}};
+  record["repaired"] = p.repairs;
   record["hull"] = {{"triangles", p.hull.mesh.triangles.size()},
                     {"area_cm2", p.hull.kept_area},
                     {"selected_triangles", p.hull.selected_triangles},
@@ -427,7 +485,11 @@ void write_prepared(const Prepared& p, const std::filesystem::path& scan, const 
                      {"max_thickness_cm", max_thickness(p)},
                      {"envelope_rms_cm", p.scalp.envelope_rms},
                      {"envelope_outliers", p.scalp.envelope_outliers},
-                     {"dropped_parts", p.scalp.dropped_parts}};
+                     {"dropped_parts", p.scalp.dropped_parts},
+                     {"scalp_holes_filled", p.scalp.scalp_holes_filled},
+                     {"floor_holes_filled", p.scalp.floor_holes_filled},
+                     {"longest_hole_filled_cm", p.scalp.longest_hole_filled},
+                     {"strip_feet", p.scalp.strip_feet}};
   record["checks"] = {{"hull_disk", p.checks.hull_disk},
                       {"scalp_disk", p.checks.scalp_disk},
                       {"scalp_inward_triangles", p.checks.scalp_inward_triangles},
@@ -437,8 +499,16 @@ void write_prepared(const Prepared& p, const std::filesystem::path& scan, const 
                       {"scalp_curvature_p95_per_cm", p.checks.curvature_p95},
                       {"scalp_curvature_max_per_cm", p.checks.curvature_max}};
   const std::string scene = prepared_scene_text(p, scan.filename().string(), o);
-  write_obj_mesh(dir / "volume.obj", p.scalp.volume);
-  write_obj_mesh(dir / "scalp.obj", p.scalp.scalp);
+  // The meshes go out in the scan's own unit (units.length), as the scan came in; with a declared
+  // head height no unit is named and they stay in cm.
+  const double to_cm = o.head_height > 0.0 ? 1.0 : p.scale_to_cm;
+  auto in_scan_unit = [to_cm](Mesh mesh) {
+    if (to_cm != 1.0)
+      for (Vec3& x : mesh.positions) x /= to_cm;
+    return mesh;
+  };
+  write_obj_mesh(dir / "volume.obj", in_scan_unit(p.scalp.volume));
+  write_obj_mesh(dir / "scalp.obj", in_scan_unit(p.scalp.scalp));
   write_text_file_atomically(dir / "prepare.json", record.dump(2) + "\n");
   write_text_file_atomically(dir / "scene.toml", scene);
 }

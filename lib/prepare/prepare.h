@@ -9,6 +9,7 @@
 
 #include "prepare/hair_region.h"
 #include "prepare/scalp_offset.h"
+#include "prepare/untangle.h"
 
 namespace hairfit {
 
@@ -49,6 +50,10 @@ struct Prepared {
   int welded_vertices = 0;
   int refine_splits = 0;  // rounds a coarse scan's triangles were split into four (refine.h)
   double median_edge_before = 0.0, median_edge_after = 0.0;  // scan units
+  Untangled untangled;    // the hull's self-intersections smoothed away (untangle.h; cm, places in the centred frame)
+  // What prepare repaired, one sentence each, for stdout and prepare.json ("repaired"): empty
+  // when the scan and the surfaces made from it needed nothing.
+  std::vector<std::string> repairs;
   std::string scalp_how;  // which method made the scalp, and why
   PrepareChecks checks;
   // The meshes are in the scan's own frame (scaled to cm); they were computed about this point

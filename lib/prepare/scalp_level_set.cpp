@@ -11,6 +11,8 @@
 #include "field/distance_field.h"
 #include "field/hair_region.h"
 #include "prepare/level_set_clip.h"
+#include "prepare/holes.h"
+#include "prepare/level_set_strip.h"
 #include "prepare/marching_tetrahedra.h"
 
 namespace hairfit {
@@ -29,6 +31,10 @@ constexpr double kFloorSteepness = 3.0;
 
 // Jacobi passes that smooth the distance from the hairline across the grid (hairline_distance_at_nodes).
 constexpr int kDistancePasses = 4;
+
+// The longest hole in a level set's piece that is filled, as a share of the piece's rim (the hull's
+// own holes are filled up to HullOptions::max_hole, the same share by default).
+constexpr double kMaxLevelSetHole = 0.25;
 
 double signed_volume(const Mesh& mesh) {
   double v = 0.0;
@@ -111,20 +117,11 @@ std::vector<double> parameters_along(const std::vector<Vec3>& outer, const std::
   return out;
 }
 
-struct Sheet {
-  Mesh mesh;                      // the level set's piece, then the strip joining it to the outer loop
-  std::vector<double> thickness;  // per vertex: the thickness the scalp was placed for
-  std::vector<int> outer;         // mesh vertices copied from the outer loop, in its order
-  std::vector<int> inner;         // the piece's boundary, from its vertex nearest the outer loop's first
-  std::size_t strip_begin = 0;    // the strip's first triangle
-  int dropped_parts = 0;
-};
-
 // The zero set of `values` clipped where the thickness falls to ε, its largest part joined to
 // `outer` (a loop running the same way as the piece's boundary) by a strip: a zipper pairing the
 // vertices of both loops by their places along `reference` (parameters_along; the hairline,
 // which lies above both).
-Sheet sheet(const SampleGrid& grid, const std::vector<double>& values, const std::vector<double>& node_thickness,
+LevelSetSheet sheet(const SampleGrid& grid, const std::vector<double>& values, const std::vector<double>& node_thickness,
             double epsilon, const std::vector<Vec3>& outer, const std::vector<Vec3>& reference, bool must_be_disk,
             const std::string& what, const std::string& file) {
   const ZeroSet zero = marching_tetrahedra(grid, values);
@@ -142,22 +139,41 @@ Sheet sheet(const SampleGrid& grid, const std::vector<double>& values, const std
   // Clipping keeps the zero set's vertices first and adds the crossings, where the value is 0.
   for (std::size_t v = 0; v < thickness.size(); ++v)
     thickness[v] = clipped.scan_vertex[v] >= 0 ? above.values[clipped.scan_vertex[v]] + epsilon : epsilon;
-  Sheet s;
+  LevelSetSheet s;
   s.mesh = largest_part(clipped.mesh, thickness, s.dropped_parts);
   s.thickness = thickness;
-  const MeshTopology topology = analyse_topology(s.mesh);
+  MeshTopology topology = analyse_topology(s.mesh);
+  FilledHoles holes;
+  // Where the layer thins below ε inside the hair (skin coming near it, a braid's root), the piece
+  // has holes: those up to kMaxLevelSetHole of its rim are filled (holes.h), the fans' centres
+  // placed for their loops' mean thickness.
+  if (topology.nonmanifold_vertices.empty() && topology.boundary_loops.size() > 1) {
+    holes = fill_holes(s.mesh, topology, kMaxLevelSetHole);
+    for (std::size_t h = 0; h < holes.loops.size(); ++h) {
+      if (holes.centres[h] < 0) continue;
+      double sum = 0.0;
+      for (int v : holes.loops[h]) sum += s.thickness[v];
+      s.thickness.push_back(sum / static_cast<double>(holes.loops[h].size()));
+    }
+    s.holes_filled = holes.filled;
+    s.longest_hole = holes.longest_filled;
+    if (holes.filled > 0) topology = analyse_topology(s.mesh);
+  }
   // The scalp must be a disk for the chart; the floor only closes the volume, so a handle in it
   // (where it passes under a tube of hair) is kept, but it too must end in one loop.
   const bool usable = !s.mesh.triangles.empty() && topology.boundary_loops.size() == 1 &&
                       topology.nonmanifold_vertices.empty() && (topology.is_disk() || !must_be_disk);
   if (!usable) {
-    char text[512];
+    char text[768], open[256] = "";
+    if (holes.open > 0)
+      std::snprintf(open, sizeof open, "; a hole %.3g cm long, beyond the %.0f%% of the rim's %.3g cm that is filled",
+                    holes.longest_open, 100.0 * kMaxLevelSetHole, holes.rim_length);
     std::snprintf(text, sizeof text,
                   "the level set for the %s under this hull is no disk (%zu boundary loops, Euler characteristic %d, "
-                  "%d non-manifold vertices); try a smaller --crown-thickness, a finer --scalp-voxel or smooth the "
+                  "%d non-manifold vertices%s%s); try a smaller --crown-thickness, a finer --scalp-voxel or smooth the "
                   "scan's hair",
                   what.c_str(), topology.boundary_loops.size(), topology.euler_characteristic,
-                  static_cast<int>(topology.nonmanifold_vertices.size()));
+                  static_cast<int>(topology.nonmanifold_vertices.size()), holes.filled > 0 ? ", after filling its smaller holes" : "", open);
     throw InputError(file, text);
   }
   const std::vector<int>& loop = topology.boundary_loops[0];
@@ -181,23 +197,15 @@ Sheet sheet(const SampleGrid& grid, const std::vector<double>& values, const std
   if (!(agreement > 0.0))
     throw InputError(file, "the level set for the " + what + " runs against the hull's hairline (it faces the head); "
                            "check that the scan is closed around the head");
-  const std::vector<int>& a = s.inner;
-  const int na = static_cast<int>(a.size()), nb = static_cast<int>(outer.size());
-  const int base = static_cast<int>(s.mesh.positions.size());
-  for (const Vec3& p : outer) s.mesh.positions.push_back(p), s.thickness.push_back(0.0);
-  for (int j = 0; j < nb; ++j) s.outer.push_back(base + j);
-  s.strip_begin = s.mesh.triangles.size();
-  int i = 0, j = 0;
-  while (i < na || j < nb) {
-    const bool advance_a = j == nb || (i < na && sa[i + 1] <= sb[j + 1]);
-    if (advance_a) {
-      s.mesh.triangles.emplace_back(a[(i + 1) % na], a[i % na], base + j % nb);
-      ++i;
-    } else {
-      s.mesh.triangles.emplace_back(base + j % nb, base + (j + 1) % nb, a[i % na]);
-      ++j;
-    }
+  s.piece_vertices = s.mesh.positions.size();
+  for (const Vec3& p : outer) {
+    s.outer.push_back(static_cast<int>(s.mesh.positions.size()));
+    s.mesh.positions.push_back(p), s.thickness.push_back(0.0);
   }
+  s.strip_begin = s.mesh.triangles.size();
+  s.inner_at = sa;
+  s.outer_at = sb;
+  zip_strip(s, std::vector<double>(outer.size(), 0.0), std::vector<Vec3>(outer.size(), Vec3::Zero()));
   return s;
 }
 
@@ -207,7 +215,7 @@ Sheet sheet(const SampleGrid& grid, const std::vector<double>& values, const std
 // skin, which leaves creases a voxel wide where the two meet at an angle. A move is kept only
 // while the vertex stays between ½ and 1½ times its depth below the scan (so it neither nears the
 // hull nor sinks to the floor, at 2 to 4 times the scalp's depth).
-void relax(Sheet& s, const DistanceField& field, double crown, double epsilon, int passes, int threads) {
+void relax(LevelSetSheet& s, const DistanceField& field, double crown, double epsilon, int passes, int threads) {
   const int n = static_cast<int>(s.mesh.positions.size());
   std::vector<char> fixed(n, 0);
   for (int v : s.inner) fixed[v] = 1;
@@ -356,14 +364,18 @@ ScalpResult make_level_set_scalp(const Hull& hull, const Mesh& skin, const Scalp
   const double epsilon = T * ramp_shape(1.5 * h / r.ramp_length);
   std::vector<Vec3> hairline;
   for (int v : hull.hairline) hairline.push_back(mesh.positions[v]);
-  Sheet scalp = sheet(grid, scalp_value, thickness, epsilon, hairline, hairline, true, "scalp", file);
+  LevelSetSheet scalp = sheet(grid, scalp_value, thickness, epsilon, hairline, hairline, true, "scalp", file);
+  r.strip_feet = lower_strip(scalp, mesh, hull.hairline, field, epsilon, threads);
   relax(scalp, field, T, epsilon, o.smoothing_passes, threads);
   // The floor joins the scalp's piece where it ends, not the hairline: within those 1.5 voxels
   // of it the volume's floor is the scalp's strip (reversed), and the two strips can never cross.
   std::vector<Vec3> scalp_end;
   for (int v : scalp.inner) scalp_end.push_back(scalp.mesh.positions[v]);
-  Sheet floor = sheet(grid, floor_value, thickness, epsilon, scalp_end, hairline, false, "floor", file);
+  LevelSetSheet floor = sheet(grid, floor_value, thickness, epsilon, scalp_end, hairline, false, "floor", file);
   r.dropped_parts = scalp.dropped_parts + floor.dropped_parts;
+  r.scalp_holes_filled = scalp.holes_filled;
+  r.floor_holes_filled = floor.holes_filled;
+  r.longest_hole_filled = std::max(scalp.longest_hole, floor.longest_hole);
 
   // The closed volume: the hull, the scalp's strip and the floor, reversed, sharing the hairline
   // and the scalp piece's end.
@@ -372,6 +384,10 @@ ScalpResult make_level_set_scalp(const Hull& hull, const Mesh& skin, const Scalp
   for (std::size_t k = 0; k < scalp.outer.size(); ++k) r.volume_vertex[scalp.outer[k]] = hull.hairline[k];
   for (int v : scalp.inner) {
     r.volume_vertex[v] = static_cast<int>(r.volume.positions.size());
+    r.volume.positions.push_back(scalp.mesh.positions[v]);
+  }
+  for (std::size_t v = scalp.piece_vertices + scalp.outer.size(); v < scalp.mesh.positions.size(); ++v) {
+    r.volume_vertex[v] = static_cast<int>(r.volume.positions.size());  // the strip's feet
     r.volume.positions.push_back(scalp.mesh.positions[v]);
   }
   for (std::size_t t = scalp.strip_begin; t < scalp.mesh.triangles.size(); ++t) {

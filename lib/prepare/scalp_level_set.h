@@ -12,8 +12,10 @@
 // cross where the sampled thickness is positive. Under the bare skin the thickness is 0, so each
 // zero set continues as the skin there; each is clipped where T falls to ε (its value 1.5 voxels
 // from the hairline) and its largest part kept. A strip joins the scalp to the hull's hairline,
-// vertex for vertex, and the floor joins the scalp's end, so the two strips cannot cross; the
-// scalp is then relaxed (relax(): the closest point's turns between hull and skin leave creases).
+// vertex for vertex, and the floor joins the scalp's end, so the two strips cannot cross. Where the
+// scalp's strip crosses the hull (a noisy hull near its hairline), it is lowered there
+// (level_set_strip.h: feet under the hairline). The scalp is then relaxed (relax(): the closest
+// point's turns between hull and skin leave creases).
 //
 // A level set of a distance follows the scan at depth T: a bun thicker than 2T keeps an eroded core
 // under it, braids and bows thinner than that leave no trace, and hair folding over the ears with

@@ -46,6 +46,10 @@ struct ScalpResult {
   double envelope_rms = 0.0;      // cm: RMS of R − f over the vertices the robust fit kept
   int envelope_outliers = 0;      // vertices the fit rejected (the bumps)
   int dropped_parts = 0;          // level set: pieces apart from the scalp and floor, left out
+  int scalp_holes_filled = 0;     // level set: holes in the scalp's and the floor's pieces filled (the
+  int floor_holes_filled = 0;     // layer thinning below the clip level inside the hair), and the longest (cm)
+  double longest_hole_filled = 0.0;
+  int strip_feet = 0;             // level set: hairline vertices whose strip was lowered (its chords crossed the hull)
 };
 
 // Jacobi passes of f over a mesh (each vertex to ½ itself + ½ its neighbours' mean; `neighbours`

@@ -2,6 +2,8 @@
 // input refused with a clear message and nothing written.
 #include <doctest/doctest.h>
 
+#include <array>
+
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -62,7 +64,7 @@ TEST_CASE("a scan in millimetres with a painted mask becomes a scene that valida
   REQUIRE(r.exit_code == 0);
   for (const char* file : {"volume.obj", "scalp.obj", "scene.toml", "prepare.json"}) CHECK(fs::exists(out / file));
   const std::string scene = read_all((out / "scene.toml").string());
-  CHECK(scene.find("length = \"cm\"") != std::string::npos);
+  CHECK(scene.find("length = \"mm\"") != std::string::npos);  // the meshes in the scan's own unit
   CHECK(scene.find("down = [0, -1, 0]") != std::string::npos);   // up +y detected (cap leans back 25°)
   CHECK(scene.find("front = [0, 0, 1]") != std::string::npos);   // the face is where the hair is not
   // Hair that suits the shell: length and tilt are left to the run, which derives them from the
@@ -78,10 +80,11 @@ TEST_CASE("a scan in millimetres with a painted mask becomes a scene that valida
   // The reach is the largest distance along the hull from the hairline: at least the largest
   // straight distance from a vertex to its nearest hairline point (the scalp's boundary), and on a
   // cap of 78° no more than a fifth above it for the arc and the bun (1.5: edge paths zigzag).
-  const Mesh scalp = load_obj_mesh(out / "scalp.obj").mesh;
+  // (the meshes are in the scan's millimetres: read in cm)
+  const Mesh scalp = load_obj_mesh(out / "scalp.obj", 0.1).mesh;
   const std::vector<Vec3> hairline = boundary_points(scalp);
   double farthest = 0.0;
-  for (const Vec3& p : load_obj_mesh(out / "volume.obj").mesh.positions) {
+  for (const Vec3& p : load_obj_mesh(out / "volume.obj", 0.1).mesh.positions) {
     double nearest = INFINITY;
     for (const Vec3& h : hairline) nearest = std::min(nearest, (h - p).norm());
     farthest = std::max(farthest, nearest);
@@ -89,9 +92,21 @@ TEST_CASE("a scan in millimetres with a painted mask becomes a scene that valida
   MESSAGE("hairline reach " << reach << " cm, largest straight distance to the hairline " << farthest << " cm");
   CHECK(reach >= farthest);
   CHECK(reach <= 1.5 * farthest);
-  // Scaled to cm: the hull's highest point is the bust's crown, about 11 cm above the centre.
+  // In the scan's millimetres: the hull's highest point is the bust's crown, about 11 cm above the
+  // centre, and its vertices are the scan's own (the hull is the scan's hair region, cut).
   const LoadedMesh volume = load_obj_mesh(out / "volume.obj");
-  CHECK(bounding_box(volume.mesh).second.y() == doctest::Approx(BustShape{}.radius(Vec3::UnitY())).epsilon(0.05));
+  CHECK(bounding_box(volume.mesh).second.y() == doctest::Approx(10.0 * BustShape{}.radius(Vec3::UnitY())).epsilon(0.05));
+  CHECK(record["meshes_unit"] == "mm");
+  std::set<std::array<long long, 3>> scan_points;
+  auto key = [](const Vec3& x) {
+    return std::array<long long, 3>{std::llround(x.x() * 1e6), std::llround(x.y() * 1e6), std::llround(x.z() * 1e6)};
+  };
+  for (const Vec3& x : load_obj_mesh(scan).mesh.positions) scan_points.insert(key(x));
+  const std::size_t hull_vertices = record["hull"]["triangles"].get<std::size_t>() / 2;  // about, for a disk
+  std::size_t on_scan = 0;
+  for (const Vec3& x : volume.mesh.positions) on_scan += scan_points.count(key(x));
+  MESSAGE("volume vertices at a scan vertex: " << on_scan << " (the hull has about " << hull_vertices << ")");
+  CHECK(on_scan >= hull_vertices * 9 / 10);
 
   const auto valid = run_hairfit("validate " + (out / "scene.toml").string());
   INFO(valid.out << valid.err);
