@@ -140,6 +140,13 @@ double triangle_area(const Mesh& mesh, int triangle) {
   return 0.5 * (mesh.positions[t[1]] - a).cross(mesh.positions[t[2]] - a).norm();
 }
 
+std::vector<double> vertex_areas(const Mesh& mesh) {
+  std::vector<double> area(mesh.positions.size(), 0.0);
+  for (int t = 0; t < static_cast<int>(mesh.triangles.size()); ++t)
+    for (int v : mesh.triangles[t]) area[v] += triangle_area(mesh, t) / 3.0;
+  return area;
+}
+
 double surface_area(const Mesh& mesh) {
   double area = 0.0;
   for (int i = 0; i < static_cast<int>(mesh.triangles.size()); ++i) area += triangle_area(mesh, i);

@@ -49,6 +49,8 @@ inline long long edge_key(int a, int b) {
 
 double triangle_area(const Mesh& mesh, int triangle);
 double surface_area(const Mesh& mesh);
+// Each vertex's lumped area: a third of the area of every triangle at it, summed in triangle order.
+std::vector<double> vertex_areas(const Mesh& mesh);
 // Unit normal of a triangle (zero vector for a degenerate one).
 Vec3 triangle_normal(const Mesh& mesh, int triangle);
 // The mean of a triangle's corners, (a + b + c) / 3.

@@ -68,13 +68,12 @@ ScalpResult make_scalp(const Hull& hull, const ScalpOptions& o, const std::strin
   std::vector<char> on_hairline(n, 0);
   for (int v : hull.hairline) on_hairline[v] = 1;
   std::vector<Vec3> u(n);
-  std::vector<double> radius(n), area(n, 0.0);
+  std::vector<double> radius(n);
   for (int v = 0; v < n; ++v) {
     radius[v] = (mesh.positions[v] - c).norm();
     u[v] = (mesh.positions[v] - c) / radius[v];
   }
-  for (int t = 0; t < static_cast<int>(mesh.triangles.size()); ++t)
-    for (int k = 0; k < 3; ++k) area[mesh.triangles[t][k]] += triangle_area(mesh, t) / 3.0;
+  const std::vector<double> area = vertex_areas(mesh);
   const auto next = vertex_neighbours(mesh);
 
   ScalpResult r;

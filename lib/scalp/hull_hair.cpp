@@ -43,9 +43,7 @@ std::vector<double> combed_lengths(const ScalpChart& chart, const ThicknessField
 CombChoice comb_from_hull(const ScalpChart& chart, const ThicknessField& thickness, const std::vector<Fall>& falls) {
   const Mesh& mesh = chart.mesh;
   if (falls.size() != mesh.positions.size()) throw std::invalid_argument("comb_from_hull: one fall per scalp vertex");
-  std::vector<double> area(mesh.positions.size(), 0.0);
-  for (int t = 0; t < static_cast<int>(mesh.triangles.size()); ++t)
-    for (int v : mesh.triangles[t]) area[v] += triangle_area(mesh, t) / 3.0;
+  const std::vector<double> area = vertex_areas(mesh);
   double total = 0.0, up = 0.0, hanging = 0.0;
   for (std::size_t v = 0; v < area.size(); ++v) {
     const Vec3& normal = chart.vertex_normals[v];
