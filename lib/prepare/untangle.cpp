@@ -6,21 +6,12 @@
 
 namespace hairfit {
 
-namespace {
-
-Vec3 centroid(const Mesh& mesh, int t) {
-  const Vec3i& f = mesh.triangles[t];
-  return (mesh.positions[f[0]] + mesh.positions[f[1]] + mesh.positions[f[2]]) / 3.0;
-}
-
-}  // namespace
-
 Untangled untangle_self_intersections(Mesh& mesh, int threads, int max_rounds, int passes) {
   Untangled u;
   std::vector<std::pair<int, int>> pairs = self_intersections(mesh, kMaxUntanglePairs, threads);
   u.pairs_found = u.pairs_left = static_cast<int>(pairs.size());
   if (pairs.empty()) return u;
-  u.first_found = centroid(mesh, pairs[0].first);
+  u.first_found = triangle_centroid(mesh, pairs[0].first);
   const int n = static_cast<int>(mesh.positions.size());
   const std::vector<std::vector<int>> next = vertex_neighbours(mesh);
   std::vector<char> fixed(n, 0);
@@ -60,7 +51,7 @@ Untangled untangle_self_intersections(Mesh& mesh, int threads, int max_rounds, i
     pairs = self_intersections(mesh, kMaxUntanglePairs, threads);
   }
   u.pairs_left = static_cast<int>(pairs.size());
-  if (!pairs.empty()) u.first_left = centroid(mesh, pairs[0].first);
+  if (!pairs.empty()) u.first_left = triangle_centroid(mesh, pairs[0].first);
   for (int v = 0; v < n; ++v)
     if (moved[v]) ++u.vertices_moved, u.largest_move = std::max(u.largest_move, (mesh.positions[v] - start[v]).norm());
   return u;
