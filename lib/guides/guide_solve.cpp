@@ -52,13 +52,16 @@ GuideTargets make_targets(const RootSet& bases, int b, const PreGuides& preguide
   t.point_force_weight = o.point_force_weight;
   const Vec3 bend = bending_direction(bases.normals[b], bases.directions[b], o.down, o.front);
   t.model = hair_rod_model(t.length, o.material, RodRoot{t.root, root_frame(bases.directions[b], bend)}, boundary.scalp.get());
-  // Styled along its path: a hanging hair along its fall (weightless), the rest along the flow.
-  const bool along_fall = o.styled && hangs(bases, b) && o.material.gravity.isZero(0.0) && !o.material.contact.active();
+  // Styled along its path: a hanging hair along its fall (weightless), the rest along the flow;
+  // a hair shorter than a voxel stays straight, since its path would read the fields within one
+  // cell of them (see rests_unloaded).
+  const bool styled = o.styled && t.length >= boundary.volume->voxel();
+  const bool along_fall = styled && hangs(bases, b) && o.material.gravity.isZero(0.0) && !o.material.contact.active();
   if (along_fall) {
     t.model.kappa_hat = fall_rest(fall_region(boundary, o.down, o.front), t.root, bases.normals[b], t.model.root_frame,
                                   t.length, immersion_share(o.depth_range, bases.heights[b]),
                                   o.rod.segments);
-  } else if (o.styled && !hangs(bases, b)) {
+  } else if (styled && !hangs(bases, b)) {
     t.model.kappa_hat = styled_rest(*o.styled, boundary, t.root, t.model.root_frame, t.length,
                                     immersion_share(o.depth_range, bases.heights[b]), o.rod.segments);
   }
@@ -173,6 +176,30 @@ GuideSolve optimise_in_stages(const GuideTargets& targets, const double* start, 
   return second;
 }
 
+// Whether guide b keeps its rest shape, unloaded: a weightless rod, free of the scalp, shorter
+// than a voxel of the volume's field. Such a guide lies within one cell of the fields, whose
+// trilinear values cannot tell a layer thinner than the cell from outside it, so the boundary
+// term has nothing true to steer it by; its neighbours, centimetres long, are no guide to its
+// curvature either. Optimised, the carved hulls' hairline stubble (0.15–0.25 cm, roots 0.05–0.3
+// cm below the hull) was bent into hooks and folds, turning 30–120° and crossing the layer:
+// braids, 8 of its 89 guides under 0.3 cm with over a fifth of their nodes outside, 26–253
+// evaluations each (docs/results/carved-flow.md). At rest it runs along its root's direction and
+// styled rest curvature, which the roots fit to the layer (scalp/roots.h).
+bool rests_unloaded(const GuideTargets& targets, const Boundary& boundary) {
+  const RodModel& m = targets.model;
+  return targets.length < boundary.volume->voxel() && m.force_per_length.isZero(0.0) && !m.support &&
+         rod_scheme(m) == RodScheme::single_shooting;
+}
+
+// The solve of a guide at rest: every load 0, its cost that of the rest shape.
+GuideSolve rest_solve(const GuideTargets& targets) {
+  GuideSolve solve;
+  solve.converged = true;
+  solve.termination = "AT_REST";
+  solve.initial_cost = solve.final_cost = 0.5 * evaluate_guide_terms(targets, solve.eta).total;
+  return solve;
+}
+
 }  // namespace
 
 Guide solve_guide(const GuideProblem& problem, int b, const GuideSolveSetup& setup) {
@@ -200,7 +227,8 @@ Guide solve_guide(const GuideProblem& problem, int b, const GuideSolveSetup& set
     std::copy(setup.start, setup.start + loads, start);
   else if (o.warm_start)
     add_weighted_loads(preguides.items, g.neighbours, g.neighbour_weights, start);
-  GuideSolve solve = optimise_in_stages(targets, start, o, stall, near, boundary);
+  const bool at_rest = rests_unloaded(targets, boundary);
+  GuideSolve solve = at_rest ? rest_solve(targets) : optimise_in_stages(targets, start, o, stall, near, boundary);
   g.shape = solved_shape(targets, solve, g.terminal_torque);
   // The solve can stop in a local minimum that runs through the head or out of the
   // volume well past the boundary ramp, or that folds the guide onto itself (where neighbouring
@@ -216,7 +244,7 @@ Guide solve_guide(const GuideProblem& problem, int b, const GuideSolveSetup& set
   const double worst = worst_excursion(g.shape, boundary);
   const bool astray = worst > o.boundary_width || folded(g.shape, g.length);
   const bool grazing = !astray && worst > 0.0 && solve.scheme == RodScheme::single_shooting;
-  if (!same_start && (astray || grazing)) {
+  if (!at_rest && !same_start && (astray || grazing)) {
     GuideOptions retry_options = o;
     if (grazing) retry_options.max_iterations = std::min(o.max_iterations, kInsideRetryIterations);
     GuideSolve retry = optimise_in_stages(targets, other, retry_options, stall, near, boundary);

@@ -1,5 +1,7 @@
 #include "pipeline/stage_options.h"
 
+#include "core/fast_winding.h"
+
 namespace hairfit {
 
 FieldSpec field_spec(const Scene& scene, const std::string& mesh_name) {
@@ -57,7 +59,8 @@ RootSettings root_settings(const Scene& scene) {
 std::vector<std::string> root_files(const RootSettings& s) {
   std::vector<std::string> files;
   for (const std::string& map : s.maps) files.push_back(map + " map");
-  if (s.options.flow == FlowModel::relief) files.push_back("volume");  // the hull's grain
+  // The hull's grain; the stubble of hair from the hull, as long as the hull lets it run.
+  if (s.options.flow == FlowModel::relief || s.from_shell) files.push_back("volume");
   return files;
 }
 
@@ -76,6 +79,20 @@ ThicknessField layer_thickness(const DistanceField& volume) {
       gradient[axis] = (volume.value(p - step) - volume.value(p + step)) / (2.0 * h);
     }
     return LayerThickness{-volume.value(p), gradient};
+  };
+}
+
+std::function<double(const Vec3&, const Vec3&, double)> exact_layer_run(const Mesh& hull, const Mesh& scalp) {
+  Mesh layer = hull;
+  const int offset = static_cast<int>(layer.positions.size());
+  layer.positions.insert(layer.positions.end(), scalp.positions.begin(), scalp.positions.end());
+  for (const Vec3i& t : scalp.triangles) layer.triangles.push_back(Vec3i(t[0], t[2], t[1]) + Vec3i::Constant(offset));
+  const auto winding = std::make_shared<const FastWindingNumber>(layer);
+  return [winding](const Vec3& root, const Vec3& direction, double reach) {
+    for (int k = 1; k <= kLayerRunSamples; ++k)
+      if (!winding->above(root + (reach * k / kLayerRunSamples) * direction, 0.5))
+        return reach * (k - 1) / kLayerRunSamples;
+    return reach;
   };
 }
 

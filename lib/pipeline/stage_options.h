@@ -42,6 +42,14 @@ bool roots_read_fields(const RootSettings& settings);
 // between cells: 3–6° of error in the direction of a 0.2 cm/cm slope at 0.2 cm voxels, against
 // under 1° this way; tests/scalp/growth_field_test.cpp).
 ThicknessField layer_thickness(const DistanceField& volume);
+// RootInputs::layer_run by the layer's generalized winding number, inside ⇔ w > ½ over the hull
+// and the reversed scalp (FastWindingNumber::above, exact), as the project decides inside
+// everywhere: the distance to the last of kLayerRunSamples points evenly spaced along the
+// direction, up to the reach, before the first one outside (0 if the first is), or the reach. A
+// hair leaves a layer through the hull, the scalp or, at a hairline where the two part, between
+// their rims; the winding number sees all three.
+constexpr int kLayerRunSamples = 16;
+std::function<double(const Vec3&, const Vec3&, double)> exact_layer_run(const Mesh& hull, const Mesh& scalp);
 // What the hang of hair.tilt_toward = "hanging" reads (scalp/hanging.h): the scalp field's value
 // and trilinear gradient, the volume field's side, in steps of half the volume's voxel.
 HangProbe hang_probe(const Boundary& boundary, const Vec3& down, bool falls_free);

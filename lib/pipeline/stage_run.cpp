@@ -81,6 +81,11 @@ const StageRun::ResolvedRoots& StageRun::resolved_roots(const RootSettings& sett
       if (!r.shell.layer_ends) o.tilt = kMaxShellTilt;
     }
   }
+  // Hair from the hull shorter than a voxel is stubble, as long as its layer holds it straight.
+  if (!r.inputs.vertex_lengths.empty() && settings.from_shell) {
+    r.inputs.layer_run = exact_layer_run(inputs.volume.mesh, values.chart->mesh);
+    r.inputs.stubble_length = values.volume_field->voxel();
+  }
   // After the hull has had its say: hanging hair tilts as "thicker" does where it does not hang.
   if (o.tilt_toward != TiltToward::down) r.inputs.thickness = layer_thickness(*values.volume_field);
   // Combed hair of a declared length ends where the layer ahead of it does, if that comes sooner.

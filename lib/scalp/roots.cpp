@@ -188,6 +188,8 @@ RootSet make_root_set(const ScalpChart& ch, const RootInputs& maps, const RootOp
     if (o.tilt_toward == TiltToward::hanging && !from_hull)  // hair that hangs, or grows down, ends where the layer below ends
       s.lengths[i] = hanging_length(s.lengths[i], maps.falls.empty() ? hang : hang_at(ch, maps.falls, sp),
                                     std::max(hanging, downness(s.directions[i], s.normals[i], ch.down)));
+    if (maps.layer_run && from_hull && s.lengths[i] < maps.stubble_length)
+      s.lengths[i] = fitted_stubble(s.lengths[i], maps.layer_run(s.positions[i], s.directions[i], s.lengths[i] / kStubbleShare));
     s.heights[i] = height_of(ch, s.positions[i]);
   });
   return s;
@@ -217,6 +219,10 @@ std::vector<SurfacePoint> pick(const HugeVector<SurfacePoint>& all, const std::v
 }
 
 }  // namespace
+
+double fitted_stubble(double length, double run) {
+  return std::max(kShortestStubble, std::min(length, kStubbleShare * run));
+}
 
 Vec3 growth_direction(const Vec3& normal, const Vec3& down, const Vec3& front, double tilt_degrees) {
   return tilted(normal, tangent_toward_down(normal, down, front), tilt_degrees);

@@ -52,7 +52,22 @@ struct RootInputs {
   // options' length and the hanging length.
   std::vector<double> vertex_hang_weights;
   std::vector<double> vertex_lengths;
+  // Stubble from the hull: a root whose hair from the hull is shorter than `stubble_length` (cm,
+  // the fields' voxel; the guides keep such hair straight at rest, guides/guide_solve.h) is at most
+  // kStubbleShare of how far its straight hair stays in the layer, `layer_run`(root, direction,
+  // reach): the distance to its first crossing of the hull or the scalp, or `reach` if none (null:
+  // no fit).
+  std::function<double(const Vec3& root, const Vec3& direction, double reach)> layer_run;
+  double stubble_length = 0.0;
 };
+
+// The share of its straight run in the layer a stubble keeps (RootInputs::layer_run), and the
+// shortest stubble (a hair's width), where the root lies at the layer's very edge.
+constexpr double kStubbleShare = 0.5;
+constexpr double kShortestStubble = 0.01;
+// A stubble of `length` (cm) whose straight hair stays `run` cm in the layer (RootInputs::layer_run
+// with reach length / kStubbleShare): min(length, kStubbleShare·run), at least kShortestStubble.
+double fitted_stubble(double length, double run);
 
 struct RootOptions {
   double density = 200.0;                     // hairs per cm² of 3D scalp area (white density map)
