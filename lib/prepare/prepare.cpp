@@ -9,7 +9,6 @@
 #include "io/atomic_file.h"
 #include "io/obj_mesh.h"
 #include "core/fast_winding.h"
-#include "core/parallel.h"
 #include "field/hair_region.h"
 #include "prepare/scalp_level_set.h"
 #include "prepare/surface_checks.h"
@@ -186,18 +185,14 @@ PrepareChecks check(const Prepared& p, int threads, CheckScope scope = CheckScop
                                        p.scalp.thickness.begin());
   c.deepest_winding = winding_number(p.scalp.volume, scalp.positions[deepest]);
   if (stop_early && !failures(c, Vec3::Zero()).empty()) return c;  // the checks not yet run read as passed
-  // Facing: just outside each scalp triangle (1e-3 cm along its normal) lies the layer, inside the
-  // hull closed by the reversed scalp.
+  // Facing: just in front of each scalp triangle lies the layer, inside the hull closed by the
+  // reversed scalp (facing_out_of; the step shrinks for the strip's slivers).
   std::vector<int> on_hull(scalp.positions.size(), -1);
   for (std::size_t k = 0; k < p.scalp.hairline.size(); ++k) on_hull[p.scalp.hairline[k]] = p.hull.hairline[k];
   const FastWindingNumber layer(with_scalp(hull, on_hull, p, true), HairRegion::kFirstBeta, threads);
-  const int faces = static_cast<int>(scalp.triangles.size());
-  std::vector<char> inward(faces, 0);
-  parallel_for(faces, threads, [&](int t) {
-    inward[t] = !winding_above_half(layer, triangle_centroid(scalp, t) + 1e-3 * triangle_normal(scalp, t));
-  });
-  for (int t = 0; t < faces; ++t)
-    if (inward[t] && c.scalp_inward_triangles++ == 0) c.first_inward = triangle_centroid(scalp, t);
+  const std::vector<int> inward = facing_out_of(scalp, layer, threads);
+  c.scalp_inward_triangles = static_cast<int>(inward.size());
+  if (!inward.empty()) c.first_inward = triangle_centroid(scalp, inward[0]);
   if (stop_early && c.scalp_inward_triangles > 0) return c;
   // One mesh of hull, floor and scalp sharing the hairline: any crossing among them shows up as a
   // self-intersection.

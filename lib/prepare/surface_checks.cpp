@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/parallel.h"
+#include "field/hair_region.h"
 
 namespace hairfit {
 
@@ -190,6 +191,23 @@ std::vector<int> inward_triangles(const Mesh& mesh, const Vec3& centre) {
     if (a.dot(b.cross(c)) <= 0.0) wrong.push_back(t);
   }
   return wrong;
+}
+
+std::vector<int> facing_out_of(const Mesh& sheet, const FastWindingNumber& solid, int threads) {
+  const int faces = static_cast<int>(sheet.triangles.size());
+  std::vector<char> out(faces, 0);
+  parallel_for(faces, threads, [&](int t) {
+    const Vec3i& f = sheet.triangles[t];
+    double longest = 0.0;
+    for (int k = 0; k < 3; ++k) longest = std::max(longest, (sheet.positions[f[(k + 1) % 3]] - sheet.positions[f[k]]).norm());
+    const double altitude = longest > 0.0 ? 2.0 * triangle_area(sheet, t) / longest : 0.0;
+    const double step = std::min(kFacingStep, 0.1 * altitude);
+    out[t] = !(step > 0.0) || !winding_above_half(solid, triangle_centroid(sheet, t) + step * triangle_normal(sheet, t));
+  });
+  std::vector<int> listed;
+  for (int t = 0; t < faces; ++t)
+    if (out[t]) listed.push_back(t);
+  return listed;
 }
 
 }  // namespace hairfit

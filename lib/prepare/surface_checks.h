@@ -3,6 +3,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/fast_winding.h"
 #include "core/mesh.h"
 
 namespace hairfit {
@@ -26,5 +27,16 @@ std::vector<double> mean_curvature(const Mesh& mesh);
 // (signed volume of the tetrahedron (centre, a, b, c) ≤ 0): zero for a surface that is star-shaped
 // about the centre with outward normals.
 std::vector<int> inward_triangles(const Mesh& mesh, const Vec3& centre);
+
+// The triangles of `sheet` (a part of the closed surface `solid` stands for, e.g. the scalp under
+// the hair layer) whose front does not lie inside `solid`: the point a step in front of the
+// triangle's centroid, along its normal, has winding number ≤ ½ (exactly, FastWindingNumber::above).
+// The step is kFacingStep, or a tenth of the triangle's smallest altitude where that is shorter:
+// the centroid lies a third of an altitude from each edge, so the point stays in front of the
+// triangle itself wherever a neighbour meets it at an inside angle above 17° (tan 17° = 0.3), and
+// a sliver narrower than kFacingStep in a concave corner is judged by its own side, not by the
+// neighbour a longer step would cross. A triangle without area has no front and is listed.
+constexpr double kFacingStep = 1e-3;  // the mesh's unit (cm)
+std::vector<int> facing_out_of(const Mesh& sheet, const FastWindingNumber& solid, int threads = 1);
 
 }  // namespace hairfit

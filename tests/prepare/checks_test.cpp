@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "core/fast_winding.h"
 #include "core/shapes.h"
 #include "io/obj_mesh.h"
 #include "prepare/surface_checks.h"
@@ -86,4 +87,69 @@ TEST_CASE("OBJ vertex colours are read when every vertex has them and written ba
   write_obj_mesh(dir / "plain.obj", m);
   CHECK(load_obj_mesh(dir / "plain.obj").colors.empty());
   std::filesystem::remove_all(dir);
+}
+
+namespace {
+
+// A prism along y (0 to 1) over the polygon, in (x, z), P0 (−1, 0), P1 (−w, 0), P2 (0, 0),
+// P3 (−0.005, 0.025), P4 (1, 0.025), P5 (1, 1), P6 (−1, 1), outward: a layer whose floor is a
+// step. The riser P2–P3 leans over the strip P1–P2 of width w = 1e-4 (an inside angle of 78.7° at
+// P2), as the level-set scalp's strip leans where the hairline zigzags. `floor` gets the faces over
+// P0…P4 turned to face into the prism, as a scalp faces the hair layer; `sliver` their indices in
+// `floor` over P1–P2.
+Mesh stepped_layer(Mesh& floor, std::vector<int>& sliver) {
+  const double w = 1e-4;
+  const std::vector<Vec2> polygon{{-1, 0}, {-w, 0}, {0, 0}, {-0.005, 0.025}, {1, 0.025}, {1, 1}, {-1, 1}};
+  const int n = static_cast<int>(polygon.size());
+  Mesh solid;
+  for (double y : {0.0, 1.0})
+    for (const Vec2& p : polygon) solid.positions.emplace_back(p.x(), y, p.y());
+  // Each side a quad; the caps fans from (−0.5, 0.5), which sees every corner.
+  for (int k = 0; k < n; ++k) {
+    const int a = k, b = (k + 1) % n;
+    solid.triangles.emplace_back(a, b + n, b);
+    solid.triangles.emplace_back(a, a + n, b + n);
+  }
+  for (int cap = 0; cap < 2; ++cap) {
+    const int centre = static_cast<int>(solid.positions.size());
+    solid.positions.emplace_back(-0.5, cap, 0.5);
+    for (int k = 0; k < n; ++k) {
+      const int a = k + cap * n, b = (k + 1) % n + cap * n;
+      solid.triangles.push_back(cap == 0 ? Vec3i(centre, a, b) : Vec3i(centre, b, a));
+    }
+  }
+  REQUIRE(winding_number(solid, Vec3(-0.5, 0.5, 0.5)) == doctest::Approx(1.0));
+  floor.positions = solid.positions;
+  for (int k = 0; k < 4; ++k)
+    for (int half = 0; half < 2; ++half) {
+      const Vec3i& t = solid.triangles[2 * k + half];
+      if (k == 1) sliver.push_back(static_cast<int>(floor.triangles.size()));
+      floor.triangles.emplace_back(t[0], t[2], t[1]);
+    }
+  return solid;
+}
+
+}  // namespace
+
+TEST_CASE("facing: a sliver in a concave step faces its layer, judged at a step shorter than its width") {
+  Mesh floor;
+  std::vector<int> sliver;
+  const Mesh solid = stepped_layer(floor, sliver);
+  const FastWindingNumber layer(solid, 2.0);
+  // A fixed step of kFacingStep in front of the sliver's centroids crosses the leaning riser and
+  // lands under the upper floor, outside the layer: the fixed step would list both (the dressed
+  // scan-like bust's level-set scalp at 0.5 cm was refused so).
+  REQUIRE(sliver.size() == 2);
+  for (int t : sliver) {
+    CHECK(winding_number(solid, triangle_centroid(floor, t) + kFacingStep * triangle_normal(floor, t)) < 0.5);
+    CHECK(winding_number(solid, triangle_centroid(floor, t) + 1e-6 * triangle_normal(floor, t)) > 0.5);
+  }
+  CHECK(facing_out_of(floor, layer).empty());
+  CHECK(facing_out_of(floor, layer, 3).empty());
+  // A triangle turned over (in the floor only: the layer stays closed) and one without area are
+  // listed, and only they.
+  Mesh wrong = floor;
+  std::swap(wrong.triangles[6][1], wrong.triangles[6][2]);
+  wrong.triangles.emplace_back(0, 1, 2);  // P0, P1, P2 on one line
+  CHECK(facing_out_of(wrong, layer) == std::vector<int>{6, static_cast<int>(wrong.triangles.size()) - 1});
 }

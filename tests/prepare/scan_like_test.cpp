@@ -69,6 +69,18 @@ TEST_CASE("every scan-like bust prepares into files run accepts, and its strands
     CHECK(p.checks.scalp_disk);
     CHECK(p.checks.scalp_inward_triangles == 0);
     CHECK(p.checks.intersections == 0);
+    if (c.name == "dressed") {
+      // At a 0.5 cm voxel the strip steps where the hairline zigzags, and two piece vertices 1e-4 cm
+      // apart fan to one hairline vertex in the step's corner: a fixed 1e-3 cm step in front of that
+      // sliver crossed the riser, and the scan was refused ("1 scalp triangles face inward").
+      PrepareOptions coarse_grid = mask_options();
+      coarse_grid.scalp.voxel = 0.5;
+      const Prepared p5 = prepare_scan(scan.mesh, scan.colors, coarse_grid, "dressed.obj");
+      CHECK(p5.scalp.method == "level set");
+      CHECK(p5.checks.scalp_disk);
+      CHECK(p5.checks.scalp_inward_triangles == 0);
+      CHECK(p5.checks.intersections == 0);
+    }
     std::ofstream(scene_dir / "small.toml")
         << hairfit::testing::with_keys(hairfit::testing::read_all((scene_dir / "scene.toml").string()),
                                        hairfit::testing::small_run_keys());
