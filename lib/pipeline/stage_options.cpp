@@ -1,6 +1,8 @@
 #include "pipeline/stage_options.h"
 
 #include "core/fast_winding.h"
+#include "core/triangle_grid.h"
+#include "field/layer_soup.h"
 
 namespace hairfit {
 
@@ -83,16 +85,23 @@ ThicknessField layer_thickness(const DistanceField& volume) {
 }
 
 std::function<double(const Vec3&, const Vec3&, double)> exact_layer_run(const Mesh& hull, const Mesh& scalp) {
-  Mesh layer = hull;
-  const int offset = static_cast<int>(layer.positions.size());
-  layer.positions.insert(layer.positions.end(), scalp.positions.begin(), scalp.positions.end());
-  for (const Vec3i& t : scalp.triangles) layer.triangles.push_back(Vec3i(t[0], t[2], t[1]) + Vec3i::Constant(offset));
-  const auto winding = std::make_shared<const FastWindingNumber>(layer);
-  return [winding](const Vec3& root, const Vec3& direction, double reach) {
-    for (int k = 1; k <= kLayerRunSamples; ++k)
-      if (!winding->above(root + (reach * k / kLayerRunSamples) * direction, 0.5))
+  struct Layer {
+    Layer(const Mesh& h, const Mesh& s) : hull(h), scalp(s), hull_grid(hull), scalp_grid(scalp), winding(hair_layer_soup(h, s)) {}
+    Mesh hull, scalp;  // the grids refer to them
+    TriangleGrid hull_grid, scalp_grid;
+    FastWindingNumber winding;
+  };
+  const auto layer = std::make_shared<const Layer>(hull, scalp);
+  return [layer](const Vec3& root, const Vec3& direction, double reach) {
+    double run = reach;
+    for (const TriangleGrid* grid : {&layer->hull_grid, &layer->scalp_grid}) {
+      const SegmentHit hit = grid->first_crossing(root, root + reach * direction);
+      if (hit.found()) run = std::min(run, hit.t * reach);
+    }
+    for (int k = 1; k <= kLayerRunSamples && reach * k / kLayerRunSamples <= run; ++k)
+      if (!layer->winding.above(root + (reach * k / kLayerRunSamples) * direction, 0.5))
         return reach * (k - 1) / kLayerRunSamples;
-    return reach;
+    return run;
   };
 }
 

@@ -42,12 +42,13 @@ bool roots_read_fields(const RootSettings& settings);
 // between cells: 3–6° of error in the direction of a 0.2 cm/cm slope at 0.2 cm voxels, against
 // under 1° this way; tests/scalp/growth_field_test.cpp).
 ThicknessField layer_thickness(const DistanceField& volume);
-// RootInputs::layer_run by the layer's generalized winding number, inside ⇔ w > ½ over the hull
-// and the reversed scalp (FastWindingNumber::above, exact), as the project decides inside
-// everywhere: the distance to the last of kLayerRunSamples points evenly spaced along the
-// direction, up to the reach, before the first one outside (0 if the first is), or the reach. A
-// hair leaves a layer through the hull, the scalp or, at a hairline where the two part, between
-// their rims; the winding number sees all three.
+// RootInputs::layer_run, exact: how far the straight hair from the root runs before it first
+// crosses the hull's or the scalp's triangles (TriangleGrid::first_crossing), or, sooner, the last
+// of kLayerRunSamples points evenly spaced up to the reach before the first one the layer's
+// generalized winding number puts outside (w ≤ ½ over the hull and the reversed scalp,
+// FastWindingNumber::above); the reach if neither. The crossings see a hull that encloses the
+// head (where w is ½ behind the scalp, undecided); the winding number sees a hair leave a carved
+// cap between the hull's rim and the scalp's at a hairline where the two part.
 constexpr int kLayerRunSamples = 16;
 std::function<double(const Vec3&, const Vec3&, double)> exact_layer_run(const Mesh& hull, const Mesh& scalp);
 // What the hang of hair.tilt_toward = "hanging" reads (scalp/hanging.h): the scalp field's value

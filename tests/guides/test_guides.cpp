@@ -143,6 +143,43 @@ TEST_CASE("a guide at a pre-guide's root recovers the pre-guide's shape (boundar
   }
 }
 
+TEST_CASE("a guide shorter than the fields' voxel keeps its straight rest shape unloaded; one a voxel long is solved") {
+  GuideOptions o;
+  o.rod.segments = 32;
+  o.samples = 16;
+  o.neighbours = 1;
+  const double voxel = world().volume.voxel();  // 0.4 cm
+  for (const double length : {0.3, 0.5}) {
+    const RootSet r = roots_at({{0.3, 0.2}}, length, 0.4);
+    PreGuides pre;  // bent: a guide that followed it would not be straight
+    pre.items.push_back(preguide_with_loads(r, 0, o, Vec3(1.5, -0.5, 0.8), Vec3(0.3, 0.9, -0.2)));
+    const Guides g = make_guides(r, pre, world().boundary(), o);
+    REQUIRE(g.size() == 1);
+    const Guide& guide = g.items[0];
+    INFO(length << " cm against a " << voxel << " cm voxel");
+    if (length < voxel) {
+      CHECK(guide.termination == "AT_REST");
+      CHECK(guide.converged);
+      CHECK(guide.evaluations == 0);
+      CHECK(guide.force == Vec3::Zero());
+      CHECK(guide.root_moment == Vec3::Zero());
+      const std::vector<Vec3>& n = guide.shape.nodes;
+      double off = 0.0;
+      for (std::size_t k = 0; k < n.size(); ++k)
+        off = std::max(off, (n[k] - (r.positions[0] + length * k / (n.size() - 1.0) * r.directions[0])).norm());
+      CHECK(off < 1e-12 * length);
+      // Its cost is the rest shape's, as the terms give it.
+      CHECK(std::isfinite(guide.cost));
+      CHECK(guide.cost > 0.0);
+      CHECK(guide.f1 > 0.0);
+    } else {
+      CHECK(guide.termination != "AT_REST");
+      CHECK(guide.evaluations > 0);
+      CHECK(guide.force.norm() > 0.1);  // it follows the bent pre-guide
+    }
+  }
+}
+
 TEST_CASE("the boundary penalty keeps a guide inside where the unpenalised optimum pokes out") {
   GuideOptions o;
   o.rod.segments = 32;

@@ -1,6 +1,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <filesystem>
 #include <numeric>
@@ -369,4 +370,49 @@ TEST_CASE("roots.ply and chart.obj round trip") {
   const LoadedMesh loaded = load_obj_mesh(dir / "chart.obj");
   CHECK(loaded.mesh.triangles.size() == ch.mesh.triangles.size());
   std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("roots: stubble from the hull is at most half of its straight run in the layer, a hair's width at least") {
+  CHECK(fitted_stubble(0.2, 1.0) == 0.2);                  // the layer holds it: its own length
+  CHECK(fitted_stubble(0.2, 0.3) == 0.5 * 0.3);            // half the run
+  CHECK(fitted_stubble(0.2, 0.0) == kShortestStubble);     // a root at the layer's very edge
+  CHECK(fitted_stubble(0.2, 0.015) == kShortestStubble);   // half the run is thinner than a hair
+
+  const ScalpChart ch = make_scalp_chart(test::head_cap(24, 1.6, 0.03), kFront, kDown, "cap.obj");
+  RootOptions o;
+  o.density = 20.0;
+  o.seed = 3;
+  for (const double length : {0.2, 0.3}) {
+    RootInputs in;
+    in.vertex_lengths.assign(ch.mesh.positions.size(), length);
+    in.vertex_hang_weights.assign(ch.mesh.positions.size(), 0.0);
+    in.stubble_length = 0.25;
+    // The run grows across the cap with x, so that some roots keep their length and some do not.
+    const auto run_at = [](const Vec3& p) { return std::max(0.0, 0.4 * (p.x() + 1.0)); };
+    std::atomic<int> calls{0};
+    std::atomic<bool> reach_ok{true};
+    in.layer_run = [&](const Vec3& root, const Vec3& direction, double reach) {
+      ++calls;
+      if (!(std::abs(reach - length / kStubbleShare) < 1e-12) || !(std::abs(direction.norm() - 1.0) < 1e-12)) reach_ok = false;
+      return std::min(reach, run_at(root));
+    };
+    const Roots r = make_roots(ch, in, o, Exec{2, {}});
+    REQUIRE(r.pores.size() > 50);
+    INFO("hair from the hull " << length << " cm long, stubble under 0.25 cm");
+    if (length >= in.stubble_length) {
+      CHECK(calls == 0);
+      for (double l : r.pores.lengths) CHECK(l == doctest::Approx(length).epsilon(1e-12));
+      continue;
+    }
+    CHECK(calls == r.pores.size());
+    CHECK(reach_ok);
+    int shortened = 0;
+    for (int i = 0; i < r.pores.size(); ++i) {
+      const double run = std::min(length / kStubbleShare, run_at(r.pores.positions[i]));
+      CHECK(r.pores.lengths[i] == doctest::Approx(std::max(kShortestStubble, std::min(length, kStubbleShare * run))).epsilon(1e-12));
+      shortened += r.pores.lengths[i] < length - 1e-12;
+    }
+    CHECK(shortened > 0);
+    CHECK(shortened < r.pores.size());
+  }
 }
