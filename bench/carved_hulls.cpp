@@ -13,8 +13,7 @@
 #include <vector>
 
 #include "cli_runs.h"
-#include "core/fast_winding.h"
-#include "field/layer_soup.h"
+#include "field/hair_region.h"
 #include "io/curve_files.h"
 #include "io/obj_mesh.h"
 #include "io/ply_points.h"
@@ -44,14 +43,14 @@ double score_roots(CarvedStyle style, const PlyPoints& roots) {
 }
 
 // The share of the guides' nodes after the root inside the layer by its generalized winding
-// number (w > ½ over the hull and the reversed scalp, exact: FastWindingNumber::above), which is
-// 1 in the layer and 0 outside it for a carved cap whose rim is the scalp's: the truth the fields'
-// trilinear values only approach within a voxel of a hairline.
+// number, exactly (HairRegion::inside_hull: the open cap's number less the scalp's, > ½), which
+// is 1 in the layer and 0 outside it for a carved cap whose rim is the scalp's: the truth the
+// fields' trilinear values only approach within a voxel of a hairline.
 double inside_by_winding(const CarvedHull& hull, const Curves& guides) {
-  const FastWindingNumber layer(hair_layer_soup(hull.hull, hull.scalp));
+  const HairRegion layer(hull.hull, hull.scalp, /*hull_closed=*/false);
   long long nodes = 0, inside = 0;
   for (std::size_t c = 0; c < guides.count(); ++c)
-    for (std::size_t i = 1; i < guides.size(c); ++i, ++nodes) inside += layer.above(guides.point(c, i), 0.5);
+    for (std::size_t i = 1; i < guides.size(c); ++i, ++nodes) inside += layer.inside_hull(guides.point(c, i));
   return nodes ? static_cast<double>(inside) / nodes : NAN;
 }
 

@@ -1,8 +1,7 @@
 #include "pipeline/stage_options.h"
 
-#include "core/fast_winding.h"
 #include "core/triangle_grid.h"
-#include "field/layer_soup.h"
+#include "field/hair_region.h"
 
 namespace hairfit {
 
@@ -84,14 +83,18 @@ ThicknessField layer_thickness(const DistanceField& volume) {
   };
 }
 
-std::function<double(const Vec3&, const Vec3&, double)> exact_layer_run(const Mesh& hull, const Mesh& scalp) {
+std::function<double(const Vec3&, const Vec3&, double)> exact_layer_run(const Mesh& hull, const Mesh& scalp,
+                                                                        bool hull_closed) {
   struct Layer {
-    Layer(const Mesh& h, const Mesh& s) : hull(h), scalp(s), hull_grid(hull), scalp_grid(scalp), winding(hair_layer_soup(h, s)) {}
+    Layer(const Mesh& h, const Mesh& s, bool closed)
+        : hull(h), scalp(s), hull_grid(hull), scalp_grid(scalp), region(hull, scalp, closed), head(closed_head(scalp)) {}
+    bool inside(const Vec3& p) const { return region.inside_hull(p) && !winding_above_half(head, p); }
     Mesh hull, scalp;  // the grids refer to them
     TriangleGrid hull_grid, scalp_grid;
-    FastWindingNumber winding;
+    HairRegion region;
+    FastWindingNumber head;
   };
-  const auto layer = std::make_shared<const Layer>(hull, scalp);
+  const auto layer = std::make_shared<const Layer>(hull, scalp, hull_closed);
   return [layer](const Vec3& root, const Vec3& direction, double reach) {
     double run = reach;
     for (const TriangleGrid* grid : {&layer->hull_grid, &layer->scalp_grid}) {
@@ -99,7 +102,7 @@ std::function<double(const Vec3&, const Vec3&, double)> exact_layer_run(const Me
       if (hit.found()) run = std::min(run, hit.t * reach);
     }
     for (int k = 1; k <= kLayerRunSamples && reach * k / kLayerRunSamples <= run; ++k)
-      if (!layer->winding.above(root + (reach * k / kLayerRunSamples) * direction, 0.5))
+      if (!layer->inside(root + (reach * k / kLayerRunSamples) * direction))
         return reach * (k - 1) / kLayerRunSamples;
     return run;
   };

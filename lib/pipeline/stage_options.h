@@ -44,13 +44,16 @@ bool roots_read_fields(const RootSettings& settings);
 ThicknessField layer_thickness(const DistanceField& volume);
 // RootInputs::layer_run, exact: how far the straight hair from the root runs before it first
 // crosses the hull's or the scalp's triangles (TriangleGrid::first_crossing), or, sooner, the last
-// of kLayerRunSamples points evenly spaced up to the reach before the first one the layer's
-// generalized winding number puts outside (w ≤ ½ over the hull and the reversed scalp,
-// FastWindingNumber::above); the reach if neither. The crossings see a hull that encloses the
-// head (where w is ½ behind the scalp, undecided); the winding number sees a hair leave a carved
-// cap between the hull's rim and the scalp's at a hairline where the two part.
+// of kLayerRunSamples points evenly spaced up to the reach before the first one outside the layer
+// by the fields' own robust regions, exactly: outside the hull (HairRegion::inside_hull, the
+// winding number of a closed hull alone or of an open one less the scalp's) or in the head (the
+// scalp closed by its floor, closed_head); the reach if neither. The crossings see a hair leave
+// through either surface away from its root; the winding numbers see it leave right at the root,
+// and leave a carved cap between the hull's rim and the scalp's, where the two part at a hairline
+// and it crosses neither.
 constexpr int kLayerRunSamples = 16;
-std::function<double(const Vec3&, const Vec3&, double)> exact_layer_run(const Mesh& hull, const Mesh& scalp);
+std::function<double(const Vec3&, const Vec3&, double)> exact_layer_run(const Mesh& hull, const Mesh& scalp,
+                                                                        bool hull_closed);
 // What the hang of hair.tilt_toward = "hanging" reads (scalp/hanging.h): the scalp field's value
 // and trilinear gradient, the volume field's side, in steps of half the volume's voxel.
 HangProbe hang_probe(const Boundary& boundary, const Vec3& down, bool falls_free);

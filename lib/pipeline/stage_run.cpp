@@ -83,7 +83,7 @@ const StageRun::ResolvedRoots& StageRun::resolved_roots(const RootSettings& sett
   }
   // Hair from the hull shorter than a voxel is stubble, as long as its layer holds it straight.
   if (!r.inputs.vertex_lengths.empty() && settings.from_shell) {
-    r.inputs.layer_run = exact_layer_run(inputs.volume.mesh, values.chart->mesh);
+    r.inputs.layer_run = exact_layer_run(inputs.volume.mesh, values.chart->mesh, inputs.volume_report.closed());
     r.inputs.stubble_length = values.volume_field->voxel();
   }
   // After the hull has had its say: hanging hair tilts as "thicker" does where it does not hang.

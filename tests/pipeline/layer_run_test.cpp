@@ -48,7 +48,7 @@ TEST_CASE("layer run: a closed layer ends a straight hair where it crosses the h
   add_square(scalp, 0.0, true);
   add_square(hull, T, true);
   add_walls(hull, T);
-  const auto run = exact_layer_run(hull, scalp);
+  const auto run = exact_layer_run(hull, scalp, /*hull_closed=*/false);
   const Vec3 root(0.0, 0.3, 0.0);
   for (double degrees : {5.0, 10.0, 30.0, 60.0, 90.0}) {
     const Vec3 d = rising(degrees);
@@ -69,7 +69,7 @@ TEST_CASE("layer run: where the hull parts from the scalp at the rim, the hair l
   Mesh scalp, hull;
   add_square(scalp, 0.0, true);
   add_square(hull, T, true);
-  const auto run = exact_layer_run(hull, scalp);
+  const auto run = exact_layer_run(hull, scalp, /*hull_closed=*/false);
   const double reach = 2.0, step = reach / kLayerRunSamples;
   const Vec3 root(0.0, 0.3, 0.0), d = rising(1.0);  // rises 0.017 over the way to the rim: stays under the hull
   const double to_rim = 1.0 / std::cos(M_PI / 180.0);
@@ -78,4 +78,25 @@ TEST_CASE("layer run: where the hull parts from the scalp at the rim, the hair l
   CHECK(r >= to_rim - 2 * T - step);
   CHECK(r <= to_rim + 2 * T);
   CHECK(std::fmod(r, step) == doctest::Approx(0.0));  // the last sample inside
+}
+
+TEST_CASE("layer run: under a closed hull that encloses the head, the hull's top ends the hair, and the head does at the root") {
+  // The hull: the closed box [−1, 1]² × [−1, 1]; the scalp: a pyramid over the square z = 0, apex
+  // at height h, facing up and out, whose floor (closed_head) closes the head under it.
+  const double h = 0.5;
+  Mesh scalp, hull;
+  scalp.positions = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}, {0, 0, h}};
+  for (int k = 0; k < 4; ++k) scalp.triangles.emplace_back(k, (k + 1) % 4, 4);
+  add_square(hull, 1.0, true);
+  add_square(hull, -1.0, false);
+  add_walls(hull, 1.0);
+  for (Vec3& p : hull.positions)  // the walls run down to the bottom
+    if (p.z() == 0.0) p.z() = -1.0;
+  const auto run = exact_layer_run(hull, scalp, /*hull_closed=*/true);
+  const Vec3 root(0.0, -0.5, 0.5 * h);  // on the face over y = −1
+  CHECK(run(root, Vec3(0, 0, 1), 5.0) == doctest::Approx(1.0 - 0.5 * h).epsilon(1e-12));
+  CHECK(run(root, Vec3(0, 0, 1), 0.1) == 0.1);
+  // Into the head, inside the hull all the way and crossing nothing past the root: the first
+  // sample lies in the head.
+  CHECK(run(root, Vec3(0.0, 0.6, -0.8), 1.0) == 0.0);
 }
