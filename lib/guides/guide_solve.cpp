@@ -53,9 +53,9 @@ GuideTargets make_targets(const RootSet& bases, int b, const PreGuides& preguide
   const Vec3 bend = bending_direction(bases.normals[b], bases.directions[b], o.down, o.front);
   t.model = hair_rod_model(t.length, o.material, RodRoot{t.root, root_frame(bases.directions[b], bend)}, boundary.scalp.get());
   // Styled along its path: a hanging hair along its fall (weightless), the rest along the flow;
-  // a hair shorter than a voxel stays straight, since its path would read the fields within one
-  // cell of them (see rests_unloaded).
-  const bool styled = o.styled && t.length >= boundary.volume->voxel();
+  // stubble stays straight, since its path would read the fields within a cell or two of its root
+  // (see rests_unloaded).
+  const bool styled = o.styled && t.length >= kStubbleVoxels * boundary.volume->voxel();
   const bool along_fall = styled && hangs(bases, b) && o.material.gravity.isZero(0.0) && !o.material.contact.active();
   if (along_fall) {
     t.model.kappa_hat = fall_rest(fall_region(boundary, o.down, o.front), t.root, bases.normals[b], t.model.root_frame,
@@ -177,17 +177,17 @@ GuideSolve optimise_in_stages(const GuideTargets& targets, const double* start, 
 }
 
 // Whether guide b keeps its rest shape, unloaded: a weightless rod, free of the scalp, shorter
-// than a voxel of the volume's field. Such a guide lies within one cell of the fields, whose
-// trilinear values cannot tell a layer thinner than the cell from outside it, so the boundary
-// term has nothing true to steer it by; its neighbours, centimetres long, are no guide to its
-// curvature either. Optimised, the carved hulls' hairline stubble (0.15–0.25 cm, roots 0.05–0.3
-// cm below the hull) was bent into hooks and folds, turning 30–120° and crossing the layer:
-// braids, 8 of its 89 guides under 0.3 cm with over a fifth of their nodes outside, 26–253
-// evaluations each (docs/results/carved-flow.md). At rest it runs along its root's direction and
-// styled rest curvature, which the roots fit to the layer (scalp/roots.h).
+// than kStubbleVoxels voxels of the volume's field. Such a guide lies within a cell or two of the
+// fields, whose trilinear values cannot tell a layer thinner than a cell from outside it, so the
+// boundary term has nothing true to steer it by; its neighbours, centimetres long, are no guide to
+// its curvature either. Optimised, the carved hulls' hairline stubble (0.15–0.25 cm, roots
+// 0.05–0.3 cm below the hull) was bent into hooks and folds, turning 30–120° and crossing the
+// layer: braids, 8 of its 89 guides under 0.3 cm with over a fifth of their nodes outside, 26–253
+// evaluations each (docs/results/carved-flow.md). At rest it runs straight along its root's
+// direction, as long as the roots let its layer hold it (scalp/roots.h, fitted_stubble).
 bool rests_unloaded(const GuideTargets& targets, const Boundary& boundary) {
   const RodModel& m = targets.model;
-  return targets.length < boundary.volume->voxel() && m.force_per_length.isZero(0.0) && !m.support &&
+  return targets.length < kStubbleVoxels * boundary.volume->voxel() && m.force_per_length.isZero(0.0) && !m.support &&
          rod_scheme(m) == RodScheme::single_shooting;
 }
 

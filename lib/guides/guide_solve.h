@@ -79,6 +79,16 @@ struct GuideSolveSetup {
   ShootingResult* pieces = nullptr;
 };
 
+// Hair shorter than this many voxels of the volume's field is stubble: a weightless guide that
+// short keeps its straight rest shape, unloaded (guide_solve.cpp, rests_unloaded), and hair from
+// the hull that short is as long as its layer holds it straight (scalp/roots.h, fitted_stubble).
+// Such a guide spans at most two cells of the fields, which cannot tell a layer thinner than a
+// cell from outside it. Measured on the seven carved hulls (bench_carved_hulls, docs/results/
+// carved-flow.md): guides inside by exact winding 0.9965–1.0000 at 1 voxel, 0.9993–1.0000 at 2,
+// 0.9996–1.0000 at 4; flow crossing 0.015–0.040, 0.005–0.030, 0.003–0.018. At 4 voxels, 1 cm hair
+// at 0.25 cm voxels and 2 cm at 0.5 cm, the method would leave much of the hair unsolved.
+constexpr double kStubbleVoxels = 2.0;
+
 // Guide b of the problem.
 Guide solve_guide(const GuideProblem& problem, int b, const GuideSolveSetup& setup = {});
 

@@ -5,6 +5,7 @@
 #include "pipeline/stage.h"
 #include "pipeline/stage_options.h"
 #include "guides/fall_rest.h"
+#include "guides/guide_solve.h"
 #include "guides/preguides.h"
 #include "scalp/growth_field.h"
 #include "scalp/hanging.h"
@@ -81,10 +82,10 @@ const StageRun::ResolvedRoots& StageRun::resolved_roots(const RootSettings& sett
       if (!r.shell.layer_ends) o.tilt = kMaxShellTilt;
     }
   }
-  // Hair from the hull shorter than a voxel is stubble, as long as its layer holds it straight.
+  // Hair from the hull shorter than kStubbleVoxels voxels is stubble, as long as its layer holds it straight.
   if (!r.inputs.vertex_lengths.empty() && settings.from_shell) {
     r.inputs.layer_run = exact_layer_run(inputs.volume.mesh, values.chart->mesh, inputs.volume_report.closed());
-    r.inputs.stubble_length = values.volume_field->voxel();
+    r.inputs.stubble_length = kStubbleVoxels * values.volume_field->voxel();
   }
   // After the hull has had its say: hanging hair tilts as "thicker" does where it does not hang.
   if (o.tilt_toward != TiltToward::down) r.inputs.thickness = layer_thickness(*values.volume_field);

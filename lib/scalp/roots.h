@@ -53,7 +53,8 @@ struct RootInputs {
   std::vector<double> vertex_hang_weights;
   std::vector<double> vertex_lengths;
   // Stubble from the hull: a root whose hair from the hull is shorter than `stubble_length` (cm,
-  // the fields' voxel; the guides keep such hair straight at rest, guides/guide_solve.h) is at most
+  // kStubbleVoxels of the fields' voxels; the guides keep such hair straight at rest,
+  // guides/guide_solve.h) is at most
   // kStubbleShare of how far its straight hair stays in the layer, `layer_run`(root, direction,
   // reach): the distance to its first crossing of the hull or the scalp, or `reach` if none (null:
   // no fit).
