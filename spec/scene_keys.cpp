@@ -407,7 +407,8 @@ std::vector<SceneKey> build_keys() {
   keys.push_back(text("strands.depth", REF(strands.depth), {"wisp", "layer", "auto"}, "strands",
                       "Where a fibre lies across the hair layer: wisp, at its place in the wisp around its guide (the "
                       "paper); layer, the wisp's fibres spread evenly through the layer's depth between the scalp and the "
-                      "hull (a tenth of it kept clear at either side), the fibre rooted furthest upstream on top; auto, "
+                      "hull (a tenth of it kept clear at either side), or through its top 2·strands.tip_radius where it is "
+                      "deeper (a bun), the fibre rooted furthest upstream on top; auto, "
                       "layer where the layer over the scalp (the 90th percentile of its thickness) is deeper than a wisp "
                       "is wide at its tip (2·strands.tip_radius), else wisp."));
 

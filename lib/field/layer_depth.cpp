@@ -33,4 +33,9 @@ Vec3 to_layer_depth(const DistanceField& scalp, const DistanceField& volume, con
   return q;
 }
 
+double spread_layer_depth(double share, double thickness, double spread) {
+  if (!(spread > 0.0) || !std::isfinite(spread) || !(thickness > spread)) return share;
+  return 1.0 - (1.0 - share) * (spread / thickness);
+}
+
 }  // namespace hairfit

@@ -35,4 +35,11 @@ LayerDepth layer_depth(const FieldValueGradient& scalp, const FieldValueGradient
 Vec3 to_layer_depth(const DistanceField& scalp, const DistanceField& volume, const Vec3& p, const LayerDepth& at_p,
                     double target, const Vec3* along = nullptr);
 
+// The layer depth λ of a fibre given the share `share` of the layer's depth (0 scalp, 1 hull)
+// where the layer is `thickness` thick, its wisp's fibres spread through no more than the top
+// `spread` cm of it: 1 − (1 − share)·min(1, spread / thickness). A layer no deeper than `spread`
+// (and a spread that is not positive and finite) gives the share itself; a deeper one is filled
+// from the hull down, so that a fibre keeps as near the hull as it would in a layer `spread` thick.
+double spread_layer_depth(double share, double thickness, double spread);
+
 }  // namespace hairfit

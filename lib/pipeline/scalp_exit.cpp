@@ -46,14 +46,15 @@ std::function<Vec3(const Vec3&)> into_volume(const DistanceField& volume, double
 
 std::function<Vec3(const Vec3&, const Vec3&, double, double)> layer_placement(const DistanceField& scalp,
                                                                              const DistanceField& volume,
-                                                                             RimHeights rim) {
-  return [&scalp, &volume, rim = std::move(rim)](const Vec3& p, const Vec3& along, double depth, double weight) {
+                                                                             RimHeights rim, double spread) {
+  return [&scalp, &volume, rim = std::move(rim), spread](const Vec3& p, const Vec3& along, double depth, double weight) {
     const FieldValueGradient s = scalp.value_and_gradient(p), v = volume.value_and_gradient(p);
     const LayerDepth here = layer_depth(s, v);
     if (!(here.thickness > 0.0)) return p;
     if (v.value > 0.0) weight *= 1.0 - smoothstep(v.value / kLayerDepthReach);
     weight *= 1.0 - smoothstep(rim.below(p) / kLayerBelowRim);
     if (!(weight > 0.0)) return p;
+    depth = spread_layer_depth(depth, here.thickness, spread);
     return to_layer_depth(scalp, volume, p, here, here.value + weight * (depth - here.value), &along);
   };
 }

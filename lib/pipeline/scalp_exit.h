@@ -1,6 +1,8 @@
 // How the strands stage keeps fibres out of the head: points moved out along the scalp field's
 // gradient, and chords tested exactly against the scalp's triangles.
 #pragma once
+#include <limits>
+
 #include "core/triangle_grid.h"
 #include "field/distance_field.h"
 #include "scalp/fall.h"
@@ -42,9 +44,11 @@ constexpr double kLayerBelowRim = 2.0;
 // StrandSurroundings::to_layer_depth from the two fields (field/layer_depth.h): p moves, across
 // the fibre's unit direction `along`, to the layer depth λ(p) + w·(depth − λ(p)), with w the given
 // weight faded by the smoothstep beyond the hull over kLayerDepthReach and below the scalp's rim
-// (`rim`, RimHeights::below; none for empty heights) over kLayerBelowRim. Both fields must outlive
-// the result.
+// (`rim`, RimHeights::below; none for empty heights) over kLayerBelowRim. Where the layer through
+// p is deeper than `spread` cm, `depth` is a share of its top `spread` cm (spread_layer_depth;
+// infinite: of the whole layer). Both fields must outlive the result.
 std::function<Vec3(const Vec3& p, const Vec3& along, double depth, double weight)> layer_placement(
-    const DistanceField& scalp, const DistanceField& volume, RimHeights rim);
+    const DistanceField& scalp, const DistanceField& volume, RimHeights rim,
+    double spread = std::numeric_limits<double>::infinity());
 
 }  // namespace hairfit

@@ -32,13 +32,16 @@ void encode(ByteWriter& out, const StrandsOptions& o) {
   out.put<std::uint8_t>(o.depth_from_layer);
 }
 
-// strands.depth = "auto": a round wisp is 2·tip_radius wide at most, so it fills a layer no
+// A round wisp's width at its tip.
+double wisp_tip_width(const StrandOptions& o) { return 2.0 * o.wisp.tip_radius; }
+
+// strands.depth = "auto": a round wisp is wisp_tip_width wide at most, so it fills a layer no
 // deeper than that; a deeper layer (its thickness T over the scalp, scalp/shell_hair.h) has its
 // fibres spread through it. Reported as a derived key for the resolved scene.
 bool spread_through_layer(const StageRun& run, const StrandOptions& o, StageReport& stage) {
   const StageValues& v = run.values;
   const double thickness = shell_thickness(*v.chart, layer_thickness(*v.volume_field), run.options.threads);
-  const double width = 2.0 * o.wisp.tip_radius;
+  const double width = wisp_tip_width(o);
   const bool spread = thickness > width;
   char source[256];
   std::snprintf(source, sizeof source,
@@ -73,9 +76,15 @@ void compute(StageRun& run, const StrandsOptions& o, StageReport& stage) {
   const Boundary b = run.boundary();
   // Below the rim of a head closed by its floor the layer's depth runs along the hanging hair;
   // where the skin goes on under the hull as a shell it still runs across it (no rim: no fade).
+  // Where the layer is deeper than a wisp is wide at its tip (the width "auto" spreads beyond),
+  // the fibres spread through the top wisp's width of it: the hull is what the hair shows. Spread
+  // evenly through a bun 6.7 cm deep, only a wisp's top fibre came within the 0.75 cm of the hull
+  // that coverage counts; over its top 1.2 cm, two in three do (the carved bun's coverage
+  // 0.860 → 0.977, docs/results/carved-flow.md).
   if (strands.layer_depth)
     around.to_layer_depth =
-        layer_placement(*v.scalp_field, *v.volume_field, b.floor_past_hairline ? rim_heights(*v.chart) : RimHeights{});
+        layer_placement(*v.scalp_field, *v.volume_field, b.floor_past_hairline ? rim_heights(*v.chart) : RimHeights{},
+                        wisp_tip_width(strands));
   around.hair_region = [&b](const Vec3& p) { return b.acceptable(p); };
   GrownStrands grown = make_strands(v.guides->curves(), run.pores(), strands, around, run.exec(),
                                     std::move(run.deposited_fibres));

@@ -1,6 +1,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "core/random.h"
 #include "field/layer_depth.h"
@@ -90,4 +91,22 @@ TEST_CASE("to_layer_depth: exact between parallel planes, and within the interpo
       CHECK(q.normalized().cross(u).norm() <= 5e-3);
     }
   }
+}
+
+TEST_CASE("spread_layer_depth: the top `spread` cm of a deeper layer, the whole of a thinner one") {
+  // A layer 6 cm deep, fibres spread through its top 1.2 cm: the share s lies (1 − s)·1.2 cm
+  // under the hull, λ = 1 − (1 − s)·1.2/6. Kept clear at either side by a tenth of the spread:
+  // the top fibre (s = 0.9) 0.12 cm under the hull, the lowest (s = 0.1) 1.08 cm.
+  CHECK(spread_layer_depth(0.9, 6.0, 1.2) == doctest::Approx(0.98).epsilon(1e-15));
+  CHECK(spread_layer_depth(0.1, 6.0, 1.2) == doctest::Approx(0.82).epsilon(1e-15));
+  CHECK((1.0 - spread_layer_depth(0.1, 6.0, 1.2)) * 6.0 == doctest::Approx(1.08).epsilon(1e-14));
+  CHECK(spread_layer_depth(1.0, 6.0, 1.2) == 1.0);  // on the hull stays on it
+  CHECK(spread_layer_depth(0.0, 6.0, 1.2) == doctest::Approx(0.8).epsilon(1e-15));
+  // A layer the spread's depth or thinner, and no spread (not positive, not finite): the share.
+  for (double spread : {1.2, 2.0, 0.0, -1.0, std::numeric_limits<double>::infinity(), std::nan("")}) {
+    CAPTURE(spread);
+    CHECK(spread_layer_depth(0.3, 1.2, spread) == 0.3);
+  }
+  // Continuous at the layer as deep as the spread.
+  CHECK(spread_layer_depth(0.3, 1.2 * (1.0 + 1e-12), 1.2) == doctest::Approx(0.3).epsilon(1e-11));
 }

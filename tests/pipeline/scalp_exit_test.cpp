@@ -87,3 +87,29 @@ TEST_CASE("layer placement: across the fibre over the scalp, fading to nothing k
   const auto halfway = layer_placement(head(), hull, rim_at(p.z() + 0.5 * kLayerBelowRim));
   CHECK(halfway(p, along, 0.7, 1.0).z() == doctest::Approx(0.45).epsilon(2e-3));
 }
+
+TEST_CASE("layer placement spreads the fibres through the top `spread` cm of a deeper layer") {
+  // The head's top face under a layer 3 cm thick: λ = z/3 there. With a spread of 1.2 cm the
+  // share 0.5 lies 0.6 cm under the hull, z = 2.4; without one, half way up, z = 1.5. In a
+  // layer 1 cm thick (thinner than the spread) the share is λ itself: z = 0.7.
+  // Boxes wide and deep enough that their top faces are the nearest to every point the moves
+  // reach (inside the 3 cm layer too), the head's field reaching 3.5 cm over its top face; both
+  // fields exact there (bands 3.6 cm wide, planes).
+  const DistanceField tall_head =
+      make_distance_field(box(Vec3(-4, -4, -4), Vec3(4, 4, 0)), FieldSpec{0.1, 36, 3.5, 1.0, "scalp"}, 2);
+  const DistanceField deep = make_distance_field(box(Vec3(-4, -4, -4), Vec3(4, 4, 3)), FieldSpec{0.1, 36, 0.5, 1.0, "volume"}, 2);
+  const DistanceField thin = make_distance_field(box(Vec3(-4, -4, -4), Vec3(4, 4, 1)), FieldSpec{0.1, 36, 0.5, 1.0, "volume"}, 2);
+  // A fibre lying nearly along the layer, so that the move across it stays nearer the top face
+  // than the boxes' sides.
+  const Vec3 p(0.1, -0.2, 0.2), along = Vec3(1, 0, 0.25).normalized();
+  REQUIRE(tall_head.value(Vec3(0.1, -0.2, 2.4)) == doctest::Approx(2.4).epsilon(1e-9));
+  REQUIRE(deep.value(Vec3(0.1, -0.2, 2.4)) == doctest::Approx(-0.6).epsilon(1e-9));
+  REQUIRE(deep.value(p) == doctest::Approx(-2.8).epsilon(1e-9));
+  const Vec3 spread = layer_placement(tall_head, deep, RimHeights{}, 1.2)(p, along, 0.5, 1.0);
+  CHECK(spread.z() == doctest::Approx(2.4).epsilon(1e-6));
+  CHECK(std::fabs((spread - p).dot(along)) <= 1e-9);
+  CHECK(layer_placement(tall_head, deep, RimHeights{})(p, along, 0.5, 1.0).z() == doctest::Approx(1.5).epsilon(1e-6));
+  CHECK(layer_placement(tall_head, thin, RimHeights{}, 1.2)(p, along, 0.7, 1.0).z() == doctest::Approx(0.7).epsilon(1e-6));
+  // Half the weight: half the way from λ(p) to the spread depth 0.8, z = 3·(0.2/3 + 0.5·(0.8 − 0.2/3)) = 1.3.
+  CHECK(layer_placement(tall_head, deep, RimHeights{}, 1.2)(p, along, 0.5, 0.5).z() == doctest::Approx(1.3).epsilon(1e-6));
+}
