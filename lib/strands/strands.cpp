@@ -114,7 +114,9 @@ constexpr double kClearSearchStep = 5.0 * M_PI / 180.0;
 // plane with unit normal n and along which its chord crosses the scalp nowhere; false (points
 // unchanged) if none does. Where the pore's triangle faces across the head or into it (a riser or
 // a fold of the scalp), its normal runs along the scalp or into the head, turning toward it
-// cannot clear a neighbouring triangle, and the clear directions lie off to a side.
+// need not clear a neighbouring triangle, and the clear directions can lie off to a side. Only
+// chords the turns toward n leave crossing are searched: about 1 650 chord tests where none is
+// clear.
 bool turn_first_segment_clear(const HeadExit& out_of_head, const Vec3& n, Vec3* points) {
   const Vec3 d = points[1] - points[0];
   const double length = d.norm();
