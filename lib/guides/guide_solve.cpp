@@ -55,7 +55,7 @@ GuideTargets make_targets(const RootSet& bases, int b, const PreGuides& preguide
   // Styled along its path: a hanging hair along its fall (weightless), the rest along the flow;
   // stubble stays straight, since its path would read the fields within a cell or two of its root
   // (see rests_unloaded).
-  const bool styled = o.styled && t.length >= kStubbleVoxels * boundary.volume->voxel();
+  const bool styled = o.styled && t.length >= stubble_length(*boundary.volume);
   const bool along_fall = styled && hangs(bases, b) && o.material.gravity.isZero(0.0) && !o.material.contact.active();
   if (along_fall) {
     t.model.kappa_hat = fall_rest(fall_region(boundary, o.down, o.front), t.root, bases.normals[b], t.model.root_frame,
@@ -176,8 +176,8 @@ GuideSolve optimise_in_stages(const GuideTargets& targets, const double* start, 
   return second;
 }
 
-// Whether guide b keeps its rest shape, unloaded: a weightless rod, free of the scalp, shorter
-// than kStubbleVoxels voxels of the volume's field. Such a guide lies within a cell or two of the
+// Whether guide b keeps its rest shape, unloaded: a weightless rod, free of the scalp (so solved
+// by single shooting, whose zero loads are its rest), shorter than stubble_length. Such a guide lies within a cell or two of the
 // fields, whose trilinear values cannot tell a layer thinner than a cell from outside it, so the
 // boundary term has nothing true to steer it by; its neighbours, centimetres long, are no guide to
 // its curvature either. Optimised, the carved hulls' hairline stubble (0.15–0.25 cm, roots
@@ -187,8 +187,7 @@ GuideSolve optimise_in_stages(const GuideTargets& targets, const double* start, 
 // direction, as long as the roots let its layer hold it (scalp/roots.h, fitted_stubble).
 bool rests_unloaded(const GuideTargets& targets, const Boundary& boundary) {
   const RodModel& m = targets.model;
-  return targets.length < kStubbleVoxels * boundary.volume->voxel() && m.force_per_length.isZero(0.0) && !m.support &&
-         rod_scheme(m) == RodScheme::single_shooting;
+  return targets.length < stubble_length(*boundary.volume) && m.force_per_length.isZero(0.0) && !m.support;
 }
 
 // The solve of a guide at rest: every load 0, its cost that of the rest shape.

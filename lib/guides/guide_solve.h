@@ -88,6 +88,8 @@ struct GuideSolveSetup {
 // 0.9996–1.0000 at 4; flow crossing 0.015–0.040, 0.005–0.030, 0.003–0.018. At 4 voxels, 1 cm hair
 // at 0.25 cm voxels and 2 cm at 0.5 cm, the method would leave much of the hair unsolved.
 constexpr double kStubbleVoxels = 2.0;
+// cm: hair shorter than this is stubble, for a volume field of this voxel.
+inline double stubble_length(const DistanceField& volume) { return kStubbleVoxels * volume.voxel(); }
 
 // Guide b of the problem.
 Guide solve_guide(const GuideProblem& problem, int b, const GuideSolveSetup& setup = {});

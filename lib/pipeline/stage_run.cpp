@@ -82,10 +82,14 @@ const StageRun::ResolvedRoots& StageRun::resolved_roots(const RootSettings& sett
       if (!r.shell.layer_ends) o.tilt = kMaxShellTilt;
     }
   }
-  // Hair from the hull shorter than kStubbleVoxels voxels is stubble, as long as its layer holds it straight.
-  if (!r.inputs.vertex_lengths.empty() && settings.from_shell) {
+  // Hair from the hull shorter than stubble_length is stubble, as long as its layer holds it
+  // straight. A root's length interpolates its triangle's vertices', so only where some vertex's
+  // hair is stubble can a root's be, and only then are the layer's trees built.
+  const double stubble = stubble_length(*values.volume_field);
+  const std::vector<double>& lengths = r.inputs.vertex_lengths;
+  if (settings.from_shell && std::any_of(lengths.begin(), lengths.end(), [&](double l) { return l < stubble; })) {
     r.inputs.layer_run = exact_layer_run(inputs.volume.mesh, values.chart->mesh, inputs.volume_report.closed());
-    r.inputs.stubble_length = kStubbleVoxels * values.volume_field->voxel();
+    r.inputs.stubble_length = stubble;
   }
   // After the hull has had its say: hanging hair tilts as "thicker" does where it does not hang.
   if (o.tilt_toward != TiltToward::down) r.inputs.thickness = layer_thickness(*values.volume_field);

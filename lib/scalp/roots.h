@@ -53,11 +53,9 @@ struct RootInputs {
   std::vector<double> vertex_hang_weights;
   std::vector<double> vertex_lengths;
   // Stubble from the hull: a root whose hair from the hull is shorter than `stubble_length` (cm,
-  // kStubbleVoxels of the fields' voxels; the guides keep such hair straight at rest,
-  // guides/guide_solve.h) is at most
-  // kStubbleShare of how far its straight hair stays in the layer, `layer_run`(root, direction,
-  // reach): the distance to its first crossing of the hull or the scalp, or `reach` if none (null:
-  // no fit).
+  // guides/guide_solve.h, whose guides keep such hair straight at rest) is at most kStubbleShare of
+  // how far its straight hair stays in the layer, `layer_run`(root, direction, reach), up to
+  // `reach` (the pipeline's is exact_layer_run, pipeline/stage_options.h; null: no fit).
   std::function<double(const Vec3& root, const Vec3& direction, double reach)> layer_run;
   double stubble_length = 0.0;
 };
