@@ -176,15 +176,16 @@ GuideSolve optimise_in_stages(const GuideTargets& targets, const double* start, 
   return second;
 }
 
-// Whether guide b keeps its rest shape, unloaded: a weightless rod, free of the scalp (so solved
-// by single shooting, whose zero loads are its rest), shorter than stubble_length. Such a guide lies within a cell or two of the
-// fields, whose trilinear values cannot tell a layer thinner than a cell from outside it, so the
-// boundary term has nothing true to steer it by; its neighbours, centimetres long, are no guide to
-// its curvature either. Optimised, the carved hulls' hairline stubble (0.15–0.25 cm, roots
-// 0.05–0.3 cm below the hull) was bent into hooks and folds, turning 30–120° and crossing the
-// layer: braids, 8 of its 89 guides under 0.3 cm with over a fifth of their nodes outside, 26–253
-// evaluations each (docs/results/carved-flow.md). At rest it runs straight along its root's
-// direction, as long as the roots let its layer hold it (scalp/roots.h, fitted_stubble).
+// Whether guide b keeps its rest shape, unloaded: a weightless rod, free of the scalp (so solved by
+// single shooting, whose zero loads are its rest), shorter than stubble_length. Such a guide lies
+// within a cell or two of the fields, whose trilinear values cannot tell a layer thinner than a
+// cell from outside it, so the boundary term has nothing true to steer it by; its neighbours,
+// centimetres long, are no guide to its curvature either. Optimised, the carved hulls' hairline
+// stubble (0.15–0.25 cm, roots 0.05–0.3 cm below the hull) was bent into hooks and folds, turning
+// 30–120° and crossing the layer: braids, 8 of its 89 guides under 0.3 cm with over a fifth of
+// their nodes outside, 26–253 evaluations each (docs/results/carved-flow.md). At rest it runs
+// straight along its root's direction, as long as the roots let its layer hold it (scalp/roots.h,
+// fitted_stubble).
 bool rests_unloaded(const GuideTargets& targets, const Boundary& boundary) {
   const RodModel& m = targets.model;
   return targets.length < stubble_length(*boundary.volume) && m.force_per_length.isZero(0.0) && !m.support;

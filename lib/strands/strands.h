@@ -24,11 +24,11 @@ struct StrandOptions {
   // Fibres spread through the depth of the hair layer (strands.depth = "layer"; needs
   // StrandSurroundings::to_layer_depth): the fibres of a wisp take depths spaced evenly over the
   // layer between kLayerMargin of it at either side (over its top 2·tip_radius only where it is
-  // deeper than that: to_layer_depth's placement, pipeline/scalp_exit.h), the fibre whose pore lies furthest upstream
-  // along the guide's root tangent on top (its hair lies over its neighbours' roots), each point
-  // moved to its depth by the settle weight of its wisp station. The first segment leaves the
-  // pore as in the wisp: turned toward a depth it could dip under a curved scalp beside the pore,
-  // where a chord from the root cannot be lifted.
+  // deeper than that: to_layer_depth's placement, pipeline/scalp_exit.h), the fibre whose pore lies
+  // furthest upstream along the guide's root tangent on top (its hair lies over its neighbours'
+  // roots), each point moved to its depth by the settle weight of its wisp station. The first
+  // segment leaves the pore as in the wisp: turned toward a depth it could dip under a curved scalp
+  // beside the pore, where a chord from the root cannot be lifted.
   bool layer_depth = false;
   // The density models' fibre part (strands/density_spread.h): the grown fibres spread down their
   // own density gradient before the keep-out pass and the cut. Not with layer_depth, whose
